@@ -1,0 +1,142 @@
+#include "kinematics/kinematics.hpp"
+
+#include <cassert>
+#include <cmath>
+#include <limits>
+
+namespace rrlab {
+
+int task_rows(TaskSpace space) {
+  switch (space) {
+    case TaskSpace::xy: return 2;
+    case TaskSpace::xyz: return 3;
+    case TaskSpace::pose: return 6;
+  }
+  return 0;
+}
+
+const char* to_string(TaskSpace space) {
+  switch (space) {
+    case TaskSpace::xy: return "xy";
+    case TaskSpace::xyz: return "xyz";
+    case TaskSpace::pose: return "pose";
+  }
+  return "?";
+}
+
+KinematicsData::KinematicsData(const Model& model)
+    : axis_points(3, model.dof()),
+      axis_dirs(3, model.dof()),
+      joint_frames(model.dof(), Eigen::Isometry3d::Identity()),
+      link_start(3, model.link_count()),
+      link_end(3, model.link_count()) {}
+
+namespace {
+// Rodrigues: rotation by `angle` about the unit `axis`.
+Eigen::Matrix3d axis_rotation(const Eigen::Vector3d& axis, double angle) {
+  const double c = std::cos(angle), s = std::sin(angle), v = 1.0 - c;
+  const double x = axis.x(), y = axis.y(), z = axis.z();
+  Eigen::Matrix3d r;
+  r << c + x * x * v, x * y * v - z * s, x * z * v + y * s,  //
+      y * x * v + z * s, c + y * y * v, y * z * v - x * s,   //
+      z * x * v - y * s, z * y * v + x * s, c + z * z * v;
+  return r;
+}
+}  // namespace
+
+void forward_kinematics(const Model& model, const Eigen::VectorXd& q, KinematicsData& data) {
+  assert(q.size() == model.dof());
+  Eigen::Matrix3d rot = model.base.linear();
+  Eigen::Vector3d pos = model.base.translation();
+  for (int j = 0; j < model.dof(); ++j) {
+    const Joint& joint = model.joints[j];
+    // frame before the motion: T * pre
+    pos += rot * joint.pre.translation();
+    rot = rot * joint.pre.linear();
+    data.axis_points.col(j) = pos;
+    data.axis_dirs.col(j) = rot * joint.axis;
+    if (joint.type == JointType::revolute) {
+      rot = rot * axis_rotation(joint.axis, q[j]);
+    } else {
+      pos += data.axis_dirs.col(j) * q[j];
+    }
+    pos += rot * joint.post.translation();
+    rot = rot * joint.post.linear();
+    data.joint_frames[j].linear() = rot;
+    data.joint_frames[j].translation() = pos;
+  }
+  Eigen::Vector3d start = model.base.translation();
+  for (int i = 0; i < model.link_count(); ++i) {
+    data.link_start.col(i) = start;
+    start = data.joint_frames[model.links[i].last_joint].translation();
+    data.link_end.col(i) = start;
+  }
+}
+
+void point_jacobian(const Model& model, const KinematicsData& data, int link,
+                    const Eigen::Vector3d& p, Eigen::Ref<Eigen::MatrixXd> jac) {
+  assert(jac.rows() == 6 && jac.cols() == model.dof());
+  const int last = model.links[link].last_joint;
+  for (int j = 0; j <= last; ++j) {
+    const Eigen::Vector3d axis = data.axis_dirs.col(j);
+    if (model.joints[j].type == JointType::revolute) {
+      jac.col(j).head<3>() = axis.cross(p - data.axis_points.col(j));
+      jac.col(j).tail<3>() = axis;
+    } else {
+      jac.col(j).head<3>() = axis;
+      jac.col(j).tail<3>().setZero();
+    }
+  }
+  jac.rightCols(model.dof() - last - 1).setZero();
+}
+
+void point_jacobian_linear(const Model& model, const KinematicsData& data, int link,
+                           const Eigen::Vector3d& p, Eigen::Ref<Eigen::MatrixXd> jac) {
+  assert(jac.rows() == 3 && jac.cols() == model.dof());
+  const int last = model.links[link].last_joint;
+  for (int j = 0; j <= last; ++j) {
+    const Eigen::Vector3d axis = data.axis_dirs.col(j);
+    if (model.joints[j].type == JointType::revolute)
+      jac.col(j) = axis.cross(p - data.axis_points.col(j));
+    else
+      jac.col(j) = axis;
+  }
+  jac.rightCols(model.dof() - last - 1).setZero();
+}
+
+void task_jacobian(const Model& model, const KinematicsData& data, TaskSpace space,
+                   Eigen::Ref<Eigen::MatrixXd> jac) {
+  const Eigen::Vector3d p = data.end_effector().translation();
+  const int n = model.dof();
+  assert(jac.rows() == task_rows(space) && jac.cols() == n);
+  const int rows = task_rows(space);
+  for (int j = 0; j < n; ++j) {
+    const Eigen::Vector3d axis = data.axis_dirs.col(j);
+    const bool revolute = model.joints[j].type == JointType::revolute;
+    const Eigen::Vector3d lin = revolute ? Eigen::Vector3d(axis.cross(p - data.axis_points.col(j))) : axis;
+    if (rows == 2) {
+      jac.col(j) = lin.head<2>();
+    } else {
+      jac.col(j).head<3>() = lin;
+      if (rows == 6) jac.col(j).tail<3>() = revolute ? axis : Eigen::Vector3d::Zero();
+    }
+  }
+}
+
+JacobianConditioning::JacobianConditioning(int rows, int /*cols*/)
+    : jjt_(rows, rows), eig_(rows) {}
+
+void JacobianConditioning::compute(const Eigen::MatrixXd& jac) {
+  jjt_.noalias() = jac * jac.transpose();
+  eig_.compute(jjt_, Eigen::EigenvaluesOnly);
+  const auto& ev = eig_.eigenvalues();  // ascending
+  const double lo = std::max(ev[0], 0.0), hi = std::max(ev[ev.size() - 1], 0.0);
+  sigma_min_ = std::sqrt(lo);
+  sigma_max_ = std::sqrt(hi);
+  double det = 1.0;
+  for (Eigen::Index i = 0; i < ev.size(); ++i) det *= std::max(ev[i], 0.0);
+  manipulability_ = std::sqrt(det);
+  condition_ = sigma_min_ > 0 ? sigma_max_ / sigma_min_ : std::numeric_limits<double>::infinity();
+}
+
+}  // namespace rrlab

@@ -1,0 +1,37 @@
+#include "methods/registry.hpp"
+
+#include "methods/factories.hpp"
+
+namespace rrlab {
+
+const std::vector<MethodInfo>& method_registry() {
+  static const std::vector<MethodInfo> table = {
+      {"pinv", "Pseudoinverse, minimum-norm joint velocity (Whitney 1969)", pinv_params(), make_pinv},
+      {"dls", "Damped least squares, fixed or manipulability-adaptive damping (Wampler 1986)",
+       dls_params(), make_dls},
+      {"gpm", "Gradient projection of a criterion into the null space (Liégeois 1977)",
+       gpm_params(), make_gpm},
+      {"task_priority", "Task-priority resolution with a secondary task (Nakamura et al. 1987)",
+       task_priority_params(), make_task_priority},
+      {"sr_task_priority",
+       "Singularity-robust task priority, damped secondary task (Chiaverini 1997)",
+       sr_task_priority_params(), make_sr_task_priority},
+      {"closest_point", "Obstacle avoidance at the closest link point (Maciejewski & Klein 1985)",
+       closest_point_params(), make_closest_point},
+  };
+  return table;
+}
+
+const MethodInfo* find_method(std::string_view name) {
+  for (const MethodInfo& info : method_registry())
+    if (info.name == name) return &info;
+  return nullptr;
+}
+
+std::string method_names() {
+  std::string names;
+  for (const MethodInfo& info : method_registry()) names += (names.empty() ? "" : ", ") + info.name;
+  return names;
+}
+
+}  // namespace rrlab

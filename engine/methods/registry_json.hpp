@@ -1,0 +1,13 @@
+// The method table as JSON (for `rrlab methods` and GET /api/methods).
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include "methods/registry.hpp"
+
+namespace rrlab {
+
+nlohmann::json param_spec_json(const ParamSpec& spec);
+nlohmann::json methods_json();
+
+}  // namespace rrlab

@@ -1,0 +1,75 @@
+// Robot models: an immutable description shared by every algorithm.
+// Every kind (planar, spatial_xz, dh) is lowered to one serial chain of
+// joints, each a fixed transform, a motion about/along its local z or x axis,
+// and links (capsules) between consecutive "link frames".
+#pragma once
+
+#include <Eigen/Geometry>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace rrlab {
+
+enum class ModelKind { planar, spatial_xz, dh };
+enum class JointType { revolute, prismatic };
+
+const char* to_string(ModelKind kind);
+
+// One joint of the lowered chain: frame_j = frame_{j-1} * pre * motion(q_j) * post.
+// The motion turns about (or slides along) `axis`, a unit vector of the frame
+// after `pre`.
+struct Joint {
+  JointType type = JointType::revolute;
+  Eigen::Isometry3d pre = Eigen::Isometry3d::Identity();
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
+  Eigen::Isometry3d post = Eigen::Isometry3d::Identity();
+};
+
+// A link is the segment from the end of the previous link (or the base) to the
+// origin of the frame after joint `last_joint`; a capsule of `radius`.
+struct Link {
+  int last_joint = 0;
+  double radius = 0.0;
+};
+
+struct JointLimits {
+  Eigen::VectorXd lower, upper;         // position; -inf/+inf when unbounded
+  Eigen::VectorXd velocity, acceleration;  // magnitudes; +inf when unbounded
+  bool has_position() const;
+  bool has_velocity() const;
+  bool has_acceleration() const;
+};
+
+struct Model {
+  ModelKind kind = ModelKind::planar;
+  Eigen::Isometry3d base = Eigen::Isometry3d::Identity();
+  std::vector<Joint> joints;
+  std::vector<Link> links;
+  JointLimits limits;
+
+  int dof() const { return static_cast<int>(joints.size()); }
+  int link_count() const { return static_cast<int>(links.size()); }
+  // Upper bound of the reach from the base, for scaling and sanity checks.
+  double reach() const;
+};
+
+// Inputs of the three model builders (already in SI units and radians).
+struct PlanarLinkSpec { double length = 1.0, radius = 0.0; };
+struct DhLinkSpec {
+  double a = 0, alpha = 0, d = 0, theta = 0, radius = 0;
+  JointType joint = JointType::revolute;
+};
+
+Model make_planar(const std::vector<PlanarLinkSpec>& links, const Eigen::Vector2d& base);
+// Chen eq. 11-12: each link is posed by a joint about x then one about z; the
+// link vector lies along the local +x axis at zero angles.
+Model make_spatial_xz(const std::vector<PlanarLinkSpec>& links, const Eigen::Vector3d& base);
+// Standard (distal) DH: T_i = Rz(q_i + theta) Tz(d) Tx(a) Rx(alpha), or for a
+// prismatic joint Rz(theta) Tz(q_i + d) Tx(a) Rx(alpha).
+Model make_dh(const std::vector<DhLinkSpec>& links, const Eigen::Isometry3d& base);
+
+// Unbounded limits of the right size; builders call it.
+JointLimits unbounded_limits(int dof);
+
+}  // namespace rrlab

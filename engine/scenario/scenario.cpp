@@ -1,0 +1,407 @@
+// Scenario loader: JSON (DESIGN.md "Scenario file") to engine types. Every
+// check happens here, where user input enters; errors name the JSON path.
+#include "scenario/scenario.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "collision/polygon.hpp"
+#include "methods/registry.hpp"
+#include "scenario/json_reader.hpp"
+
+namespace rrlab {
+
+namespace {
+
+using nlohmann::json;
+
+struct Units {
+  double angle = 1.0;  // radians per file unit
+};
+
+Eigen::Vector3d to_vec3(const std::vector<double>& v) {
+  return {v[0], v[1], v.size() > 2 ? v[2] : 0.0};
+}
+
+Eigen::Matrix3d rpy_matrix(const std::vector<double>& rpy, double scale) {
+  return (Eigen::AngleAxisd(rpy[2] * scale, Eigen::Vector3d::UnitZ()) *
+          Eigen::AngleAxisd(rpy[1] * scale, Eigen::Vector3d::UnitY()) *
+          Eigen::AngleAxisd(rpy[0] * scale, Eigen::Vector3d::UnitX()))
+      .toRotationMatrix();
+}
+
+double positive(JsonObject& obj, const std::string& key, std::optional<double> def = std::nullopt) {
+  const double v = def ? obj.number(key, *def) : obj.number(key);
+  if (!(v > 0)) throw ScenarioError(obj.child(key), "must be > 0, got " + std::to_string(v));
+  return v;
+}
+
+double non_negative(JsonObject& obj, const std::string& key, double def) {
+  const double v = obj.number(key, def);
+  if (v < 0) throw ScenarioError(obj.child(key), "must be >= 0, got " + std::to_string(v));
+  return v;
+}
+
+// ---- robot ----
+
+Model parse_links(JsonObject& robot, const std::string& kind, const Units& units) {
+  const json& links = robot.array("links", ScenarioLimits::max_joints);
+  const std::string links_path = robot.child("links");
+  if (links.empty()) throw ScenarioError(links_path, "needs at least one link");
+  const int joints_per_link = kind == "spatial_xz" ? 2 : 1;
+  if (int(links.size()) * joints_per_link > ScenarioLimits::max_joints)
+    throw ScenarioError(links_path, "gives " + std::to_string(links.size() * joints_per_link) +
+                                        " joints, at most " +
+                                        std::to_string(ScenarioLimits::max_joints) + " allowed");
+  if (kind == "dh") {
+    std::vector<DhLinkSpec> specs;
+    for (size_t i = 0; i < links.size(); ++i) {
+      JsonObject link(links[i], index_path(links_path, i));
+      link.check_keys({"a", "alpha", "d", "theta", "joint", "radius"});
+      DhLinkSpec s;
+      s.a = link.number("a", 0.0);
+      s.alpha = link.number("alpha", 0.0) * units.angle;
+      s.d = link.number("d", 0.0);
+      s.theta = link.number("theta", 0.0) * units.angle;
+      s.joint = link.choice("joint", {"revolute", "prismatic"}, "revolute") == "prismatic"
+                    ? JointType::prismatic
+                    : JointType::revolute;
+      s.radius = non_negative(link, "radius", 0.0);
+      specs.push_back(s);
+    }
+    Eigen::Isometry3d base = Eigen::Isometry3d::Identity();
+    if (robot.has("base")) base.translation() = to_vec3(robot.numbers("base", 3, 3));
+    if (robot.has("base_rpy")) base.linear() = rpy_matrix(robot.numbers("base_rpy", 3, 3), units.angle);
+    return make_dh(specs, base);
+  }
+  std::vector<PlanarLinkSpec> specs;
+  for (size_t i = 0; i < links.size(); ++i) {
+    JsonObject link(links[i], index_path(links_path, i));
+    link.check_keys({"length", "radius"});
+    specs.push_back({positive(link, "length"), non_negative(link, "radius", 0.0)});
+  }
+  if (kind == "planar") {
+    if (robot.has("base_rpy")) throw ScenarioError(robot.child("base_rpy"), "only dh robots take base_rpy");
+    const std::vector<double> base = robot.has("base") ? robot.numbers("base", 2, 2) : std::vector<double>{0, 0};
+    return make_planar(specs, {base[0], base[1]});
+  }
+  if (robot.has("base_rpy")) throw ScenarioError(robot.child("base_rpy"), "only dh robots take base_rpy");
+  const std::vector<double> base = robot.has("base") ? robot.numbers("base", 3, 3) : std::vector<double>{0, 0, 0};
+  return make_spatial_xz(specs, to_vec3(base));
+}
+
+// Limits entries may be null (unbounded); angles of revolute joints are converted.
+Eigen::VectorXd parse_limit_vector(JsonObject& limits, const std::string& key, const Model& model,
+                                   const Units& units, double unbounded, bool must_be_positive) {
+  Eigen::VectorXd out = Eigen::VectorXd::Constant(model.dof(), unbounded);
+  if (!limits.has(key)) return out;
+  const json& v = limits.raw(key);
+  const std::string path = limits.child(key);
+  if (!v.is_array()) throw ScenarioError(path, "must be an array of numbers, got " + json_type_name(v));
+  if (int(v.size()) != model.dof())
+    throw ScenarioError(path, "must have " + std::to_string(model.dof()) + " entries (one per joint), got " +
+                                  std::to_string(v.size()));
+  for (int i = 0; i < model.dof(); ++i) {
+    if (v[i].is_null()) continue;
+    const double scale = model.joints[i].type == JointType::revolute ? units.angle : 1.0;
+    out[i] = json_number(v[i], index_path(path, i)) * scale;
+    if (must_be_positive && !(out[i] > 0)) throw ScenarioError(index_path(path, i), "must be > 0");
+  }
+  return out;
+}
+
+void parse_robot(JsonObject robot, const Units& units, Scenario& sc) {
+  robot.check_keys({"kind", "base", "base_rpy", "links", "q0", "limits"});
+  const std::string kind = robot.choice("kind", {"planar", "spatial_xz", "dh"});
+  sc.model = parse_links(robot, kind, units);
+  const int n = sc.model.dof();
+
+  sc.q0 = Eigen::VectorXd::Zero(n);
+  if (robot.has("q0")) {
+    const json& q0 = robot.raw("q0");
+    const std::string path = robot.child("q0");
+    if (q0.is_array() && int(q0.size()) != n)
+      throw ScenarioError(path, "has " + std::to_string(q0.size()) + " values but the robot has " +
+                                    std::to_string(n) + " joints");
+    const std::vector<double> values = json_numbers(q0, path, n, n);
+    for (int i = 0; i < n; ++i)
+      sc.q0[i] = values[i] * (sc.model.joints[i].type == JointType::revolute ? units.angle : 1.0);
+  }
+
+  if (robot.has("limits")) {
+    JsonObject limits = robot.object("limits");
+    limits.check_keys({"lower", "upper", "velocity", "acceleration"});
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    JointLimits& l = sc.model.limits;
+    l.lower = parse_limit_vector(limits, "lower", sc.model, units, -inf, false);
+    l.upper = parse_limit_vector(limits, "upper", sc.model, units, inf, false);
+    l.velocity = parse_limit_vector(limits, "velocity", sc.model, units, inf, true);
+    l.acceleration = parse_limit_vector(limits, "acceleration", sc.model, units, inf, true);
+    for (int i = 0; i < n; ++i) {
+      if (l.lower[i] >= l.upper[i])
+        throw ScenarioError(index_path(limits.child("lower"), i), "must be below the upper limit");
+      if (sc.q0[i] < l.lower[i] || sc.q0[i] > l.upper[i]) {
+        std::ostringstream msg;
+        msg << "value " << sc.q0[i] << " rad is outside the joint limits [" << l.lower[i] << ", "
+            << l.upper[i] << "]";
+        throw ScenarioError(index_path(robot.child("q0"), i), msg.str());
+      }
+    }
+  }
+}
+
+// ---- obstacles ----
+
+Obstacle parse_obstacle(const json& value, const std::string& path, size_t index, const Units& units) {
+  JsonObject obj(value, path);
+  Obstacle o;
+  const std::string shape = obj.choice("shape", {"polygon", "box", "sphere", "point", "wall"});
+  if (shape == "polygon") {
+    obj.check_keys({"id", "shape", "points", "z", "velocity"});
+    o.shape = ShapeKind::polygon;
+    const json& points = obj.array("points", ScenarioLimits::max_polygon_points);
+    for (size_t i = 0; i < points.size(); ++i) {
+      const std::vector<double> p = json_numbers(points[i], index_path(obj.child("points"), i), 2, 2);
+      o.points.emplace_back(p[0], p[1]);
+    }
+    const std::string problem = polygon_problem(o.points);
+    if (!problem.empty()) throw ScenarioError(obj.child("points"), problem);
+    if (obj.has("z")) {
+      const std::vector<double> z = obj.numbers("z", 2, 2);
+      if (!(z[0] < z[1])) throw ScenarioError(obj.child("z"), "must be [z_min, z_max] with z_min < z_max");
+      o.z_min = z[0];
+      o.z_max = z[1];
+    }
+  } else if (shape == "box") {
+    obj.check_keys({"id", "shape", "center", "size", "rpy", "velocity"});
+    o.shape = ShapeKind::box;
+    o.position0 = to_vec3(obj.numbers("center", 2, 3));
+    const std::vector<double> size = obj.numbers("size", 2, 3);
+    o.size = {size[0], size[1], size.size() > 2 ? size[2] : 2.0};  // planar boxes: 2 m tall
+    for (int i = 0; i < 3; ++i)
+      if (!(o.size[i] > 0)) throw ScenarioError(index_path(obj.child("size"), i), "must be > 0");
+    if (obj.has("rpy")) o.rotation = rpy_matrix(obj.numbers("rpy", 3, 3), units.angle);
+  } else if (shape == "sphere") {
+    obj.check_keys({"id", "shape", "center", "radius", "velocity"});
+    o.shape = ShapeKind::sphere;
+    o.position0 = to_vec3(obj.numbers("center", 2, 3));
+    o.radius = positive(obj, "radius");
+  } else if (shape == "point") {
+    obj.check_keys({"id", "shape", "position", "velocity"});
+    o.shape = ShapeKind::point;
+    o.position0 = to_vec3(obj.numbers("position", 2, 3));
+  } else {
+    obj.check_keys({"id", "shape", "point", "normal", "velocity"});
+    o.shape = ShapeKind::wall;
+    o.position0 = to_vec3(obj.numbers("point", 2, 3));
+    const Eigen::Vector3d normal = to_vec3(obj.numbers("normal", 2, 3));
+    if (normal.norm() < 1e-12) throw ScenarioError(obj.child("normal"), "must not be zero");
+    o.normal = normal.normalized();
+  }
+  o.id = obj.string("id", "obstacle" + std::to_string(index + 1));
+  if (o.id.empty() || o.id.size() > 64) throw ScenarioError(obj.child("id"), "must have 1 to 64 characters");
+  if (obj.has("velocity")) o.velocity = to_vec3(obj.numbers("velocity", 2, 3));
+  o.position = o.position0;
+  return o;
+}
+
+void parse_obstacles(const json& value, const std::string& path, const Units& units, Scenario& sc) {
+  if (!value.is_array()) throw ScenarioError(path, "must be an array, got " + json_type_name(value));
+  if (value.size() > size_t(ScenarioLimits::max_obstacles))
+    throw ScenarioError(path, "has " + std::to_string(value.size()) + " obstacles, at most " +
+                                  std::to_string(ScenarioLimits::max_obstacles) + " allowed");
+  std::set<std::string> ids;
+  for (size_t i = 0; i < value.size(); ++i) {
+    Obstacle o = parse_obstacle(value[i], index_path(path, i), i, units);
+    if (!ids.insert(o.id).second)
+      throw ScenarioError(index_path(path, i) + ".id", "duplicate obstacle id \"" + o.id + "\"");
+    sc.scene.obstacles.push_back(std::move(o));
+  }
+}
+
+// ---- task ----
+
+void parse_trajectory(JsonObject traj, const Units& units, TaskSpace space, TrajectorySpec& t) {
+  const std::string type = traj.choice("type", {"polyline", "circle", "ellipse", "joystick"});
+  const size_t dims = space == TaskSpace::xy ? 2 : 3;
+  auto point = [&](const json& v, const std::string& path) {
+    return to_vec3(json_numbers(v, path, dims, dims));
+  };
+  auto time_law = [&] {
+    return traj.choice("time_law", {"linear", "quintic"}, "linear") == "quintic" ? TimeLaw::quintic
+                                                                                   : TimeLaw::linear;
+  };
+  if (type == "polyline") {
+    traj.check_keys({"type", "points", "time_law", "durations"});
+    t.type = TrajectoryType::polyline;
+    t.time_law = time_law();
+    const json& points = traj.array("points", ScenarioLimits::max_path_points);
+    if (points.size() < 2) throw ScenarioError(traj.child("points"), "needs at least 2 points");
+    for (size_t i = 0; i < points.size(); ++i) t.points.push_back(point(points[i], index_path(traj.child("points"), i)));
+    if (traj.has("durations")) {
+      t.durations = traj.numbers("durations", points.size() - 1, points.size() - 1);
+      for (size_t i = 0; i < t.durations.size(); ++i)
+        if (!(t.durations[i] > 0)) throw ScenarioError(index_path(traj.child("durations"), i), "must be > 0");
+    }
+    return;
+  }
+  if (type == "joystick") {
+    traj.check_keys({"type"});
+    t.type = TrajectoryType::joystick;
+    return;
+  }
+  const bool circle = type == "circle";
+  if (circle)
+    traj.check_keys({"type", "center", "radius", "start_angle", "direction", "turns", "time_law", "normal"});
+  else
+    traj.check_keys({"type", "center", "semi_axes", "start_angle", "direction", "turns", "time_law", "normal"});
+  t.type = circle ? TrajectoryType::circle : TrajectoryType::ellipse;
+  t.center = point(traj.raw("center"), traj.child("center"));
+  if (circle) {
+    t.radius = positive(traj, "radius");
+  } else {
+    const std::vector<double> axes = traj.numbers("semi_axes", 2, 2);
+    for (int i = 0; i < 2; ++i)
+      if (!(axes[i] > 0)) throw ScenarioError(index_path(traj.child("semi_axes"), i), "must be > 0");
+    t.semi_axes = {axes[0], axes[1]};
+  }
+  if (auto a = traj.optional_number("start_angle")) t.start_angle = *a * units.angle;
+  t.clockwise = traj.choice("direction", {"ccw", "cw"}, "ccw") == "cw";
+  t.turns = positive(traj, "turns", 1.0);
+  t.time_law = time_law();
+  if (traj.has("normal")) {
+    if (space == TaskSpace::xy) throw ScenarioError(traj.child("normal"), "only 3D task spaces take a normal");
+    t.normal = to_vec3(traj.numbers("normal", 3, 3));
+    if (t.normal.norm() < 1e-12) throw ScenarioError(traj.child("normal"), "must not be zero");
+    t.normal.normalize();
+  }
+}
+
+void parse_task(JsonObject task, const Units& units, Scenario& sc) {
+  task.check_keys({"space", "gain", "trajectory", "orientation"});
+  const std::string space = task.choice("space", {"xy", "xyz", "pose"}, "xy");
+  sc.task.space = space == "xy" ? TaskSpace::xy : space == "xyz" ? TaskSpace::xyz : TaskSpace::pose;
+  if (sc.model.kind == ModelKind::planar && sc.task.space != TaskSpace::xy)
+    throw ScenarioError(task.child("space"), "a planar robot can only track an \"xy\" task");
+  if (task_rows(sc.task.space) > sc.model.dof())
+    throw ScenarioError(task.child("space"), "\"" + space + "\" needs at least " +
+                                                 std::to_string(task_rows(sc.task.space)) + " joints, the robot has " +
+                                                 std::to_string(sc.model.dof()));
+  if (auto gain = task.optional_number("gain")) {
+    if (!(*gain >= 0) || *gain * sc.dt > 1.0)
+      throw ScenarioError(task.child("gain"), "must be in [0, 1/dt] so the discrete loop is stable");
+    sc.task.gain = *gain;
+  }
+  if (task.has("orientation")) {
+    if (sc.task.space != TaskSpace::pose)
+      throw ScenarioError(task.child("orientation"), "only \"pose\" tasks take an orientation");
+    sc.task.orientation = rpy_matrix(task.numbers("orientation", 3, 3), units.angle);
+  }
+  parse_trajectory(task.object("trajectory"), units, sc.task.space, sc.task.trajectory);
+}
+
+// ---- method ----
+
+void parse_method(JsonObject method, Scenario& sc) {
+  method.check_keys({"name", "params"});
+  sc.method.name = method.string("name");
+  if (!find_method(sc.method.name))
+    throw ScenarioError(method.child("name"),
+                        "unknown method \"" + sc.method.name + "\" (known: " + method_names() + ")");
+  if (method.has("params")) {
+    JsonObject params = method.object("params");
+    for (auto it = method.raw("params").begin(); it != method.raw("params").end(); ++it)
+      sc.method.params.push_back(
+          resolve_method_param(sc.method.name, it.key(), it.value(), params.child(it.key())));
+  }
+}
+
+}  // namespace
+
+long Scenario::steps() const { return std::lround(duration / dt); }
+
+std::pair<std::string, double> resolve_method_param(const std::string& method_name,
+                                                    const std::string& name,
+                                                    const nlohmann::json& value,
+                                                    const std::string& path) {
+  const MethodInfo* info = find_method(method_name);
+  if (!info) throw ScenarioError(path, "unknown method \"" + method_name + "\"");
+  const int index = find_param(info->params, name);
+  if (index < 0) {
+    std::string known;
+    for (const ParamSpec& s : info->params) known += (known.empty() ? "" : ", ") + s.name;
+    throw ScenarioError(path, "unknown parameter of " + method_name + " (known: " +
+                                  (known.empty() ? "none" : known) + ")");
+  }
+  const ParamSpec& spec = info->params[index];
+  double v = 0;
+  if (value.is_string() && !spec.choices.empty()) {
+    const int c = choice_index(spec, value.get<std::string>());
+    if (c < 0) throw ScenarioError(path, param_problem(spec, -1));
+    v = c;
+  } else {
+    v = json_number(value, path);
+  }
+  const std::string problem = param_problem(spec, v);
+  if (!problem.empty()) throw ScenarioError(path, problem);
+  return {name, v};
+}
+
+Scenario parse_scenario(const json& doc) {
+  JsonObject root(doc, "");
+  root.check_keys({"name", "description", "source", "dt", "duration", "angle_unit", "seed", "robot",
+                   "obstacles", "task", "method"});
+  Scenario sc;
+  sc.json = doc;
+  sc.name = root.string("name", "unnamed");
+  sc.description = root.string("description", "");
+  sc.source = root.string("source", "");
+  sc.dt = root.number("dt", 0.01);
+  if (!(sc.dt > 0) || sc.dt > 1.0) throw ScenarioError("dt", "must be in (0, 1] s");
+  sc.duration = root.number("duration", 10.0);
+  if (!(sc.duration > 0)) throw ScenarioError("duration", "must be > 0 s");
+  if (sc.duration / sc.dt > double(ScenarioLimits::max_steps))
+    throw ScenarioError("duration", "gives " + std::to_string(std::lround(sc.duration / sc.dt)) +
+                                        " steps, at most " + std::to_string(ScenarioLimits::max_steps) +
+                                        " allowed");
+  if (sc.steps() < 1) throw ScenarioError("duration", "must be at least one step (dt)");
+  Units units;
+  if (root.choice("angle_unit", {"rad", "deg"}, "rad") == "deg") units.angle = M_PI / 180.0;
+  if (root.has("seed")) {
+    const json& seed = root.raw("seed");
+    if (!seed.is_number_integer() || seed.get<long long>() < 0)
+      throw ScenarioError("seed", "must be a non-negative integer");
+    sc.seed = seed.get<std::uint64_t>();
+  }
+  parse_robot(root.object("robot"), units, sc);
+  if (root.has("obstacles")) parse_obstacles(root.raw("obstacles"), "obstacles", units, sc);
+  parse_task(root.object("task"), units, sc);
+  if (root.has("method")) {
+    parse_method(root.object("method"), sc);
+  } else {
+    sc.method.name = "pinv";
+  }
+  return sc;
+}
+
+Scenario parse_scenario_text(const std::string& text) {
+  json doc;
+  try {
+    doc = json::parse(text);
+  } catch (const json::parse_error& e) {
+    throw ScenarioError("", std::string("invalid JSON: ") + e.what());
+  }
+  return parse_scenario(doc);
+}
+
+Scenario load_scenario_file(const std::string& file) {
+  std::ifstream in(file);
+  if (!in) throw ScenarioError("", "cannot read scenario file '" + file + "'");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return parse_scenario_text(buffer.str());
+}
+
+}  // namespace rrlab

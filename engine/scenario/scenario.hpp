@@ -1,0 +1,69 @@
+// A scenario: robot, obstacles, task and method, loaded from the JSON
+// contract of DESIGN.md with errors that name the JSON path.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "collision/scene.hpp"
+#include "model/model.hpp"
+#include "task/task.hpp"
+
+namespace rrlab {
+
+// Size bounds that keep a scenario from exhausting memory or time.
+struct ScenarioLimits {
+  static constexpr int max_joints = 64;
+  static constexpr int max_obstacles = 256;
+  static constexpr int max_polygon_points = 1024;
+  static constexpr int max_path_points = 10000;
+  static constexpr long max_steps = 10'000'000;
+};
+
+class ScenarioError : public std::runtime_error {
+ public:
+  ScenarioError(std::string path, const std::string& message)
+      : std::runtime_error(path.empty() ? message : path + ": " + message), path_(std::move(path)) {}
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+};
+
+struct MethodSpec {
+  std::string name;
+  std::vector<std::pair<std::string, double>> params;  // validated against the method's specs
+};
+
+struct Scenario {
+  std::string name, description, source;
+  double dt = 0.01, duration = 1.0;
+  std::uint64_t seed = 1;
+  Model model;
+  Eigen::VectorXd q0;
+  Scene scene;
+  TaskSpec task;
+  MethodSpec method;
+  nlohmann::json json;  // the document as given
+
+  long steps() const;
+};
+
+// Throws ScenarioError naming the offending path.
+Scenario parse_scenario(const nlohmann::json& doc);
+Scenario parse_scenario_text(const std::string& text);
+Scenario load_scenario_file(const std::string& file);
+
+// Resolves a method parameter given as a number or an enumeration label;
+// throws ScenarioError at `path`. Shared by scenarios, CLI and REST.
+std::pair<std::string, double> resolve_method_param(const std::string& method,
+                                                    const std::string& name,
+                                                    const nlohmann::json& value,
+                                                    const std::string& path);
+
+}  // namespace rrlab

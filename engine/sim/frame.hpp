@@ -1,0 +1,54 @@
+// What the simulator records for every step, and the run summary.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <array>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace rrlab {
+
+struct Frame {
+  long step = 0;
+  double t = 0;
+  Eigen::VectorXd q, qdot;  // state at t, and the velocity applied over [t, t + dt]
+  Eigen::Vector3d ee_position = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond ee_orientation = Eigen::Quaterniond::Identity();
+  Eigen::Vector3d target = Eigen::Vector3d::Zero();
+  double task_error = 0;         // position error norm, m
+  double orientation_error = 0;  // rad (pose tasks)
+  double min_distance = 0;       // +inf without obstacles
+  int min_distance_link = -1;
+  bool collided = false;
+  double joint_limit_margin = 0;  // min over bounded joints of the distance to a limit; +inf if none
+  double manipulability = 0, condition_number = 0;
+  Eigen::VectorXd diagnostics;    // the method's named scalars
+  double step_us = 0;             // compute time: not deterministic, kept apart
+};
+
+struct StepTimeStats {
+  double mean = 0, p50 = 0, p99 = 0;
+};
+
+struct Summary {
+  std::string scenario, method;
+  long steps = 0;
+  bool collided = false;
+  double min_distance = 0;
+  double max_tracking_error = 0, final_tracking_error = 0;
+  bool joint_limit_violated = false;
+  double min_joint_limit_margin = 0;
+  std::optional<double> max_qdot_ratio, max_qddot_ratio;  // absent without such limits
+  double max_condition_number = 0;
+  long nonfinite_steps = 0;  // steps whose method output was not finite (zeroed)
+  Eigen::VectorXd final_q;
+  StepTimeStats step_us;
+};
+
+// DESIGN.md's summary JSON; non-finite numbers are written as null.
+nlohmann::json summary_to_json(const Summary& summary);
+nlohmann::json finite_or_null(double value);
+
+}  // namespace rrlab

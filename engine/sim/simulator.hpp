@@ -1,0 +1,91 @@
+// Fixed-step, deterministic simulation of one method on one scenario.
+// A step: obstacles to time t → kinematics → distances → task reference →
+// method → metrics → integration (Euler, unless the method integrated itself).
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "collision/collision_world.hpp"
+#include "kinematics/kinematics.hpp"
+#include "methods/method.hpp"
+#include "scenario/scenario.hpp"
+#include "sim/frame.hpp"
+#include "sim/recorder.hpp"
+#include "sim/step_time_histogram.hpp"
+#include "task/task.hpp"
+
+namespace rrlab {
+
+class Simulator {
+ public:
+  // Uses the scenario's method and parameters (throws ParamError / ScenarioError).
+  explicit Simulator(const Scenario& scenario);
+  Simulator(const Scenario& scenario, const std::string& method_name);
+  ~Simulator();
+
+  // Advance one step; the frame of the step just taken is frame().
+  void step();
+  bool done() const { return state_.step >= total_steps_; }
+  long total_steps() const { return total_steps_; }
+  void set_total_steps(long steps) { total_steps_ = steps; }
+  const Frame& frame() const { return frame_; }
+  // Compute time of the last step, measured by the caller (not deterministic).
+  void note_step_time(double us);
+
+  // Run inputs, applied before the next step.
+  void set_param(const std::string& name, double value);
+  void switch_method(const std::string& name);  // starts from the current state
+  Scene& scene() { return scene_; }
+  void scene_changed(bool reshape);  // after obstacles moved (false) or were resized/added/removed (true)
+  Task& task() { return *task_; }
+  void reset();  // back to q0 at t = 0, same method and parameters
+
+  const Scenario& scenario() const { return scenario_; }
+  const Model& model() const { return scenario_.model; }
+  const State& state() const { return state_; }
+  const Method& method() const { return *method_; }
+  const std::string& method_name() const { return method_name_; }
+  const KinematicsData& kinematics() const { return kin_; }
+  const DistanceTable& distances() const { return distances_; }
+  const TaskRef& reference() const { return ref_; }
+  const Eigen::MatrixXd& task_jacobian() const { return jacobian_; }
+  const std::vector<std::string>& diagnostic_names() const { return method_->diagnostic_names(); }
+
+  // Summary of the steps so far, with the final tracking error at the current state.
+  Summary summary();
+
+ private:
+  void install_method(const std::string& name);
+  void evaluate(double t);  // kinematics, Jacobian, distances and reference at state_.q
+  void accumulate_metrics();
+
+  Scenario scenario_;
+  Scene scene_;
+  std::unique_ptr<Task> task_;
+  std::unique_ptr<Method> method_;
+  std::string method_name_;
+  KinematicsData kin_;
+  Eigen::MatrixXd jacobian_;
+  JacobianConditioning conditioning_;
+  CollisionWorld collision_;
+  DistanceTable distances_;
+  TaskRef ref_;
+  State state_;
+  StepOutput out_;
+  Frame frame_;
+  Eigen::VectorXd qdot_prev_, qddot_;
+  long total_steps_;
+
+  // running summary
+  bool collided_ = false, limit_violated_ = false;
+  double min_distance_, max_error_ = 0, min_margin_, max_condition_ = 0;
+  double max_qdot_ratio_ = 0, max_qddot_ratio_ = 0;
+  long nonfinite_steps_ = 0;
+  StepTimeHistogram step_times_;
+};
+
+// Runs to the end, timing each step, feeding a recorder (may be null).
+Summary run_to_end(Simulator& sim, Recorder* recorder);
+
+}  // namespace rrlab

@@ -1,0 +1,33 @@
+#include <cmath>
+
+#include "sim/frame.hpp"
+
+namespace rrlab {
+
+nlohmann::json finite_or_null(double value) {
+  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
+}
+
+nlohmann::json summary_to_json(const Summary& s) {
+  nlohmann::json j;
+  j["scenario"] = s.scenario;
+  j["method"] = s.method;
+  j["steps"] = s.steps;
+  j["collided"] = s.collided;
+  j["min_distance"] = finite_or_null(s.min_distance);
+  j["max_tracking_error"] = finite_or_null(s.max_tracking_error);
+  j["final_tracking_error"] = finite_or_null(s.final_tracking_error);
+  j["joint_limit_violated"] = s.joint_limit_violated;
+  j["min_joint_limit_margin"] = finite_or_null(s.min_joint_limit_margin);
+  j["max_qdot_ratio"] = s.max_qdot_ratio ? finite_or_null(*s.max_qdot_ratio) : nullptr;
+  j["max_qddot_ratio"] = s.max_qddot_ratio ? finite_or_null(*s.max_qddot_ratio) : nullptr;
+  j["max_condition_number"] = finite_or_null(s.max_condition_number);
+  j["nonfinite_steps"] = s.nonfinite_steps;
+  nlohmann::json q = nlohmann::json::array();
+  for (Eigen::Index i = 0; i < s.final_q.size(); ++i) q.push_back(finite_or_null(s.final_q[i]));
+  j["final_q"] = q;
+  j["step_us"] = {{"mean", s.step_us.mean}, {"p50", s.step_us.p50}, {"p99", s.step_us.p99}};
+  return j;
+}
+
+}  // namespace rrlab

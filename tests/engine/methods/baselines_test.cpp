@@ -1,0 +1,198 @@
+// The property that defines each baseline method, shown on small scenarios.
+#include <gtest/gtest.h>
+
+#include "engine/sim_helpers.hpp"
+#include "engine/test_models.hpp"
+#include "methods/registry.hpp"
+
+namespace rrlab {
+namespace {
+
+using nlohmann::json;
+using test::planar_robot;
+using test::planar_tip;
+using test::run_scenario;
+
+const std::vector<std::string> kBaselines = {"pinv", "dls", "gpm", "task_priority", "sr_task_priority",
+                                             "closest_point"};
+
+// Redundant planar 4-link arm, circle of radius 0.3 m, no obstacles.
+json planar_circle() {
+  return {{"dt", 0.01},
+          {"duration", 6.0},
+          {"robot", planar_robot(4, 0.5, 0.02, {0.2, 0.6, 0.5, 0.4})},
+          {"task", {{"space", "xy"},
+                    {"trajectory", {{"type", "circle"}, {"center", {0.9, 0.9}}, {"radius", 0.3}}}}}};
+}
+
+// 7-DOF iiwa-like arm: circle in 3D with fixed orientation (6-row pose task).
+json dh_pose_circle() {
+  json links = json::array();
+  for (const DhLinkSpec& l : test::iiwa_dh())
+    links.push_back({{"a", l.a}, {"alpha", l.alpha}, {"d", l.d}, {"radius", l.radius}});
+  return {{"dt", 0.005},
+          {"duration", 4.0},
+          {"robot", {{"kind", "dh"}, {"links", links}, {"q0", {0, 0.7, 0, -1.2, 0, 1.0, 0}}}},
+          {"task", {{"space", "pose"},
+                    {"trajectory", {{"type", "circle"}, {"center", {0.5, -0.12, 0.55}}, {"radius", 0.12},
+                                    {"normal", {1, 0, 0}}}}}}};
+}
+
+class EveryBaseline : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(EveryBaseline, TracksAPlanarCircleWithoutObstacles) {
+  const auto r = run_scenario(planar_circle(), GetParam());
+  // the start is 0.1 m or so off the circle: the closed loop removes it first
+  EXPECT_LT(r.max_error_after(100), 1e-4) << GetParam();
+  EXPECT_LT(r.summary.final_tracking_error, 1e-4);
+  EXPECT_EQ(r.summary.nonfinite_steps, 0);
+}
+
+TEST_P(EveryBaseline, TracksA6dPoseCircleOnASevenJointArm) {
+  // fixed damping trades accuracy for robustness everywhere (λ = 0.05 leaves
+  // ~3e-4 m here); adaptive damping only acts near singularities
+  const json params = GetParam() == "dls" ? json{{"damping", "adaptive"}} : json::object();
+  const auto r = run_scenario(dh_pose_circle(), GetParam(), params);
+  double max_error = 0, max_orientation = 0;
+  for (size_t i = 100; i < r.frames.size(); ++i) {
+    max_error = std::max(max_error, r.frames[i].task_error);
+    max_orientation = std::max(max_orientation, r.frames[i].orientation_error);
+  }
+  EXPECT_LT(max_error, 1e-4) << GetParam();
+  EXPECT_LT(max_orientation, 1e-4) << GetParam();
+}
+
+INSTANTIATE_TEST_SUITE_P(Baselines, EveryBaseline, ::testing::ValuesIn(kBaselines));
+
+TEST(Registry, ListsEveryBaselineWithValidDefaults) {
+  for (const std::string& name : kBaselines) {
+    const MethodInfo* info = find_method(name);
+    ASSERT_NE(info, nullptr) << name;
+    for (const ParamSpec& spec : info->params)
+      EXPECT_EQ(param_problem(spec, spec.def), "") << name << "." << spec.name;
+  }
+  EXPECT_EQ(find_method("nope"), nullptr);
+}
+
+// Liégeois: the projected gradient is invisible at the end-effector.
+TEST(Gpm, NullSpaceMotionMovesNoEndEffector) {
+  json doc = planar_circle();
+  doc["robot"]["limits"] = {{"lower", {-3, -2, -2, -2}}, {"upper", {3, 2, 2, 2}}};
+  doc["obstacles"] = {{{"shape", "sphere"}, {"center", {0.5, 0.6}}, {"radius", 0.1}}};
+  for (const char* gradient : {"joint_range", "manipulability", "distance"}) {
+    doc["method"] = {{"name", "gpm"}, {"params", {{"gradient", gradient}, {"gain", 5.0}}}};
+    Simulator sim(parse_scenario(doc));
+    const MethodContext ctx{sim.model(), TaskSpace::xy, 1};
+    auto pinv = find_method("pinv")->make(ctx);
+    StepOutput minimum_norm;
+    minimum_norm.qdot.resize(4);
+    minimum_norm.diag.values.resize(1);
+    double largest_null = 0;
+    for (int k = 0; k < 200; ++k) {
+      sim.step();
+      // same inputs as the step just taken: the Jacobian at q_k, the reference at t_k
+      const StepInput in{sim.model(), State{sim.frame().t, sim.frame().step, sim.frame().q, sim.frame().qdot},
+                         sim.reference(), sim.scene(), 0.01, sim.kinematics(), sim.task_jacobian(),
+                         sim.distances()};
+      pinv->step(in, minimum_norm);
+      const Eigen::VectorXd null_motion = sim.frame().qdot - minimum_norm.qdot;
+      largest_null = std::max(largest_null, null_motion.norm());
+      EXPECT_LT((sim.task_jacobian() * null_motion).norm(), 1e-9) << gradient << " step " << k;
+    }
+    EXPECT_GT(largest_null, 1e-4) << gradient << ": the criterion should move the arm";
+  }
+}
+
+// Damped least squares stays bounded where the pseudoinverse spikes: the target
+// runs 0.1 m beyond the reach of a 3-link arm, which stretches to singularity.
+TEST(Dls, StaysBoundedThroughASingularityWherePinvSpikes) {
+  const std::vector<double> q0 = {0.3, 0.5, 0.5};
+  const json doc = {{"dt", 0.01},
+                    {"duration", 4.0},
+                    {"robot", planar_robot(3, 1.0, 0.0, q0)},
+                    {"task", {{"space", "xy"},
+                              {"trajectory", {{"type", "polyline"},
+                                              {"points", {planar_tip(1.0, q0), {3.1, 0.6}, {1.5, 0.3}}}}}}}};
+  const auto pinv = run_scenario(doc, "pinv");
+  const auto dls = run_scenario(doc, "dls", {{"lambda", 0.05}});
+  double max_xdot = 0;  // bound of DLS: ‖q̇‖ ≤ ‖ẋ‖ / (2λ)
+  for (const Frame& f : dls.frames) max_xdot = std::max(max_xdot, f.qdot.norm());
+  EXPECT_GT(pinv.max_abs_qdot(), 100.0);
+  EXPECT_LT(dls.max_abs_qdot(), 30.0);
+  EXPECT_GT(pinv.max_abs_qdot(), 10 * dls.max_abs_qdot());
+  EXPECT_EQ(dls.summary.nonfinite_steps, 0);
+  EXPECT_LT(dls.summary.final_tracking_error, 1e-3);  // back on the path after the excursion
+  std::cout << "[ singular ] pinv max |qdot| " << pinv.max_abs_qdot() << " rad/s, dls "
+            << dls.max_abs_qdot() << " rad/s\n";
+}
+
+// Liégeois' joint-range gradient keeps the limits that minimum norm breaks
+// while folding a 3-link arm towards its base.
+TEST(Gpm, JointRangeGradientKeepsLimitsWherePinvViolatesThem) {
+  const std::vector<double> q0 = {0, M_PI / 3, M_PI / 3};
+  json doc = {{"dt", 0.01},
+              {"duration", 4.0},
+              {"robot", planar_robot(3, 1.0, 0.0, q0)},
+              {"task", {{"space", "xy"},
+                        {"trajectory", {{"type", "polyline"}, {"points", {planar_tip(1.0, q0), {0.9, 0.3}}}}}}}};
+  const double lim = 110 * M_PI / 180;
+  doc["robot"]["limits"] = {{"lower", {-M_PI, -lim, -lim}}, {"upper", {M_PI, lim, lim}}};
+  const auto pinv = run_scenario(doc, "pinv");
+  const auto gpm = run_scenario(doc, "gpm", {{"gradient", "joint_range"}, {"gain", 300.0}});
+  EXPECT_TRUE(pinv.summary.joint_limit_violated);
+  EXPECT_FALSE(gpm.summary.joint_limit_violated);
+  EXPECT_GT(gpm.summary.min_joint_limit_margin, 0.05);
+  EXPECT_LT(gpm.summary.final_tracking_error, 1e-4);
+  std::cout << "[ limits ] min margin pinv " << pinv.summary.min_joint_limit_margin << " rad, gpm "
+            << gpm.summary.min_joint_limit_margin << " rad\n";
+}
+
+// A point obstacle where minimum norm sweeps link 2 through it.
+json obstacle_crossing() {
+  const std::vector<double> q0 = {0.6, 0.3, 0.3, 0.3, 0.3};
+  return {{"dt", 0.01},
+          {"duration", 4.0},
+          {"robot", planar_robot(5, 0.6, 0.05, q0)},
+          {"obstacles", {{{"id", "pin"}, {"shape", "point"}, {"position", {0.976, -0.294}}}}},
+          {"task", {{"space", "xy"},
+                    {"trajectory", {{"type", "polyline"}, {"points", {planar_tip(0.6, q0), {2.2, -0.6}}}}}}}};
+}
+
+TEST(ObstacleAvoidance, TaskPriorityAndClosestPointKeepDistanceWherePinvCollides) {
+  const json doc = obstacle_crossing();
+  const auto pinv = run_scenario(doc, "pinv");
+  EXPECT_TRUE(pinv.summary.collided);
+  for (const char* method : {"task_priority", "closest_point"}) {
+    const auto r = run_scenario(doc, method);
+    EXPECT_FALSE(r.summary.collided) << method;
+    EXPECT_GT(r.summary.min_distance, 0.1) << method;
+    EXPECT_LT(r.summary.max_tracking_error, 1e-3) << method;
+    std::cout << "[ obstacle ] " << method << " min distance " << r.summary.min_distance
+              << " m (pinv " << pinv.summary.min_distance << " m)\n";
+  }
+}
+
+TEST(SrTaskPriority, JointCentringLeavesTheTaskAlone) {
+  json doc = planar_circle();
+  doc["robot"]["limits"] = {{"lower", {-3, -2, -2, -2}}, {"upper", {3, 2, 2, 2}}};
+  const auto r = run_scenario(doc, "sr_task_priority", {{"secondary", "joint_centring"}, {"gain", 2.0}});
+  EXPECT_LT(r.max_error_after(100), 2e-4);
+}
+
+TEST(Methods, ParametersChangeBetweenSteps) {
+  Simulator sim(parse_scenario(planar_circle()));
+  sim.switch_method("dls");
+  sim.set_param("lambda", 0.2);
+  EXPECT_DOUBLE_EQ(sim.method().param("lambda"), 0.2);
+  sim.step();
+  EXPECT_DOUBLE_EQ(sim.frame().diagnostics[0], 0.2);  // the damping used by that step
+  sim.set_param("lambda", 0.0);
+  sim.step();
+  EXPECT_DOUBLE_EQ(sim.frame().diagnostics[0], 0.0);
+  EXPECT_THROW(sim.set_param("lambda", -1.0), ParamError);
+  EXPECT_THROW(sim.set_param("bogus", 1.0), ParamError);
+  EXPECT_THROW(sim.set_param("damping", 2.0), ParamError);
+}
+
+}  // namespace
+}  // namespace rrlab

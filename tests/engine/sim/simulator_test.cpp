@@ -1,0 +1,134 @@
+#include "sim/simulator.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+#include "engine/sim_helpers.hpp"
+#include "engine/test_models.hpp"
+
+namespace rrlab {
+namespace {
+
+using nlohmann::json;
+
+json moving_obstacle_scenario() {
+  const std::vector<double> q0 = {0.4, 0.4, 0.4, 0.4};
+  return {{"dt", 0.01},
+          {"duration", 2.0},
+          {"robot", test::planar_robot(4, 0.5, 0.02, q0)},
+          {"obstacles", {{{"id", "ball"}, {"shape", "sphere"}, {"center", {2.0, -1.0}}, {"radius", 0.1},
+                          {"velocity", {-0.2, 0.3}}}}},
+          {"task", {{"space", "xy"},
+                    {"trajectory", {{"type", "circle"}, {"center", {1.0, 1.2}}, {"radius", 0.2}}}}},
+          {"method", {{"name", "sr_task_priority"}}}};
+}
+
+bool same_bits(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), sizeof(double) * size_t(a.size())) == 0;
+}
+
+TEST(Simulator, SameInputsGiveBitIdenticalFrames) {
+  const auto a = test::run_scenario(moving_obstacle_scenario(), "closest_point");
+  const auto b = test::run_scenario(moving_obstacle_scenario(), "closest_point");
+  ASSERT_EQ(a.frames.size(), b.frames.size());
+  for (size_t i = 0; i < a.frames.size(); ++i) {
+    ASSERT_TRUE(same_bits(a.frames[i].q, b.frames[i].q)) << i;
+    ASSERT_TRUE(same_bits(a.frames[i].qdot, b.frames[i].qdot)) << i;
+    ASSERT_EQ(a.frames[i].min_distance, b.frames[i].min_distance) << i;
+  }
+}
+
+TEST(Simulator, RecordsOneFramePerStepWithTimeFromTheStepIndex) {
+  const auto r = test::run_scenario(moving_obstacle_scenario(), "pinv");
+  ASSERT_EQ(r.frames.size(), 200u);
+  EXPECT_EQ(r.summary.steps, 200);
+  EXPECT_DOUBLE_EQ(r.frames[150].t, 150 * 0.01);
+  EXPECT_EQ(r.frames[150].step, 150);
+  EXPECT_EQ(r.summary.final_q.size(), 4);
+}
+
+TEST(Simulator, MovingObstacleFollowsItsVelocity) {
+  Simulator sim(parse_scenario(moving_obstacle_scenario()));
+  for (int i = 0; i < 100; ++i) sim.step();
+  // the obstacle of the last step (t = 0.99 s)
+  const Obstacle& ball = sim.scene().obstacles[0];
+  EXPECT_LT((ball.position - Eigen::Vector3d(2.0 - 0.2 * 0.99, -1.0 + 0.3 * 0.99, 0)).norm(), 1e-12);
+}
+
+TEST(Simulator, MovedObstacleChangesDistances) {
+  Simulator sim(parse_scenario(moving_obstacle_scenario()));
+  sim.step();
+  const double before = sim.frame().min_distance;
+  Obstacle& ball = sim.scene().obstacles[0];
+  ball.position0 += Eigen::Vector3d(-0.5, 0.5, 0);  // a user drag
+  sim.scene_changed(false);
+  sim.step();
+  EXPECT_LT(sim.frame().min_distance, before - 0.3);
+}
+
+TEST(Simulator, ResizedAndRemovedObstacles) {
+  Simulator sim(parse_scenario(moving_obstacle_scenario()));
+  sim.step();
+  sim.scene().obstacles[0].radius = 0.3;
+  sim.scene_changed(true);
+  sim.step();
+  const double bigger = sim.frame().min_distance;
+  sim.scene().obstacles.clear();
+  sim.scene_changed(true);
+  sim.step();
+  EXPECT_TRUE(std::isinf(sim.frame().min_distance));
+  EXPECT_TRUE(std::isfinite(bigger));
+}
+
+TEST(Simulator, SwitchingMethodContinuesFromTheCurrentState) {
+  Simulator sim(parse_scenario(moving_obstacle_scenario()));
+  for (int i = 0; i < 50; ++i) sim.step();
+  const Eigen::VectorXd q = sim.state().q;
+  sim.switch_method("dls");
+  EXPECT_EQ(sim.method_name(), "dls");
+  sim.step();
+  EXPECT_TRUE(same_bits(sim.frame().q, q));
+  EXPECT_EQ(sim.frame().step, 50);
+  EXPECT_THROW(sim.switch_method("nope"), ParamError);
+}
+
+TEST(Simulator, ResetReturnsToTheStart) {
+  Simulator sim(parse_scenario(moving_obstacle_scenario()));
+  sim.step();
+  const Frame first = sim.frame();
+  for (int i = 0; i < 30; ++i) sim.step();
+  sim.reset();
+  sim.step();
+  EXPECT_TRUE(same_bits(sim.frame().q, first.q));
+  EXPECT_TRUE(same_bits(sim.frame().qdot, first.qdot));
+}
+
+TEST(Simulator, JoystickMovesTheTarget) {
+  json doc = moving_obstacle_scenario();
+  doc["task"]["trajectory"] = {{"type", "joystick"}};
+  Simulator sim(parse_scenario(doc));
+  sim.step();
+  const Eigen::Vector3d start = sim.frame().ee_position;
+  sim.task().set_joystick({0.1, 0, 0}, Eigen::Vector3d::Zero());
+  for (int i = 0; i < 100; ++i) sim.step();
+  EXPECT_NEAR(sim.frame().target.x() - start.x(), 0.1 * 0.99, 1e-9);
+  EXPECT_NEAR(sim.frame().ee_position.x() - start.x(), 0.1, 0.01);
+}
+
+TEST(Simulator, SummaryRatiosUseTheLimits) {
+  json doc = moving_obstacle_scenario();
+  doc["robot"]["limits"] = {{"velocity", {1, 1, 1, 1}}, {"acceleration", {10, 10, 10, 10}}};
+  const auto r = test::run_scenario(doc, "pinv");
+  ASSERT_TRUE(r.summary.max_qdot_ratio.has_value());
+  ASSERT_TRUE(r.summary.max_qddot_ratio.has_value());
+  double expected = 0;
+  for (const Frame& f : r.frames) expected = std::max(expected, f.qdot.cwiseAbs().maxCoeff());
+  EXPECT_DOUBLE_EQ(*r.summary.max_qdot_ratio, expected);
+  const auto unlimited = test::run_scenario(moving_obstacle_scenario(), "pinv");
+  EXPECT_FALSE(unlimited.summary.max_qdot_ratio.has_value());
+  EXPECT_TRUE(summary_to_json(unlimited.summary)["max_qdot_ratio"].is_null());
+}
+
+}  // namespace
+}  // namespace rrlab

@@ -1,0 +1,62 @@
+// Running scenarios in tests: inline JSON in, frames and summary out.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "scenario/scenario.hpp"
+#include "sim/simulator.hpp"
+
+namespace rrlab::test {
+
+struct FrameLog final : Recorder {
+  std::vector<Frame> frames;
+  void frame(const Frame& f) override { frames.push_back(f); }
+};
+
+struct RunResult {
+  Summary summary;
+  std::vector<Frame> frames;
+  double max_abs_qdot() const {
+    double m = 0;
+    for (const Frame& f : frames) m = std::max(m, f.qdot.cwiseAbs().maxCoeff());
+    return m;
+  }
+  // Largest tracking error from frame `from` on.
+  double max_error_after(size_t from) const {
+    double m = 0;
+    for (size_t i = from; i < frames.size(); ++i) m = std::max(m, frames[i].task_error);
+    return m;
+  }
+};
+
+inline RunResult run_scenario(nlohmann::json doc, const std::string& method,
+                              const nlohmann::json& params = nlohmann::json::object()) {
+  doc["method"] = {{"name", method}, {"params", params}};
+  Simulator sim(parse_scenario(doc));
+  FrameLog log;
+  RunResult r;
+  r.summary = run_to_end(sim, &log);
+  r.frames = std::move(log.frames);
+  return r;
+}
+
+// Planar chain of `n` equal links; q0 in radians.
+inline nlohmann::json planar_robot(int n, double length, double radius, const std::vector<double>& q0) {
+  nlohmann::json links = nlohmann::json::array();
+  for (int i = 0; i < n; ++i) links.push_back({{"length", length}, {"radius", radius}});
+  return {{"kind", "planar"}, {"base", {0, 0}}, {"links", links}, {"q0", q0}};
+}
+
+// End-effector of a planar chain at q (relative angles from +x).
+inline std::vector<double> planar_tip(double length, const std::vector<double>& q) {
+  double a = 0, x = 0, y = 0;
+  for (double qi : q) {
+    a += qi;
+    x += length * std::cos(a);
+    y += length * std::sin(a);
+  }
+  return {x, y};
+}
+
+}  // namespace rrlab::test

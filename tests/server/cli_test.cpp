@@ -1,0 +1,156 @@
+// The rrlab executable: summary JSON, CSV columns, exit codes and messages.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <sys/wait.h>
+
+namespace {
+
+using nlohmann::json;
+
+struct Result {
+  int code = -1;
+  std::string out, err;
+};
+
+Result rrlab(const std::string& args) {
+  const std::string err_file = std::filesystem::temp_directory_path() / ("rrlab_err_" + std::to_string(::getpid()));
+  const std::string cmd = std::string(RRLAB_BINARY) + " " + args + " 2>" + err_file;
+  Result r;
+  FILE* pipe = ::popen(cmd.c_str(), "r");
+  std::array<char, 4096> buf{};
+  size_t n;
+  while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
+  const int status = ::pclose(pipe);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream in(err_file);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  r.err = ss.str();
+  std::filesystem::remove(err_file);
+  return r;
+}
+
+std::string scenario(const std::string& name) { return std::string(RRLAB_SOURCE_DIR) + "/scenarios/" + name; }
+
+std::string write_temp(const std::string& name, const std::string& text) {
+  const auto path = std::filesystem::temp_directory_path() / name;
+  std::ofstream(path) << text;
+  return path.string();
+}
+
+TEST(Cli, RunPrintsTheSummaryJson) {
+  const Result r = rrlab("run " + scenario("01_planar7_obstacles.json") + " --steps 50");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const json s = json::parse(r.out);
+  for (const char* key : {"scenario", "method", "steps", "collided", "min_distance", "max_tracking_error",
+                          "final_tracking_error", "joint_limit_violated", "min_joint_limit_margin",
+                          "max_qdot_ratio", "max_qddot_ratio", "max_condition_number", "final_q", "step_us"})
+    EXPECT_TRUE(s.contains(key)) << key;
+  EXPECT_EQ(s["steps"], 50);
+  EXPECT_EQ(s["final_q"].size(), 7u);
+  EXPECT_TRUE(s["step_us"].contains("p99"));
+}
+
+TEST(Cli, EveryScenarioRunsWithEveryBaseline) {
+  for (const char* file : {"01_planar7_obstacles.json", "02_spatial_xz_reach.json", "03_dh7_pose.json"})
+    for (const char* method : {"pinv", "dls", "gpm", "task_priority", "sr_task_priority", "closest_point"}) {
+      const Result r = rrlab("run " + scenario(file) + " --method " + method + " --steps 200");
+      EXPECT_EQ(r.code, 0) << file << " " << method << ": " << r.err;
+      EXPECT_EQ(json::parse(r.out)["method"], method);
+    }
+}
+
+TEST(Cli, OutWritesTheCsvColumns) {
+  const auto csv = std::filesystem::temp_directory_path() / "rrlab_cli_test.csv";
+  const Result r = rrlab("run " + scenario("01_planar7_obstacles.json") + " --method dls --param lambda=0.1 --steps 20 --out " +
+                         csv.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::ifstream in(csv);
+  std::string header, line;
+  std::getline(in, header);
+  EXPECT_EQ(header.rfind("step,t,q1,q2,q3,q4,q5,q6,q7,qdot1,qdot2,qdot3,qdot4,qdot5,qdot6,qdot7,ee_x,ee_y,ee_z,"
+                         "task_error,min_distance,collided,",
+                         0),
+            0u)
+      << header;
+  EXPECT_NE(header.find(",lambda,"), std::string::npos) << header;
+  int rows = 0;
+  while (std::getline(in, line)) ++rows;
+  EXPECT_EQ(rows, 20);
+  std::filesystem::remove(csv);
+}
+
+TEST(Cli, MethodsListsSpecs) {
+  const Result r = rrlab("methods");
+  ASSERT_EQ(r.code, 0);
+  const json m = json::parse(r.out);
+  ASSERT_GE(m.size(), 6u);
+  bool found = false;
+  for (const json& method : m)
+    if (method["name"] == "dls") {
+      found = true;
+      EXPECT_EQ(method["params"][0]["name"], "lambda");
+      EXPECT_TRUE(method["params"][1].contains("choices"));
+    }
+  EXPECT_TRUE(found);
+}
+
+struct BadInput {
+  std::string name, args_or_json, expect;
+  bool is_json = true;
+};
+
+class CliBadInput : public ::testing::TestWithParam<BadInput> {};
+
+TEST_P(CliBadInput, ExitsTwoNamingThePath) {
+  const BadInput& c = GetParam();
+  std::string args = c.args_or_json;
+  if (c.is_json) args = "run " + write_temp("rrlab_bad_" + c.name + ".json", c.args_or_json);
+  const Result r = rrlab(args);
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.err.find(c.expect), std::string::npos) << r.err;
+  EXPECT_TRUE(r.out.empty());
+}
+
+const std::string kRobot = R"("robot": {"kind": "planar", "links": [{"length": 1}, {"length": 1}, {"length": 1}]})";
+const std::string kTask = R"("task": {"trajectory": {"type": "circle", "center": [1, 1], "radius": 0.2}})";
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, CliBadInput,
+    ::testing::Values(
+        BadInput{"neglen", R"({"robot": {"kind": "planar", "links": [{"length": -1}]}, )" + kTask + "}",
+                 "robot.links[0].length: must be > 0"},
+        BadInput{"q0", R"({"robot": {"kind": "planar", "links": [{"length": 1}], "q0": [1, 2]}, )" + kTask + "}",
+                 "robot.q0: has 2 values but the robot has 1 joints"},
+        BadInput{"method", "{" + kRobot + ", " + kTask + R"(, "method": {"name": "warp"}})",
+                 "method.name: unknown method \"warp\""},
+        BadInput{"nan", "{" + kRobot + ", " + kTask + R"(, "dt": NaN})", "invalid JSON"},
+        BadInput{"key", "{" + kRobot + ", " + kTask + R"(, "colour": "red"})", "colour: unknown key"},
+        BadInput{"polygon", "{" + kRobot + ", " + kTask + R"(, "obstacles": [{"shape": "polygon", "points": []}]})",
+                 "obstacles[0].points"},
+        BadInput{"bowtie",
+                 "{" + kRobot + ", " + kTask +
+                     R"(, "obstacles": [{"shape": "polygon", "points": [[0,0],[1,1],[1,0],[0,1]]}]})",
+                 "obstacles[0].points"},
+        BadInput{"radius", "{" + kRobot + R"(, "task": {"trajectory": {"type": "circle", "center": [1, 1], "radius": 0}}})",
+                 "task.trajectory.radius: must be > 0"},
+        BadInput{"shape", "{" + kRobot + ", " + kTask + R"(, "obstacles": [{"shape": "cloud"}]})",
+                 "obstacles[0].shape: unknown value"},
+        BadInput{"missing_file", "run /nonexistent/x.json", "cannot read scenario file", false},
+        BadInput{"bad_param", "run " + scenario("01_planar7_obstacles.json") + " --method dls --param lambda=-3",
+                 "--param lambda: must be in [0, 10]", false},
+        BadInput{"unknown_param", "run " + scenario("01_planar7_obstacles.json") + " --param zeta=1",
+                 "--param zeta: unknown parameter", false},
+        BadInput{"cli_method", "run " + scenario("01_planar7_obstacles.json") + " --method teleport",
+                 "--method: unknown method", false},
+        BadInput{"steps", "run " + scenario("01_planar7_obstacles.json") + " --steps 0", "--steps: must be in", false},
+        BadInput{"no_command", "", "", false}),
+    [](const ::testing::TestParamInfo<BadInput>& info) { return info.param.name; });
+
+}  // namespace
