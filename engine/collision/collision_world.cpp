@@ -12,18 +12,27 @@
 //                         (end point x face, segment x edge); intersecting:
 //                         separating-axis penetration depth over face normals
 //                         and segment x edge directions, which is exactly the
-//                         minimum translation (see penetration()). A polygon
-//                         is the minimum over its convex parts.
+//                         minimum translation (see best_separating_axis). A
+//                         polygon is the minimum over its convex parts: exact
+//                         when apart; when penetrating, the deepest part's
+//                         depth, which near an internal diagonal can be less
+//                         than the whole polygon's and point across it.
 //
-// Why not FCL in compute(): in FCL 0.7 capsule nearest points come from
-// GJK/EPA on the capsule surface and are only ~1e-7 accurate (issues #127,
-// #275), penetration goes through libccd's EPA, which throws near touching
-// contact (issues #319, #493; Drake #21673), and distances carry GJK's 1e-6
-// tolerance. The analytic routines are exact up to rounding and allocate
-// nothing. FCL stays the independent reference: compute_with_fcl() fills the
-// same table with fcl::distance (Capsule vs Convex / Box / Sphere; walls stay
-// analytic there: FCL 0.7 has no Halfspace distance and crashes in GJK), and
-// the tests check that both agree on random poses.
+// Why not FCL in compute(): FCL 0.7 (Debian 0.7.0) failed here in four ways,
+// all reproduced while writing this file:
+//   - a capsule of radius ~0 (a bare segment) against a box: GJK stops early
+//     and returns distances up to 30% too large;
+//   - signed distance (EPA via libccd) aborts the process on an assertion in
+//     ComputeVisiblePatch for some penetrating capsule-box poses, and throws
+//     near touching contact elsewhere (issues #319, #493; Drake #21673);
+//   - capsule vs Halfspace distance dereferences a missing GJK support
+//     function and crashes;
+//   - nearest points are ~1e-7 accurate and lie on the capsule surface, and
+//     distances carry GJK's tolerance (issues #127, #275).
+// The analytic routines are exact up to rounding and allocate nothing. FCL
+// stays the independent reference: compute_with_fcl() fills the same table
+// from fcl::distance / fcl::collide (Capsule vs Convex, Box, Sphere; walls
+// analytic there too), and the tests check that both agree on random poses.
 //
 // A zero link radius needs no special case: the segment routines are exact.
 #include "collision/collision_world.hpp"
@@ -163,8 +172,8 @@ Vector3d any_perpendicular(const Vector3d& d) {
   return across.normalized();
 }
 
-// Parameter interval of a-b (shifted by `shift`) inside all faces but `skip`,
-// each pushed out by `slack`. False when empty.
+// Parameter interval [t0, t1] of a-b inside all faces but `skip`, each pushed
+// out by `slack`. False when empty.
 bool clip_segment(const ConvexPolytope& poly, const Vector3d& a, const Vector3d& b, int skip,
                   double slack, double& t0, double& t1) {
   const Vector3d d = b - a;
@@ -307,9 +316,8 @@ void segment_polytope(const ConvexPolytope& poly, const Vector3d& a, const Vecto
                       LinkObstacleDistance& out) {
   double t0, t1;
   const bool intersecting = clip_segment(poly, a, b, -1, 0.0, t0, t1);
-  double separation = 0;
   if (!intersecting) {
-    separation = separated_features(poly, a, b, out.on_link, out.on_obstacle);
+    const double separation = separated_features(poly, a, b, out.on_link, out.on_obstacle);
     out.distance = separation;
     if (separation > kTouching) {
       out.normal = (out.on_link - out.on_obstacle) / separation;

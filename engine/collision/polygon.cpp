@@ -77,7 +77,7 @@ Polygon2 counter_clockwise(const Polygon2& polygon) {
 
 // --- ear clipping ------------------------------------------------------------
 
-// p strictly inside or on the boundary of the CCW triangle a-b-c.
+// p inside or on the boundary of the CCW triangle a-b-c.
 bool in_triangle(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
                  const Eigen::Vector2d& c) {
   return orientation(a, b, p) >= 0 && orientation(b, c, p) >= 0 && orientation(c, a, p) >= 0;

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <random>
 
 namespace rrlab {
 namespace {
@@ -107,6 +108,21 @@ TEST(Polygon, DecomposesPolygonWithStraightVertices) {
   // the L with extra vertices in the middle of two edges
   const Polygon2 l_shape{{0, 0}, {1, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}, {0, 1}};
   expect_exact_cover(l_shape, convex_decomposition(l_shape));
+}
+
+TEST(Polygon, DecomposesRandomStarShapedPolygons) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> radius(0.3, 1.0);
+  for (int trial = 0; trial < 20; ++trial) {
+    Polygon2 star;
+    const int n = 7 + trial;
+    for (int k = 0; k < n; ++k) {
+      const double angle = 2 * std::numbers::pi * k / n, r = radius(rng);
+      star.emplace_back(1.5 + r * std::cos(angle), 1.0 + r * std::sin(angle));
+    }
+    ASSERT_EQ(polygon_problem(star), "");
+    expect_exact_cover(star, convex_decomposition(star));
+  }
 }
 
 TEST(Polygon, ValidPolygonsHaveNoProblem) {
