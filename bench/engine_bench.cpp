@@ -89,6 +89,10 @@ void method_step(benchmark::State& state, const char* name) {
   s.q = start_q();
   s.qdot = Eigen::VectorXd::Zero(7);
   auto method = find_method(name)->make({model, TaskSpace::pose, 0});
+  TaskSpec task_spec;
+  task_spec.space = TaskSpace::pose;
+  task_spec.trajectory.type = TrajectoryType::joystick;
+  const Task task(task_spec, Eigen::Isometry3d::Identity(), 1.0, 0.001);
   StepOutput out;
   out.qdot = Eigen::VectorXd::Zero(7);
   out.diag.values = Eigen::VectorXd::Zero(Eigen::Index(method->diagnostic_names().size()));
@@ -97,7 +101,7 @@ void method_step(benchmark::State& state, const char* name) {
     wiggle(s.q, i++);
     forward_kinematics(model, s.q, kin);
     task_jacobian(model, kin, TaskSpace::pose, jac);
-    const StepInput in{model, s, ref, scene, 0.001, kin, jac, distances};
+    const StepInput in{model, s, ref, scene, 0.001, kin, jac, distances, task};
     method->step(in, out);
     benchmark::DoNotOptimize(out.qdot.data());
   }

@@ -4,6 +4,8 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstdint>
+#include <utility>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -60,6 +62,21 @@ struct StepInput {
   const KinematicsData& kin;
   const Eigen::MatrixXd& task_jacobian;  // rows of ref.space
   const DistanceTable& distances;
+  const Task& task;  // the reference at other times (previews, RK4 stages)
+};
+
+// Geometry a method wants drawn over the scene (dashboard overlays). Sized at
+// construction or on the first step so that steady-state steps reuse storage.
+struct OverlayEllipse {
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d axes = Eigen::Matrix3d::Zero();  // columns: semi-axes (direction × length)
+};
+struct Overlays {
+  std::vector<Eigen::VectorXd> ghosts;  // configurations of imaginary manipulators (joint space)
+  std::vector<OverlayEllipse> ellipses;
+  std::vector<Eigen::Vector3d> points;  // e.g. control points, Voronoi-boundary points
+  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> segments;
+  bool empty() const { return ghosts.empty() && ellipses.empty() && points.empty() && segments.empty(); }
 };
 
 struct StepOutput {
@@ -68,6 +85,7 @@ struct StepOutput {
   bool integrated = false;
   Eigen::VectorXd q_next;
   Diagnostics diag;
+  Overlays overlays;
 };
 
 // What a method may size its workspace by.
@@ -75,6 +93,7 @@ struct MethodContext {
   const Model& model;
   TaskSpace space;
   int obstacle_count;
+  std::uint64_t seed = 1;  // the scenario's seed: the only source of randomness
 };
 
 class Method {

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "methods/method.hpp"
+
 namespace rrlab {
 
 struct Frame {
@@ -25,6 +27,7 @@ struct Frame {
   double joint_limit_margin = 0;  // min over bounded joints of the distance to a limit; +inf if none
   double manipulability = 0, condition_number = 0;
   Eigen::VectorXd diagnostics;    // the method's named scalars
+  Overlays overlays;              // what the method wants drawn
   double step_us = 0;             // compute time: not deterministic, kept apart
 };
 

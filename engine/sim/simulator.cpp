@@ -50,7 +50,7 @@ Simulator::~Simulator() = default;
 void Simulator::install_method(const std::string& name) {
   const MethodInfo* info = find_method(name);
   if (!info) throw ParamError("method", "unknown method \"" + name + "\" (known: " + method_names() + ")");
-  method_ = info->make({scenario_.model, scenario_.task.space, int(scene_.obstacles.size())});
+  method_ = info->make({scenario_.model, scenario_.task.space, int(scene_.obstacles.size()), scenario_.seed});
   method_name_ = name;
   const int n = scenario_.model.dof();
   out_.qdot = Eigen::VectorXd::Zero(n);
@@ -111,7 +111,7 @@ void Simulator::step() {
   state_.t = double(state_.step) * dt;  // no accumulated rounding
   evaluate(state_.t);
 
-  const StepInput in{scenario_.model, state_, ref_, scene_, dt, kin_, jacobian_, distances_};
+  const StepInput in{scenario_.model, state_, ref_, scene_, dt, kin_, jacobian_, distances_, *task_};
   out_.integrated = false;
   method_->step(in, out_);
   if (!out_.qdot.allFinite() || (out_.integrated && !out_.q_next.allFinite())) {
@@ -129,6 +129,7 @@ void Simulator::step() {
   else
     frame_.qdot = out_.qdot;
   frame_.diagnostics = out_.diag.values;
+  frame_.overlays = out_.overlays;
   accumulate_metrics();
 
   // integrate

@@ -93,7 +93,7 @@ TEST(Gpm, NullSpaceMotionMovesNoEndEffector) {
       // same inputs as the step just taken: the Jacobian at q_k, the reference at t_k
       const StepInput in{sim.model(), State{sim.frame().t, sim.frame().step, sim.frame().q, sim.frame().qdot},
                          sim.reference(), sim.scene(), 0.01, sim.kinematics(), sim.task_jacobian(),
-                         sim.distances()};
+                         sim.distances(), sim.task()};
       pinv->step(in, minimum_norm);
       const Eigen::VectorXd null_motion = sim.frame().qdot - minimum_norm.qdot;
       largest_null = std::max(largest_null, null_motion.norm());
