@@ -1,6 +1,7 @@
 // Subcommands of the rrlab executable.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -8,15 +9,34 @@
 namespace rrlab::cli {
 
 struct RunOptions {
-  std::string scenario_file;
+  std::string scenario_file;  // a scenario, or a run record (GET /api/runs/{id}/record)
   std::optional<std::string> method;
   std::vector<std::string> params;  // NAME=VALUE
   std::optional<long> steps;
   std::optional<std::string> out_csv;
+  std::optional<std::string> db;  // store the run (mode "batch") in this database
 };
 
-// Exit codes: 0 run completed, 2 bad input (message on stderr).
+struct ServeOptions {
+  std::string host = "127.0.0.1";
+  unsigned short port = 8080;
+  std::string db = "data/rrlab.db";
+  std::optional<std::string> web_dir, scenarios_dir;
+  int threads = 2;
+  double display_hz = 60;
+  std::size_t body_limit = 1 << 20;
+};
+
+struct ReplayOptions {
+  std::int64_t run_id = 0;
+  std::string db;
+  bool verify = false;
+};
+
+// Exit codes: 0 success, 1 verification failed (replay), 2 bad input (message on stderr).
 int run(const RunOptions& options);
 int methods();
+int serve(const ServeOptions& options);
+int replay(const ReplayOptions& options);
 
 }  // namespace rrlab::cli

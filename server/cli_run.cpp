@@ -1,10 +1,18 @@
+#include <chrono>
+#include <fstream>
 #include <iostream>
+#include <memory>
+#include <sstream>
 
 #include "cli.hpp"
 #include "csv_recorder.hpp"
 #include "methods/registry.hpp"
 #include "scenario/scenario.hpp"
+#include "sim/run_record.hpp"
 #include "sim/simulator.hpp"
+#include "storage/frame_codec.hpp"
+#include "storage/frame_writer.hpp"
+#include "storage/run_store.hpp"
 
 namespace rrlab::cli {
 
@@ -31,12 +39,40 @@ std::pair<std::string, double> parse_param(const std::string& method, const std:
   return resolve_method_param(method, name, v, "--param " + name);
 }
 
+// A scenario file, or a run record with its events.
+RunRecordDoc load_input(const std::string& file) {
+  std::ifstream in(file);
+  if (!in) throw ScenarioError("", "cannot read scenario file '" + file + "'");
+  std::stringstream text;
+  text << in.rdbuf();
+  nlohmann::json doc;
+  try {
+    doc = nlohmann::json::parse(text.str());
+  } catch (const nlohmann::json::parse_error& e) {
+    throw ScenarioError("", std::string("invalid JSON: ") + e.what());
+  }
+  if (is_run_record(doc)) return parse_run_record(doc);
+  RunRecordDoc plain;
+  plain.scenario = parse_scenario(doc);
+  return plain;
+}
+
+nlohmann::json params_of(const Simulator& sim) {
+  nlohmann::json params = nlohmann::json::object();
+  for (size_t i = 0; i < sim.method().specs().size(); ++i)
+    params[sim.method().specs()[i].name] = sim.method().param_values()[Eigen::Index(i)];
+  return params;
+}
+
 }  // namespace
 
 int run(const RunOptions& options) {
   try {
-    Scenario scenario = load_scenario_file(options.scenario_file);
+    RunRecordDoc input = load_input(options.scenario_file);
+    Scenario& scenario = input.scenario;
     if (options.method && *options.method != scenario.method.name) {
+      if (!input.events.empty())
+        throw ScenarioError("--method", "a run record replays its own method; --method cannot change it");
       if (!find_method(*options.method))
         throw ScenarioError("--method", "unknown method \"" + *options.method + "\" (known: " +
                                             method_names() + ")");
@@ -47,15 +83,64 @@ int run(const RunOptions& options) {
       scenario.method.params.push_back(parse_param(scenario.method.name, text));
 
     Simulator sim(scenario);
+    long steps = sim.total_steps();
+    if (input.frames > 0) steps = input.frames;  // a record: as many steps as the recorded run
     if (options.steps) {
       if (*options.steps < 1 || *options.steps > ScenarioLimits::max_steps)
         throw ScenarioError("--steps", "must be in [1, " + std::to_string(ScenarioLimits::max_steps) + "]");
-      sim.set_total_steps(*options.steps);
+      steps = *options.steps;
     }
+    sim.set_total_steps(input.events.empty() ? steps : ScenarioLimits::max_steps * 16);
+
     std::unique_ptr<CsvRecorder> csv;
     if (options.out_csv) csv = std::make_unique<CsvRecorder>(*options.out_csv);
-    const Summary summary = run_to_end(sim, csv.get());
-    std::cout << summary_to_json(summary).dump() << '\n';
+    std::unique_ptr<storage::RunStore> store;
+    std::unique_ptr<storage::FrameWriter> writer;
+    std::int64_t run_id = 0;
+    if (options.db) {
+      store = std::make_unique<storage::RunStore>(*options.db);
+      writer = std::make_unique<storage::FrameWriter>(*store);
+      storage::NewRun record;
+      record.scenario_name = scenario.name;
+      record.scenario_json = scenario.json.dump();
+      record.method = sim.method_name();
+      record.params_json = params_of(sim).dump();
+      record.mode = "batch";
+      record.seed = scenario.seed;
+      record.dof = sim.model().dof();
+      record.diagnostic_names_json = nlohmann::json(sim.diagnostic_names()).dump();
+      run_id = store->create_run(record);
+      for (const RecordedEvent& e : input.events)
+        store->add_event(run_id, {e.seq, 0, e.kind, e.payload.dump()});
+    }
+
+    EventReplayer events(input.events);
+    if (csv) csv->begin(sim);
+    for (long seq = 0; seq < steps && !sim.done(); ++seq) {
+      events.apply_due(sim, seq);
+      const auto start = std::chrono::steady_clock::now();
+      sim.step();
+      sim.note_step_time(std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count());
+      if (csv) csv->frame(sim.frame());
+      if (writer) {
+        const Frame& f = sim.frame();
+        storage::StoredFrame stored{seq, f.step, f.t, f.task_error, f.min_distance, f.collided, {}};
+        storage::pack_frame(f, stored.data);
+        writer->push(run_id, std::move(stored));
+      }
+    }
+    const Summary summary = sim.summary();
+    if (csv) csv->end(summary);
+    nlohmann::json out = summary_to_json(summary);
+    if (writer) {
+      writer->flush();
+      if (!writer->last_error().empty()) throw std::runtime_error("storing frames: " + writer->last_error());
+      nlohmann::json stored = out;
+      stored["run"] = run_id;
+      store->finish_run(run_id, "completed", stored.dump());
+      out["run"] = run_id;
+    }
+    std::cout << out.dump() << '\n';
     return 0;
   } catch (const ScenarioError& e) {
     return bad_input(e.what());

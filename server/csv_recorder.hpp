@@ -1,7 +1,4 @@
-// Frames as CSV, DESIGN.md columns first:
-// step,t,q1..qn,qdot1..qdotn,ee_x,ee_y,ee_z,task_error,min_distance,collided,
-// then orientation_error, min_distance_link, joint_limit_margin,
-// manipulability, condition_number, the method's diagnostics, and step_us last.
+// `rrlab run --out`: frames as CSV (sim/frame_csv.hpp columns, step_us last).
 #pragma once
 
 #include <cstdio>
@@ -20,9 +17,10 @@ class CsvRecorder final : public Recorder {
   void end(const Summary& summary) override;
 
  private:
-  void number(double v);
+  void write(const std::string& text);
   std::FILE* out_;
   std::string file_;
+  std::string row_;  // reused
 };
 
 }  // namespace rrlab

@@ -320,6 +320,10 @@ void parse_method(JsonObject method, Scenario& sc) {
 
 }  // namespace
 
+Obstacle parse_obstacle_json(const nlohmann::json& value, const std::string& path) {
+  return parse_obstacle(value, path, 0, Units{});
+}
+
 long Scenario::steps() const { return std::lround(duration / dt); }
 
 std::pair<std::string, double> resolve_method_param(const std::string& method_name,

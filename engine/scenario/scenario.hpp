@@ -59,6 +59,9 @@ Scenario parse_scenario(const nlohmann::json& doc);
 Scenario parse_scenario_text(const std::string& text);
 Scenario load_scenario_file(const std::string& file);
 
+// One obstacle in scenario syntax, angles in radians (live edits over REST).
+Obstacle parse_obstacle_json(const nlohmann::json& value, const std::string& path);
+
 // Resolves a method parameter given as a number or an enumeration label;
 // throws ScenarioError at `path`. Shared by scenarios, CLI and REST.
 std::pair<std::string, double> resolve_method_param(const std::string& method,

@@ -93,7 +93,15 @@ void Simulator::switch_method(const std::string& name) {
 }
 
 void Simulator::scene_changed(bool reshape) {
-  if (reshape) distances_.resize(scenario_.model.link_count(), int(scene_.obstacles.size()));
+  if (reshape && distances_.obstacles != int(scene_.obstacles.size())) {
+    distances_.resize(scenario_.model.link_count(), int(scene_.obstacles.size()));
+    // Methods size their workspace by the obstacle count: make the method anew
+    // with the same parameters (its internal state starts over).
+    const Eigen::VectorXd values = method_->param_values();
+    const std::vector<ParamSpec> specs = method_->specs();
+    switch_method(method_name_);
+    for (size_t i = 0; i < specs.size(); ++i) method_->set_param(specs[i].name, values[Eigen::Index(i)]);
+  }
   collision_.sync(scene_, reshape);
 }
 

@@ -37,8 +37,10 @@ class Simulator {
   void set_param(const std::string& name, double value);
   void switch_method(const std::string& name);  // starts from the current state
   Scene& scene() { return scene_; }
+  const Scene& scene() const { return scene_; }
   void scene_changed(bool reshape);  // after obstacles moved (false) or were resized/added/removed (true)
   Task& task() { return *task_; }
+  const Task& task() const { return *task_; }
   void reset();  // back to q0 at t = 0, same method and parameters
 
   const Scenario& scenario() const { return scenario_; }

@@ -1,0 +1,185 @@
+#include "sim/run_inputs.hpp"
+
+#include <cmath>
+
+#include "methods/registry.hpp"
+#include "scenario/json_reader.hpp"
+#include "sim/simulator.hpp"
+
+namespace rrlab {
+
+namespace {
+
+using nlohmann::json;
+
+Eigen::Vector3d vector3(JsonObject& obj, const std::string& key, double bound) {
+  const std::vector<double> v = obj.numbers(key, 2, 3);
+  Eigen::Vector3d out = Eigen::Vector3d::Zero();
+  for (size_t i = 0; i < v.size(); ++i) {
+    if (!std::isfinite(v[i]) || std::abs(v[i]) > bound)
+      throw ScenarioError(index_path(obj.child(key), i), "must be finite with magnitude at most " +
+                                                             json(bound).dump());
+    out[Eigen::Index(i)] = v[i];
+  }
+  return out;
+}
+
+int obstacle_index(const Simulator& sim, JsonObject& obj) {
+  const std::string id = obj.string("id");
+  const int index = sim.scene().find(id);
+  if (index < 0) throw ScenarioError(obj.child("id"), "no obstacle \"" + id + "\" in this run");
+  return index;
+}
+
+void apply_params(Simulator& sim, const json& payload) {
+  if (!payload.is_object() || payload.empty())
+    throw ScenarioError("", "must be an object {\"NAME\": value, ...} with at least one parameter");
+  std::vector<std::pair<std::string, double>> resolved;
+  for (auto it = payload.begin(); it != payload.end(); ++it)
+    resolved.push_back(resolve_method_param(sim.method_name(), it.key(), it.value(), it.key()));
+  for (const auto& [name, value] : resolved) sim.set_param(name, value);
+}
+
+// Edits one obstacle; "position" places its reference point (centre, point,
+// polygon frame origin) at the current time, so a moving one keeps moving from there.
+void apply_obstacle(Simulator& sim, const json& payload) {
+  JsonObject obj(payload, "");
+  obj.check_keys({"id", "position", "velocity", "size", "radius", "points", "normal", "z"});
+  const int index = obstacle_index(sim, obj);
+  Obstacle edited = sim.scene().obstacles[size_t(index)];
+  bool reshape = false;
+  // Shape fields go through the scenario parser so that they are checked alike.
+  if (obj.has("size") || obj.has("radius") || obj.has("points") || obj.has("normal") || obj.has("z")) {
+    json shape = obstacle_to_json(edited);
+    for (const char* key : {"size", "radius", "points", "normal", "z"})
+      if (obj.has(key)) {
+        if (!shape.contains(key))
+          throw ScenarioError(obj.child(key), std::string("a ") + to_string(edited.shape) +
+                                                  " obstacle has no " + key);
+        shape[key] = obj.raw(key);
+      }
+    shape.erase("position");  // a polygon's translation is kept below, not parsed
+    Obstacle parsed = parse_obstacle_json(shape, "");
+    parsed.rotation = edited.rotation;
+    parsed.position0 = edited.position0;
+    parsed.position = edited.position;
+    parsed.velocity = edited.velocity;
+    edited = std::move(parsed);
+    reshape = true;
+  }
+  if (obj.has("velocity")) edited.velocity = vector3(obj, "velocity", InputLimits::max_obstacle_speed);
+  if (obj.has("position")) edited.position = vector3(obj, "position", InputLimits::max_coordinate);
+  if (obj.has("position") && payload.at("position").size() == 2)
+    edited.position.z() = sim.scene().obstacles[size_t(index)].position.z();
+  // position(t) = position0 + velocity · t must hold at the current time
+  edited.position0 = edited.position - edited.velocity * sim.state().t;
+  sim.scene().obstacles[size_t(index)] = std::move(edited);
+  sim.scene_changed(reshape);
+}
+
+void apply_obstacle_add(Simulator& sim, const json& payload) {
+  if (!payload.is_object() || !payload.contains("id"))
+    throw ScenarioError("id", "an added obstacle needs an id");
+  if (sim.scene().obstacles.size() >= size_t(ScenarioLimits::max_obstacles))
+    throw InputStateError("the run already has " + std::to_string(ScenarioLimits::max_obstacles) +
+                          " obstacles, the most allowed");
+  Obstacle added = parse_obstacle_json(payload, "");
+  if (sim.scene().find(added.id) >= 0)
+    throw ScenarioError("id", "an obstacle \"" + added.id + "\" exists already");
+  added.position = added.position0;
+  added.position0 = added.position - added.velocity * sim.state().t;
+  sim.scene().obstacles.push_back(std::move(added));
+  sim.scene_changed(true);
+}
+
+void apply_obstacle_remove(Simulator& sim, const json& payload) {
+  JsonObject obj(payload, "");
+  obj.check_keys({"id"});
+  const int index = obstacle_index(sim, obj);
+  sim.scene().obstacles.erase(sim.scene().obstacles.begin() + index);
+  sim.scene_changed(true);
+}
+
+void apply_joystick(Simulator& sim, const json& payload) {
+  if (!sim.task().is_joystick())
+    throw InputStateError("this run's task is a " + std::string(to_string(sim.scenario().task.trajectory.type)) +
+                          " trajectory, not a joystick");
+  JsonObject obj(payload, "");
+  obj.check_keys({"linear", "angular"});
+  const Eigen::Vector3d linear = vector3(obj, "linear", InputLimits::max_joystick_speed);
+  const Eigen::Vector3d angular = obj.has("angular") ? vector3(obj, "angular", InputLimits::max_joystick_rate)
+                                                     : Eigen::Vector3d::Zero();
+  sim.task().set_joystick(linear, angular);
+}
+
+void apply_method(Simulator& sim, const json& payload) {
+  JsonObject obj(payload, "");
+  obj.check_keys({"name", "params"});
+  const std::string name = obj.string("name");
+  if (!find_method(name))
+    throw ScenarioError("name", "unknown method \"" + name + "\" (known: " + method_names() + ")");
+  std::vector<std::pair<std::string, double>> resolved;
+  if (obj.has("params")) {
+    JsonObject params = obj.object("params");
+    for (auto it = payload.at("params").begin(); it != payload.at("params").end(); ++it)
+      resolved.push_back(resolve_method_param(name, it.key(), it.value(), params.child(it.key())));
+  }
+  sim.switch_method(name);
+  for (const auto& [param, value] : resolved) sim.set_param(param, value);
+}
+
+}  // namespace
+
+void apply_input(Simulator& sim, const std::string& kind, const json& payload) {
+  if (kind == "params") return apply_params(sim, payload);
+  if (kind == "obstacle") return apply_obstacle(sim, payload);
+  if (kind == "obstacle_add") return apply_obstacle_add(sim, payload);
+  if (kind == "obstacle_remove") return apply_obstacle_remove(sim, payload);
+  if (kind == "joystick") return apply_joystick(sim, payload);
+  if (kind == "method") return apply_method(sim, payload);
+  if (kind == "reset") {
+    if (!payload.is_null() && !(payload.is_object() && payload.empty()))
+      throw ScenarioError("", "reset takes no payload");
+    return sim.reset();
+  }
+  throw ScenarioError("kind", "unknown input \"" + kind +
+                                  "\" (known: params, obstacle, obstacle_add, obstacle_remove, "
+                                  "joystick, method, reset)");
+}
+
+json obstacle_to_json(const Obstacle& o) {
+  const auto vec = [](const Eigen::Vector3d& v) { return json::array({v.x(), v.y(), v.z()}); };
+  json j = {{"id", o.id}, {"shape", to_string(o.shape)}};
+  switch (o.shape) {
+    case ShapeKind::polygon: {
+      json points = json::array();
+      for (const Eigen::Vector2d& p : o.points) points.push_back({p.x(), p.y()});
+      j["points"] = points;
+      j["z"] = {o.z_min, o.z_max};
+      j["position"] = vec(o.position);  // translation of the polygon's frame
+      break;
+    }
+    case ShapeKind::box: {
+      j["center"] = vec(o.position);
+      j["size"] = vec(o.size);
+      const Eigen::Vector3d rpy = o.rotation.eulerAngles(2, 1, 0).reverse();  // roll, pitch, yaw
+      j["rpy"] = vec(rpy);
+      break;
+    }
+    case ShapeKind::sphere:
+      j["center"] = vec(o.position);
+      j["radius"] = o.radius;
+      break;
+    case ShapeKind::point:
+      j["position"] = vec(o.position);
+      break;
+    case ShapeKind::wall:
+      j["point"] = vec(o.position);
+      j["normal"] = vec(o.normal);
+      break;
+  }
+  j["velocity"] = vec(o.velocity);
+  return j;
+}
+
+}  // namespace rrlab

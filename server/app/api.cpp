@@ -1,0 +1,90 @@
+#include "app/api.hpp"
+
+#include "methods/method.hpp"
+#include "scenario/scenario.hpp"
+#include "sim/run_inputs.hpp"
+#include "storage/database.hpp"
+
+namespace rrlab::server {
+
+ApiResponse json_response(int status, const nlohmann::json& body) {
+  ApiResponse r;
+  r.status = status;
+  r.body = body.dump();
+  return r;
+}
+
+ApiResponse error_response(const ApiError& e) {
+  return json_response(e.status(), {{"error", {{"code", e.code()}, {"message", e.what()}, {"path", e.path()}}}});
+}
+
+nlohmann::json parse_body(const ApiRequest& request) {
+  if (request.body.empty()) throw ApiError(400, "malformed_json", "the request needs a JSON body", "");
+  try {
+    return nlohmann::json::parse(request.body);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw ApiError(400, "malformed_json", std::string("invalid JSON: ") + e.what(), "");
+  }
+}
+
+namespace {
+int hex(char c) {
+  if (c >= '0' && c <= '9') return c - '0';
+  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+  return -1;
+}
+std::string decode(const std::string& s) {
+  std::string out;
+  for (size_t i = 0; i < s.size(); ++i) {
+    if (s[i] == '+') {
+      out += ' ';
+    } else if (s[i] == '%' && i + 2 < s.size() && hex(s[i + 1]) >= 0 && hex(s[i + 2]) >= 0) {
+      out += char(hex(s[i + 1]) * 16 + hex(s[i + 2]));
+      i += 2;
+    } else {
+      out += s[i];
+    }
+  }
+  return out;
+}
+std::string join_path(const std::string& prefix, const std::string& path) {
+  if (prefix.empty()) return path;
+  if (path.empty()) return prefix;
+  return prefix + "." + path;
+}
+}  // namespace
+
+std::map<std::string, std::string> parse_query(const std::string& query) {
+  std::map<std::string, std::string> out;
+  size_t start = 0;
+  while (start < query.size()) {
+    size_t end = query.find('&', start);
+    if (end == std::string::npos) end = query.size();
+    const std::string pair = query.substr(start, end - start);
+    const size_t eq = pair.find('=');
+    if (!pair.empty()) out[decode(pair.substr(0, eq))] = eq == std::string::npos ? "" : decode(pair.substr(eq + 1));
+    start = end + 1;
+  }
+  return out;
+}
+
+void rethrow_as_api_error(const std::string& prefix, int validation_status) {
+  try {
+    throw;
+  } catch (const ApiError&) {
+    throw;
+  } catch (const ScenarioError& e) {
+    throw ApiError(validation_status, "invalid", e.what(), join_path(prefix, e.path()));
+  } catch (const ParamError& e) {
+    throw ApiError(400, "invalid_param", e.param() + ": " + e.what(), join_path(prefix, e.param()));
+  } catch (const InputStateError& e) {
+    throw ApiError(409, "wrong_state", e.what(), prefix);
+  } catch (const storage::StorageError& e) {
+    throw ApiError(500, "storage", e.what(), "");
+  } catch (const std::exception& e) {
+    throw ApiError(500, "internal", e.what(), "");
+  }
+}
+
+}  // namespace rrlab::server

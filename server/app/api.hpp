@@ -1,0 +1,59 @@
+// The HTTP-independent face of the server: requests and responses as plain
+// data, so that routes and run management never include Beast.
+#pragma once
+
+#include <functional>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+namespace rrlab::server {
+
+struct ApiRequest {
+  std::string method;  // GET, POST, ...
+  std::string path;    // without the query
+  std::map<std::string, std::string> query;
+  std::string body;
+  std::string content_type, accept;
+};
+
+struct ApiResponse;
+// A response that is ready later (a batch run that is waited for): the route
+// hands over a function that will be called once with the response.
+using Responder = std::function<void(ApiResponse)>;
+
+struct ApiResponse {
+  int status = 200;
+  std::string content_type = "application/json";
+  std::string body;
+  std::function<void(Responder)> deferred;  // set: the body comes later
+};
+
+// A 4xx/5xx answer: {"error": {"code", "message", "path"}}.
+class ApiError : public std::runtime_error {
+ public:
+  ApiError(int status, std::string code, const std::string& message, std::string path = "")
+      : std::runtime_error(message), status_(status), code_(std::move(code)), path_(std::move(path)) {}
+  int status() const { return status_; }
+  const std::string& code() const { return code_; }
+  const std::string& path() const { return path_; }
+
+ private:
+  int status_;
+  std::string code_, path_;
+};
+
+ApiResponse json_response(int status, const nlohmann::json& body);
+ApiResponse error_response(const ApiError& error);
+// Parses a JSON body (400 "malformed_json" naming the position otherwise).
+nlohmann::json parse_body(const ApiRequest& request);
+// Splits "a=1&b=x%20y" into decoded pairs.
+std::map<std::string, std::string> parse_query(const std::string& query);
+
+// Maps engine errors (ScenarioError, ParamError, InputStateError) to ApiErrors,
+// prefixing JSON paths with `prefix`.
+[[noreturn]] void rethrow_as_api_error(const std::string& prefix, int validation_status = 400);
+
+}  // namespace rrlab::server

@@ -1,0 +1,161 @@
+#include "app/replay_player.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <thread>
+
+#include "app/api.hpp"
+#include "app/resimulation.hpp"
+#include "app/stream_json.hpp"
+#include "scenario/json_reader.hpp"
+#include "sim/run_inputs.hpp"
+#include "storage/frame_codec.hpp"
+
+namespace rrlab::server {
+
+using nlohmann::json;
+
+ReplayPlayer::ReplayPlayer(storage::RunStore& store, const storage::RunRecord& run, double speed,
+                           std::int64_t from, double display_hz)
+    : store_(store), run_(run), display_hz_(display_hz), speed_(speed), playhead_(double(from)) {
+  if (run_.frames < 1) throw ApiError(409, "wrong_state", "run " + std::to_string(run_.id) + " has no stored frames", "");
+  if (from < 0 || from >= run_.frames)
+    throw ApiError(400, "invalid", "must be in [0, " + std::to_string(run_.frames - 1) + "]", "from");
+  try {
+    sim_ = std::make_unique<Simulator>(scenario_of_run(run_));
+  } catch (const std::exception& e) {
+    throw ApiError(409, "wrong_state", std::string("the stored scenario no longer loads: ") + e.what(), "");
+  }
+  events_ = store_.events(run_.id);
+  std::lock_guard lock(mutex_);
+  show_locked(from);
+}
+
+void ReplayPlayer::start() {
+  std::thread([self = shared_from_this()] { self->loop(); }).detach();
+}
+
+void ReplayPlayer::stop() {
+  {
+    std::lock_guard lock(mutex_);
+    stopping_ = true;
+  }
+  wake_.notify_all();
+}
+
+void ReplayPlayer::show_locked(std::int64_t seq) {
+  if (seq == shown_) return;
+  if (seq < shown_) {  // seeking back: replay the scene's events from the start
+    sim_ = std::make_unique<Simulator>(scenario_of_run(run_));
+    next_event_ = 0;
+    ++scene_version_;
+  }
+  // scene events up to this frame (parameter and method events do not change the picture)
+  while (next_event_ < events_.size() && events_[next_event_].seq <= seq) {
+    const storage::StoredEvent& e = events_[next_event_++];
+    if (e.kind.rfind("obstacle", 0) == 0 || e.kind == "method" || e.kind == "reset") {
+      try {
+        apply_input(*sim_, e.kind, json::parse(e.payload_json));
+        ++scene_version_;
+      } catch (const std::exception&) {
+      }
+    }
+  }
+  bool found = false;
+  store_.frames(run_.id, seq, seq, 1, [&](const storage::StoredFrame& f) {
+    frame_ = storage::unpack_frame(f.data);
+    found = true;
+    return false;
+  });
+  if (!found) return;
+  shown_ = seq;
+  sim_->scene().advance_to(frame_.t);
+  KinematicsData kin(sim_->model());
+  forward_kinematics(sim_->model(), frame_.q, kin);
+  const FrameContext context{run_.id, seq, scene_version_, playing_ ? "playing" : "paused"};
+  encode_frame(context, frame_, sim_->model(), kin, sim_->scene(), encoded_);
+  published_.version += 1;
+  published_.scene_version = scene_version_;
+  published_.text = std::make_shared<const std::string>(encoded_);
+}
+
+void ReplayPlayer::loop() {
+  const auto period = std::chrono::duration<double>(1.0 / display_hz_);
+  const double dt = sim_->scenario().dt;
+  std::unique_lock lock(mutex_);
+  while (!stopping_) {
+    wake_.wait_for(lock, period, [&] { return stopping_; });
+    if (stopping_ || !playing_) continue;
+    playhead_ += speed_ * period.count() / dt;
+    if (playhead_ >= double(run_.frames - 1)) {
+      playhead_ = double(run_.frames - 1);
+      playing_ = false;  // stop at the end
+    }
+    show_locked(std::int64_t(playhead_));
+  }
+}
+
+json ReplayPlayer::status_locked() const {
+  return {{"replay", id_},       {"run", run_.id},       {"playing", playing_}, {"speed", speed_},
+          {"seq", shown_},       {"frames", run_.frames}, {"ws", "/ws/replays/" + std::to_string(id_)}};
+}
+
+json ReplayPlayer::status() {
+  std::lock_guard lock(mutex_);
+  return status_locked();
+}
+
+json ReplayPlayer::control(const json& body) {
+  std::string action;
+  std::optional<double> speed, seq;
+  try {
+    JsonObject obj(body, "");
+    obj.check_keys({"action", "seq", "speed"});
+    if (obj.has("action")) action = obj.choice("action", {"play", "pause", "seek"});
+    speed = obj.optional_number("speed");
+    seq = obj.optional_number("seq");
+  } catch (...) {
+    rethrow_as_api_error("");
+  }
+  if (speed && !(*speed > 0 && *speed <= 1000)) throw ApiError(400, "invalid", "must be in (0, 1000]", "speed");
+  if (action == "seek" && !seq) throw ApiError(400, "invalid", "seek needs a seq", "seq");
+  if (seq && !(*seq >= 0 && *seq < double(run_.frames)))
+    throw ApiError(400, "invalid", "must be in [0, " + std::to_string(run_.frames - 1) + "]", "seq");
+  std::lock_guard lock(mutex_);
+  if (speed) speed_ = *speed;
+  if (action == "play") playing_ = true;
+  if (action == "pause") playing_ = false;
+  if (seq) {
+    playhead_ = std::floor(*seq);
+    show_locked(std::int64_t(playhead_));
+  }
+  return status_locked();
+}
+
+std::string ReplayPlayer::snapshot() {
+  std::lock_guard lock(mutex_);
+  const FrameContext context{run_.id, shown_, scene_version_, playing_ ? "playing" : "paused"};
+  json snap = snapshot_json(context, *sim_, encoded_);
+  snap["replay"] = id_;
+  snap["frames"] = run_.frames;
+  return snap.dump();
+}
+
+PublishedFrame ReplayPlayer::latest() {
+  std::lock_guard lock(mutex_);
+  return published_;
+}
+
+json ReplayPlayer::handle_message(const json& message) {
+  try {
+    if (!message.is_object() || message.value("type", "") != "control")
+      throw ApiError(400, "invalid", "a replay takes {\"type\": \"control\", \"action\": play|pause|seek}", "type");
+    json body = message;
+    body.erase("type");
+    return {{"type", "ack"}, {"status", control(body)}};
+  } catch (const ApiError& e) {
+    return {{"type", "error"}, {"error", {{"code", e.code()}, {"message", e.what()}, {"path", e.path()}}}};
+  }
+}
+
+}  // namespace rrlab::server

@@ -1,0 +1,81 @@
+#include "app/resimulation.hpp"
+
+#include <algorithm>
+#include <chrono>
+
+#include "sim/run_record.hpp"
+#include "sim/simulator.hpp"
+#include "storage/frame_codec.hpp"
+
+namespace rrlab::server {
+
+using nlohmann::json;
+
+Scenario scenario_of_run(const storage::RunRecord& run) {
+  Scenario scenario = parse_scenario_text(run.scenario_json);
+  scenario.method.name = run.method;
+  scenario.method.params.clear();
+  const json params = json::parse(run.params_json);
+  for (auto it = params.begin(); it != params.end(); ++it)
+    scenario.method.params.emplace_back(it.key(), it.value().get<double>());
+  return scenario;
+}
+
+namespace {
+
+// Names the first field where two packed frames differ.
+std::string describe_difference(const std::string& stored, const std::string& fresh) {
+  try {
+    const Frame a = storage::unpack_frame(stored), b = storage::unpack_frame(fresh);
+    if (a.step != b.step) return "step " + std::to_string(a.step) + " vs " + std::to_string(b.step);
+    if (a.q.size() != b.q.size()) return "dof";
+    for (Eigen::Index i = 0; i < a.q.size(); ++i)
+      if (a.q[i] != b.q[i]) return "q" + std::to_string(i + 1) + " " + json(a.q[i]).dump() + " vs " + json(b.q[i]).dump();
+    for (Eigen::Index i = 0; i < a.qdot.size(); ++i)
+      if (a.qdot[i] != b.qdot[i]) return "qdot" + std::to_string(i + 1);
+    return "metrics or diagnostics";
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+}
+
+}  // namespace
+
+ResimulationResult resimulate(storage::RunStore& store, const storage::RunRecord& run,
+                              const std::function<void(std::int64_t, const Frame&, const std::string&)>& on_frame) {
+  Simulator sim(scenario_of_run(run));
+  sim.set_total_steps(ScenarioLimits::max_steps * 16);  // resets restart the step count; seq bounds the loop
+  std::vector<RecordedEvent> events;
+  for (const storage::StoredEvent& e : store.events(run.id))
+    events.push_back({long(e.seq), e.kind, json::parse(e.payload_json)});
+  EventReplayer replayer(events);
+  ResimulationResult result;
+  std::string packed;
+  constexpr std::int64_t chunk = 4096;
+  std::vector<std::string> stored;
+  for (std::int64_t from = 0; from < run.frames; from += chunk) {
+    stored.clear();
+    store.frames(run.id, from, std::min(run.frames, from + chunk) - 1, 1, [&](const storage::StoredFrame& f) {
+      stored.push_back(f.data);
+      return true;
+    });
+    for (size_t i = 0; i < stored.size(); ++i) {
+      const std::int64_t seq = from + std::int64_t(i);
+      replayer.apply_due(sim, long(seq));
+      const auto start = std::chrono::steady_clock::now();
+      sim.step();
+      sim.note_step_time(std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count());
+      storage::pack_frame(sim.frame(), packed);
+      if (on_frame) on_frame(seq, sim.frame(), packed);
+      ++result.frames_compared;
+      if (!result.first_mismatch && packed != stored[i]) {
+        result.first_mismatch = seq;
+        result.mismatch = describe_difference(stored[i], packed);
+      }
+    }
+  }
+  result.summary = sim.summary();
+  return result;
+}
+
+}  // namespace rrlab::server

@@ -1,0 +1,32 @@
+// Re-simulation of a stored run: a fresh simulator from the run's scenario,
+// method, parameters and seed, with the recorded events applied before the
+// same steps; every frame is compared byte for byte with the stored one.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+
+#include "scenario/scenario.hpp"
+#include "sim/frame.hpp"
+#include "storage/run_store.hpp"
+
+namespace rrlab::server {
+
+// The scenario a stored run started from (its method and parameters included).
+Scenario scenario_of_run(const storage::RunRecord& run);
+
+struct ResimulationResult {
+  std::int64_t frames_compared = 0;
+  std::optional<std::int64_t> first_mismatch;  // seq of the first differing frame
+  std::string mismatch;                         // what differed there
+  Summary summary;
+  bool identical() const { return !first_mismatch; }
+};
+
+// on_frame (may be empty) sees each re-simulated frame with its seq and packed blob.
+ResimulationResult resimulate(storage::RunStore& store, const storage::RunRecord& run,
+                              const std::function<void(std::int64_t, const Frame&, const std::string&)>& on_frame);
+
+}  // namespace rrlab::server

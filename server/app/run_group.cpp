@@ -1,0 +1,353 @@
+#include "app/run_group.hpp"
+
+#include "app/api.hpp"
+#include "app/stream_json.hpp"
+#include "scenario/json_reader.hpp"
+#include "sim/run_inputs.hpp"
+#include "storage/frame_codec.hpp"
+#include "storage/frame_writer.hpp"
+#include "storage/run_store.hpp"
+
+namespace rrlab::server {
+
+using nlohmann::json;
+using Clock = std::chrono::steady_clock;
+
+// ---- a lane as a WebSocket frame source ----
+
+class RunGroup::LaneSource final : public FrameSource {
+ public:
+  LaneSource(std::shared_ptr<RunGroup> group, int lane) : group_(std::move(group)), lane_(lane) {}
+
+  std::string snapshot() override {
+    std::lock_guard lock(group_->mutex_);
+    Lane& lane = group_->lanes_[size_t(lane_)];
+    const FrameContext context{lane.run_id, lane.seq, lane.scene_version, group_->lane_status(lane)};
+    std::string frame;
+    encode_frame(context, lane.sim->frame(), lane.sim->model(), lane.sim->kinematics(), lane.sim->scene(), frame);
+    return snapshot_json(context, *lane.sim, frame).dump();
+  }
+
+  PublishedFrame latest() override {
+    std::lock_guard lock(group_->publish_mutex_);
+    return group_->lanes_[size_t(lane_)].published;
+  }
+
+  json handle_message(const json& message) override {
+    try {
+      if (!message.is_object()) throw ApiError(400, "invalid", "a message must be a JSON object", "");
+      JsonObject obj(message, "");
+      const std::string type = obj.choice("type", {"input", "control"});
+      json reply;
+      if (type == "control") {
+        obj.check_keys({"type", "action", "rate"});
+        json body = message;
+        body.erase("type");
+        reply = group_->control(lane_, body);
+      } else {
+        obj.check_keys({"type", "kind", "payload"});
+        const std::string kind = obj.string("kind");
+        reply = group_->input(lane_, kind, message.value("payload", json::object()), "payload");
+      }
+      return {{"type", "ack"}, {"status", reply}};
+    } catch (const ApiError& e) {
+      return {{"type", "error"}, {"error", {{"code", e.code()}, {"message", e.what()}, {"path", e.path()}}}};
+    } catch (const ScenarioError& e) {
+      return {{"type", "error"}, {"error", {{"code", "invalid"}, {"message", e.what()}, {"path", e.path()}}}};
+    }
+  }
+
+ private:
+  std::shared_ptr<RunGroup> group_;
+  int lane_;
+};
+
+// ---- construction ----
+
+RunGroup::RunGroup(RunServices services, const std::vector<Scenario>& scenarios, const GroupOptions& options)
+    : services_(services), options_(options), paused_(options.paused) {
+  if (scenarios.empty()) throw ApiError(400, "invalid", "a run needs a scenario", "scenario");
+  dt_ = scenarios.front().dt;
+  lanes_.resize(scenarios.size());
+  for (size_t i = 0; i < scenarios.size(); ++i) {
+    Lane& lane = lanes_[i];
+    try {
+      lane.sim = std::make_unique<Simulator>(scenarios[i]);
+    } catch (...) {
+      rethrow_as_api_error("", 422);
+    }
+    if (options_.steps) lane.sim->set_total_steps(*options_.steps);
+    storage::NewRun run;
+    run.scenario_name = scenarios[i].name;
+    run.scenario_json = scenarios[i].json.dump();
+    run.method = lane.sim->method_name();
+    run.params_json = params_json(*lane.sim).dump();
+    run.mode = options_.mode;
+    run.seed = scenarios[i].seed;
+    run.dof = lane.sim->model().dof();
+    run.diagnostic_names_json = json(lane.sim->diagnostic_names()).dump();
+    run.source_run = options_.source_run;
+    if (options_.compare && i > 0) run.compare_group = lanes_[0].run_id;
+    lane.run_id = services_.store.create_run(run);
+    if (options_.compare && i == 0) services_.store.set_compare_group(lane.run_id, lane.run_id);
+    if (paused_) services_.store.set_status(lane.run_id, "paused");
+    publish(lane);
+  }
+}
+
+RunGroup::~RunGroup() = default;
+
+void RunGroup::start() {
+  // the thread owns a reference: the group lives until its thread has finished
+  std::thread([self = shared_from_this()] { self->loop(); }).detach();
+}
+
+void RunGroup::request_stop() {
+  {
+    std::lock_guard lock(mutex_);
+    stop_requested_ = true;
+  }
+  wake_.notify_all();
+}
+
+int RunGroup::lane_of(std::int64_t run_id) const {
+  for (size_t i = 0; i < lanes_.size(); ++i)
+    if (lanes_[i].run_id == run_id) return int(i);
+  return -1;
+}
+
+// ---- the simulation thread ----
+
+bool RunGroup::all_done() const {
+  for (const Lane& lane : lanes_)
+    if (!lane.sim->done()) return false;
+  return true;
+}
+
+void RunGroup::step_lanes() {
+  for (Lane& lane : lanes_) {
+    if (lane.sim->done()) continue;
+    const auto start = Clock::now();
+    lane.sim->step();
+    lane.sim->note_step_time(std::chrono::duration<double, std::micro>(Clock::now() - start).count());
+    const Frame& f = lane.sim->frame();
+    if (lane.seq < services_.max_stored_frames) {
+      storage::StoredFrame stored;
+      stored.seq = lane.seq;
+      stored.step = f.step;
+      stored.t = f.t;
+      stored.task_error = f.task_error;
+      stored.min_distance = f.min_distance;
+      stored.collided = f.collided;
+      storage::pack_frame(f, stored.data);
+      services_.writer.push(lane.run_id, std::move(stored));
+    }
+    ++lane.seq;
+  }
+}
+
+const char* RunGroup::lane_status(const Lane& lane) const {
+  if (finished_) return lane.status.c_str();
+  if (stop_requested_) return "stopping";
+  return paused_ ? "paused" : "running";
+}
+
+void RunGroup::publish(Lane& lane) {
+  const FrameContext context{lane.run_id, lane.seq, lane.scene_version, lane_status(lane)};
+  encode_frame(context, lane.sim->frame(), lane.sim->model(), lane.sim->kinematics(), lane.sim->scene(),
+               lane.encode_buffer);
+  auto text = std::make_shared<const std::string>(lane.encode_buffer);
+  std::lock_guard lock(publish_mutex_);
+  lane.published.version += 1;
+  lane.published.scene_version = lane.scene_version;
+  lane.published.text = std::move(text);
+}
+
+void RunGroup::loop() {
+  std::unique_lock lock(mutex_);
+  auto anchor = Clock::now();
+  long anchor_steps = 0;
+  std::uint64_t generation = pacing_generation_;
+  const auto publish_period = std::chrono::duration<double>(1.0 / options_.display_hz);
+  while (true) {
+    wake_.wait(lock, [&] { return stop_requested_ || !paused_ || step_requests_ > 0; });
+    if (stop_requested_ || all_done()) break;
+    const bool single = paused_;
+    if (single) --step_requests_;
+    if (generation != pacing_generation_) {
+      anchor = Clock::now();
+      anchor_steps = 0;
+      generation = pacing_generation_;
+    }
+    try {
+      step_lanes();
+    } catch (const std::exception& e) {
+      failure_ = e.what();
+      break;
+    }
+    ++anchor_steps;
+    const auto now = Clock::now();
+    if (single || all_done() || now - last_publish_ >= publish_period) {
+      for (Lane& lane : lanes_) publish(lane);
+      last_publish_ = now;
+    }
+    if (single) stepped_.notify_all();
+    if (!paused_ && options_.rate > 0) {
+      const auto next = anchor + std::chrono::duration_cast<Clock::duration>(
+                                     std::chrono::duration<double>(double(anchor_steps) * dt_ / options_.rate));
+      wake_.wait_until(lock, next, [&] { return stop_requested_ || generation != pacing_generation_; });
+    } else if (pending_inputs_ > 0) {
+      // as fast as possible: let waiting REST/WebSocket inputs in between steps
+      lock.unlock();
+      while (pending_inputs_ > 0) std::this_thread::yield();
+      lock.lock();
+    }
+  }
+  const bool stopped = stop_requested_ && !all_done();
+  lock.unlock();
+  finish(!failure_.empty() ? "failed" : stopped ? "stopped" : "completed");
+}
+
+void RunGroup::finish(const std::string& status) {
+  services_.writer.flush();
+  std::vector<std::function<void()>> callbacks;
+  {
+    std::lock_guard lock(mutex_);
+    for (Lane& lane : lanes_) {
+      lane.status = status;
+      try {
+        services_.store.finish_run(lane.run_id, status, summary_locked(lane).dump());
+      } catch (const std::exception&) {
+        lane.status = "failed";
+      }
+    }
+    finished_ = true;
+    for (Lane& lane : lanes_) publish(lane);
+  }
+  stepped_.notify_all();
+  {
+    std::lock_guard lock(done_mutex_);
+    callbacks.swap(on_finished_);
+  }
+  for (auto& callback : callbacks) callback();
+}
+
+void RunGroup::when_finished(std::function<void()> callback) {
+  {
+    std::lock_guard lock(done_mutex_);
+    if (!finished_) {
+      on_finished_.push_back(std::move(callback));
+      return;
+    }
+  }
+  callback();
+}
+
+// ---- REST / WebSocket inputs ----
+
+json RunGroup::summary_locked(Lane& lane) {
+  json s = summary_to_json(lane.sim->summary());
+  s["run"] = lane.run_id;
+  s["frames_stored"] = std::min<std::int64_t>(lane.seq, services_.max_stored_frames);
+  if (!failure_.empty()) s["failure"] = failure_;
+  return s;
+}
+
+json RunGroup::summary_json(int lane) {
+  std::lock_guard lock(mutex_);
+  return summary_locked(lanes_[size_t(lane)]);
+}
+
+json RunGroup::status_locked(const Lane& lane) const {
+  const State& state = lane.sim->state();
+  return {{"id", lane.run_id},
+          {"mode", options_.mode},
+          {"status", lane_status(lane)},
+          {"method", lane.sim->method_name()},
+          {"params", params_json(*lane.sim)},
+          {"step", state.step},
+          {"t", state.t},
+          {"frames", lane.seq},
+          {"total_steps", lane.sim->total_steps()},
+          {"rate", options_.rate}};
+}
+
+json RunGroup::status_json(int lane) {
+  std::lock_guard lock(mutex_);
+  return status_locked(lanes_[size_t(lane)]);
+}
+
+std::unique_lock<std::mutex> RunGroup::lock_for_input() {
+  ++pending_inputs_;
+  std::unique_lock lock(mutex_);
+  --pending_inputs_;
+  return lock;
+}
+
+json RunGroup::control(int lane_index, const json& body) {
+  JsonObject obj(body, "");
+  std::string action;
+  std::optional<double> rate;
+  try {
+    obj.check_keys({"action", "rate"});
+    if (obj.has("action")) action = obj.choice("action", {"start", "pause", "step", "reset", "stop"});
+    rate = obj.optional_number("rate");
+  } catch (...) {
+    rethrow_as_api_error("");
+  }
+  if (action.empty() && !rate) throw ApiError(400, "invalid", "give an action, a rate or both", "action");
+  if (rate && !(*rate >= 0 && *rate <= 1000))
+    throw ApiError(400, "invalid", "must be in [0, 1000] (0: as fast as possible)", "rate");
+  if (action == "reset") return input(lane_index, "reset", json::object(), "");
+  auto lock = lock_for_input();
+  Lane& lane = lanes_[size_t(lane_index)];
+  if (finished_ || stop_requested_)
+    throw ApiError(409, "wrong_state", std::string("the run has ended (") + lane_status(lane) + ")", "action");
+  if (rate) {
+    options_.rate = *rate;
+    ++pacing_generation_;
+  }
+  if (action == "start" || action == "pause") {
+    paused_ = action == "pause";
+    ++pacing_generation_;
+    for (const Lane& l : lanes_) services_.store.set_status(l.run_id, paused_ ? "paused" : "running");
+    for (Lane& l : lanes_) publish(l);
+  } else if (action == "step") {
+    if (!paused_) throw ApiError(409, "wrong_state", "pause the run before single-stepping", "action");
+    const std::int64_t target = lane.seq + 1;
+    ++step_requests_;
+    wake_.notify_all();
+    stepped_.wait_for(lock, std::chrono::seconds(5), [&] { return finished_ || lane.seq >= target; });
+  } else if (action == "stop") {
+    stop_requested_ = true;
+  }
+  wake_.notify_all();
+  return status_locked(lane);
+}
+
+json RunGroup::input(int lane_index, const std::string& kind, const json& payload, const std::string& prefix) {
+  auto lock = lock_for_input();
+  if (finished_ || stop_requested_)
+    throw ApiError(409, "wrong_state", "the run has ended", prefix);
+  const bool own_lane = kind == "params" || kind == "method";
+  for (size_t i = 0; i < lanes_.size(); ++i) {
+    if (own_lane && int(i) != lane_index) continue;
+    Lane& lane = lanes_[i];
+    try {
+      apply_input(*lane.sim, kind, payload);
+    } catch (...) {
+      rethrow_as_api_error(prefix);
+    }
+    services_.store.add_event(lane.run_id, {lane.seq, lane.sim->state().step, kind, payload.dump()});
+    if (kind != "joystick") ++lane.scene_version;
+    if (paused_) publish(lane);
+  }
+  wake_.notify_all();
+  return status_locked(lanes_[size_t(lane_index)]);
+}
+
+std::shared_ptr<FrameSource> RunGroup::source(int lane) {
+  return std::make_shared<LaneSource>(shared_from_this(), lane);
+}
+
+}  // namespace rrlab::server

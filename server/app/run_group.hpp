@@ -1,0 +1,117 @@
+// One or more simulations stepped in lockstep on their own thread (a single
+// run is a group of one; /api/compare makes a group of several methods on one
+// scenario). Inputs are applied under the group's lock between steps and
+// stored as events; frames go to the FrameWriter; the latest frame of each
+// lane is published for WebSocket clients at the display rate.
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "app/frame_source.hpp"
+#include "scenario/scenario.hpp"
+#include "sim/simulator.hpp"
+
+namespace rrlab::storage {
+class RunStore;
+class FrameWriter;
+}  // namespace rrlab::storage
+
+namespace rrlab::server {
+
+struct RunServices {
+  storage::RunStore& store;
+  storage::FrameWriter& writer;
+  long max_stored_frames = 1'000'000;  // per run; later steps are simulated, not stored
+};
+
+struct GroupOptions {
+  std::string mode = "live";   // live | batch | resimulation
+  double rate = 1.0;           // real-time factor; 0: as fast as possible
+  double display_hz = 60.0;    // publication rate for WebSocket clients
+  bool paused = false;         // live runs: start paused
+  std::optional<long> steps;   // default: the scenario's duration / dt
+  std::optional<std::int64_t> source_run;
+  bool compare = false;
+};
+
+class RunGroup : public std::enable_shared_from_this<RunGroup> {
+ public:
+  // Creates the stored runs (one per scenario); throws ApiError on bad input.
+  RunGroup(RunServices services, const std::vector<Scenario>& lanes, const GroupOptions& options);
+  ~RunGroup();
+  void start();
+  void request_stop();  // the run ends as "stopped" after the current step
+
+  int lane_count() const { return int(lanes_.size()); }
+  std::int64_t run_id(int lane) const { return lanes_[size_t(lane)].run_id; }
+  int lane_of(std::int64_t run_id) const;  // -1 if not in this group
+  const std::string& mode() const { return options_.mode; }
+
+  // control: {"action": start|pause|step|reset|stop, "rate"?: factor}; returns the lane's status.
+  nlohmann::json control(int lane, const nlohmann::json& body);
+  // An input event (sim/run_inputs.hpp kinds); params and method go to this
+  // lane, scene, joystick and reset inputs to every lane. Throws ApiError.
+  nlohmann::json input(int lane, const std::string& kind, const nlohmann::json& payload,
+                       const std::string& path_prefix);
+  nlohmann::json status_json(int lane);
+  bool finished() const { return finished_; }
+  // Called once when the group has ended (at once if it has).
+  void when_finished(std::function<void()> callback);
+  nlohmann::json summary_json(int lane);  // the lane's run summary so far
+
+  std::shared_ptr<FrameSource> source(int lane);
+
+ private:
+  struct Lane {
+    std::int64_t run_id = 0;
+    std::unique_ptr<Simulator> sim;
+    std::int64_t seq = 0;  // steps taken in this run (over resets)
+    std::uint64_t scene_version = 1;
+    std::string status = "running";
+    // published for clients (guarded by publish_mutex_)
+    PublishedFrame published;
+    std::string encode_buffer;
+  };
+  class LaneSource;
+
+  void loop();
+  std::unique_lock<std::mutex> lock_for_input();  // ahead of the simulation thread
+  nlohmann::json summary_locked(Lane& lane);
+  nlohmann::json status_locked(const Lane& lane) const;
+  bool all_done() const;
+  void step_lanes();
+  void publish(Lane& lane);                 // holds mutex_
+  void finish(const std::string& status);  // holds no lock
+  const char* lane_status(const Lane& lane) const;
+
+  RunServices services_;
+  GroupOptions options_;
+  double dt_ = 0.01;
+  std::vector<Lane> lanes_;
+
+  mutable std::mutex mutex_;  // the simulations and everything below
+  std::condition_variable wake_, stepped_;
+  std::atomic<int> pending_inputs_{0};
+  bool paused_ = false, stop_requested_ = false;
+  int step_requests_ = 0;
+  std::uint64_t pacing_generation_ = 0;  // bumped on pause/rate changes
+  std::chrono::steady_clock::time_point last_publish_{};
+
+  std::mutex publish_mutex_;
+  std::atomic<bool> finished_{false};
+  std::mutex done_mutex_;
+  std::vector<std::function<void()>> on_finished_;
+  std::string failure_;  // an exception from a step ends the run as "failed"
+};
+
+}  // namespace rrlab::server

@@ -1,0 +1,182 @@
+#include "app/run_manager.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <thread>
+
+#include "app/replay_player.hpp"
+#include "storage/run_store.hpp"
+
+namespace rrlab::server {
+
+using nlohmann::json;
+
+RunManager::RunManager(storage::RunStore& store, storage::FrameWriter& writer, const std::string& scenarios_dir,
+                       ServerLimits limits)
+    : store_(store), writer_(writer), limits_(limits) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (scenarios_dir.empty() || !fs::is_directory(scenarios_dir, ec)) return;
+  for (const auto& entry : fs::directory_iterator(scenarios_dir, ec)) {
+    if (entry.path().extension() != ".json") continue;
+    std::ifstream in(entry.path());
+    std::stringstream text;
+    text << in.rdbuf();
+    try {
+      const Scenario scenario = parse_scenario_text(text.str());  // only valid files are served
+      const std::string stem = entry.path().stem().string();
+      catalogue_[stem] = scenario.json;
+      catalogue_.emplace(scenario.name, scenario.json);
+      catalogue_names_.push_back(stem);
+    } catch (const std::exception&) {
+    }
+  }
+  std::sort(catalogue_names_.begin(), catalogue_names_.end());
+}
+
+RunManager::~RunManager() { stop_all(); }
+
+void RunManager::stop_all() {
+  std::vector<std::shared_ptr<RunGroup>> groups;
+  {
+    std::lock_guard lock(mutex_);
+    groups = groups_;
+    for (auto& [id, player] : replays_) player->stop();
+  }
+  for (auto& g : groups) g->request_stop();
+  for (auto& g : groups)
+    while (!g->finished()) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+}
+
+json RunManager::scenario_list() {
+  json list = json::array();
+  for (const std::string& stem : catalogue_names_) {
+    const json& doc = catalogue_.at(stem);
+    list.push_back({{"name", stem},
+                    {"title", doc.value("name", stem)},
+                    {"description", doc.value("description", "")},
+                    {"source", doc.value("source", "")},
+                    {"builtin", true}});
+  }
+  for (const std::string& name : store_.scenario_names()) {
+    const json doc = json::parse(*store_.scenario(name));
+    list.push_back({{"name", name},
+                    {"title", doc.value("name", name)},
+                    {"description", doc.value("description", "")},
+                    {"source", doc.value("source", "")},
+                    {"builtin", false}});
+  }
+  return list;
+}
+
+json RunManager::scenario_json(const std::string& name) {
+  if (auto it = catalogue_.find(name); it != catalogue_.end()) return it->second;
+  if (auto stored = store_.scenario(name)) return json::parse(*stored);
+  throw ApiError(404, "not_found", "no scenario \"" + name + "\"", "scenario");
+}
+
+json RunManager::add_scenario(const json& body) {
+  if (!body.is_object()) throw ApiError(400, "invalid", "must be a scenario object", "");
+  if (!body.contains("name") || !body["name"].is_string())
+    throw ApiError(400, "invalid", "a stored scenario needs a string \"name\"", "name");
+  const std::string name = body["name"].get<std::string>();
+  static const std::regex pattern("[A-Za-z0-9_.-]{1,64}");
+  if (!std::regex_match(name, pattern))
+    throw ApiError(400, "invalid", "must be 1 to 64 letters, digits, '_', '-' or '.'", "name");
+  try {
+    parse_scenario(body);
+  } catch (...) {
+    rethrow_as_api_error("", 422);
+  }
+  if (catalogue_.count(name) || !store_.put_scenario(name, body.dump()))
+    throw ApiError(409, "exists", "a scenario \"" + name + "\" exists already", "name");
+  return {{"name", name}};
+}
+
+Scenario RunManager::resolve_scenario(const json& value, const std::string& path) {
+  json doc;
+  if (value.is_string()) {
+    try {
+      doc = scenario_json(value.get<std::string>());
+    } catch (const ApiError& e) {
+      throw ApiError(404, "not_found", e.what(), path);
+    }
+  } else if (value.is_object()) {
+    doc = value;
+  } else {
+    throw ApiError(400, "invalid", "must be a scenario name or a scenario object", path);
+  }
+  try {
+    return parse_scenario(doc);
+  } catch (...) {
+    rethrow_as_api_error(path, 422);
+  }
+}
+
+void RunManager::prune_locked() {
+  // keep unfinished groups, and the newest finished ones
+  int finished = 0;
+  for (auto it = groups_.rbegin(); it != groups_.rend(); ++it)
+    if ((*it)->finished()) ++finished;
+  for (auto it = groups_.begin(); it != groups_.end() && finished > limits_.max_kept_finished;) {
+    if ((*it)->finished()) {
+      it = groups_.erase(it);
+      --finished;
+    } else {
+      ++it;
+    }
+  }
+}
+
+std::shared_ptr<RunGroup> RunManager::start_group(const std::vector<Scenario>& lanes, const GroupOptions& options) {
+  {
+    std::lock_guard lock(mutex_);
+    prune_locked();
+    int active = 0;
+    for (const auto& g : groups_) active += g->finished() ? 0 : g->lane_count();
+    if (active + int(lanes.size()) > limits_.max_active_runs)
+      throw ApiError(503, "busy", "at most " + std::to_string(limits_.max_active_runs) +
+                                      " runs may be active at once; stop or wait for some", "");
+  }
+  RunServices services{store_, writer_, limits_.max_stored_frames};
+  auto group = std::make_shared<RunGroup>(services, lanes, options);
+  {
+    std::lock_guard lock(mutex_);
+    groups_.push_back(group);
+  }
+  group->start();
+  return group;
+}
+
+std::shared_ptr<RunGroup> RunManager::group_of(std::int64_t id, int& lane) {
+  std::lock_guard lock(mutex_);
+  for (const auto& g : groups_) {
+    lane = g->lane_of(id);
+    if (lane >= 0) return g;
+  }
+  return nullptr;
+}
+
+std::int64_t RunManager::add_replay(std::shared_ptr<ReplayPlayer> player) {
+  std::lock_guard lock(mutex_);
+  // drop the oldest replays beyond the limit
+  while (int(replays_.size()) >= limits_.max_replays) {
+    replays_.begin()->second->stop();
+    replays_.erase(replays_.begin());
+  }
+  const std::int64_t id = next_replay_++;
+  replays_[id] = std::move(player);
+  return id;
+}
+
+std::shared_ptr<ReplayPlayer> RunManager::replay(std::int64_t id) {
+  std::lock_guard lock(mutex_);
+  auto it = replays_.find(id);
+  return it == replays_.end() ? nullptr : it->second;
+}
+
+}  // namespace rrlab::server

@@ -1,0 +1,73 @@
+// The server's state: the scenario catalogue (files of scenarios/ plus those
+// added over REST, stored in the database), the live run groups and replays.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "app/api.hpp"
+#include "app/run_group.hpp"
+
+namespace rrlab::storage {
+class RunStore;
+class FrameWriter;
+}  // namespace rrlab::storage
+
+namespace rrlab::server {
+
+class ReplayPlayer;
+
+struct ServerLimits {
+  int max_active_runs = 256;      // unfinished runs at once (503 beyond)
+  int max_kept_finished = 64;     // finished groups kept in memory for their WebSocket clients
+  int max_replays = 32;
+  long max_stored_frames = 1'000'000;
+  double default_display_hz = 60;
+};
+
+class RunManager {
+ public:
+  RunManager(storage::RunStore& store, storage::FrameWriter& writer, const std::string& scenarios_dir,
+             ServerLimits limits = {});
+  ~RunManager();  // stops every run and waits for them
+
+  storage::RunStore& store() { return store_; }
+  storage::FrameWriter& writer() { return writer_; }
+  const ServerLimits& limits() const { return limits_; }
+
+  // Scenarios: by catalogue name (file stem or its "name"), or inline JSON.
+  nlohmann::json scenario_list();
+  nlohmann::json scenario_json(const std::string& name);      // 404 if unknown
+  nlohmann::json add_scenario(const nlohmann::json& body);    // 201 body; 409 if it exists
+  Scenario resolve_scenario(const nlohmann::json& value, const std::string& path);
+
+  // A new group, registered and started.
+  std::shared_ptr<RunGroup> start_group(const std::vector<Scenario>& lanes, const GroupOptions& options);
+  // The group holding run `id` (and its lane), or null when it is not in memory.
+  std::shared_ptr<RunGroup> group_of(std::int64_t id, int& lane);
+
+  std::int64_t add_replay(std::shared_ptr<ReplayPlayer> player);
+  std::shared_ptr<ReplayPlayer> replay(std::int64_t id);
+
+  void stop_all();
+
+ private:
+  void prune_locked();
+
+  storage::RunStore& store_;
+  storage::FrameWriter& writer_;
+  ServerLimits limits_;
+  std::map<std::string, nlohmann::json> catalogue_;  // file scenarios by stem and by name
+  std::vector<std::string> catalogue_names_;         // file stems, sorted
+  std::mutex mutex_;
+  std::vector<std::shared_ptr<RunGroup>> groups_;
+  std::map<std::int64_t, std::shared_ptr<ReplayPlayer>> replays_;
+  std::int64_t next_replay_ = 1;
+};
+
+}  // namespace rrlab::server

@@ -1,0 +1,233 @@
+#include "app/stream_json.hpp"
+
+#include <charconv>
+#include <cmath>
+
+#include "methods/registry_json.hpp"
+#include "sim/run_inputs.hpp"
+
+namespace rrlab::server {
+
+namespace {
+
+void num(double v, std::string& out) {
+  if (!std::isfinite(v)) {
+    out += "null";
+    return;
+  }
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::general, 7);
+  out.append(buf, size_t(r.ptr - buf));
+}
+
+template <typename Vec>
+void array(const Vec& v, Eigen::Index n, std::string& out) {
+  out += '[';
+  for (Eigen::Index i = 0; i < n; ++i) {
+    if (i) out += ',';
+    num(v[i], out);
+  }
+  out += ']';
+}
+
+void key(const char* name, std::string& out) {
+  out += ",\"";
+  out += name;
+  out += "\":";
+}
+
+void overlays(const Overlays& o, std::string& out) {
+  out += "{\"ghosts\":[";
+  for (size_t i = 0; i < o.ghosts.size(); ++i) {
+    if (i) out += ',';
+    array(o.ghosts[i], o.ghosts[i].size(), out);
+  }
+  out += "],\"ellipses\":[";
+  for (size_t i = 0; i < o.ellipses.size(); ++i) {
+    if (i) out += ',';
+    out += "{\"centre\":";
+    array(o.ellipses[i].centre, 3, out);
+    out += ",\"axes\":[";
+    for (int c = 0; c < 3; ++c) {
+      if (c) out += ',';
+      const Eigen::Vector3d axis = o.ellipses[i].axes.col(c);
+      array(axis, 3, out);
+    }
+    out += "]}";
+  }
+  out += "],\"points\":[";
+  for (size_t i = 0; i < o.points.size(); ++i) {
+    if (i) out += ',';
+    array(o.points[i], 3, out);
+  }
+  out += "],\"segments\":[";
+  for (size_t i = 0; i < o.segments.size(); ++i) {
+    if (i) out += ',';
+    out += '[';
+    array(o.segments[i].first, 3, out);
+    out += ',';
+    array(o.segments[i].second, 3, out);
+    out += ']';
+  }
+  out += "]}";
+}
+
+}  // namespace
+
+void encode_frame(const FrameContext& c, const Frame& f, const Model& model, const KinematicsData& kin,
+                  const Scene& scene, std::string& out) {
+  out.clear();
+  out += "{\"type\":\"frame\",\"run\":" + std::to_string(c.run_id);
+  key("seq", out);
+  out += std::to_string(c.seq);
+  key("step", out);
+  out += std::to_string(f.step);
+  key("t", out);
+  num(f.t, out);
+  key("status", out);
+  out += '"';
+  out += c.status;
+  out += '"';
+  key("q", out);
+  array(f.q, f.q.size(), out);
+  key("qdot", out);
+  array(f.qdot, f.qdot.size(), out);
+  key("links", out);
+  out += '[';
+  for (int l = 0; l < model.link_count(); ++l) {
+    if (l) out += ',';
+    out += '[';
+    for (int i = 0; i < 3; ++i) {
+      num(kin.link_start(i, l), out);
+      out += ',';
+    }
+    for (int i = 0; i < 3; ++i) {
+      num(kin.link_end(i, l), out);
+      if (i < 2) out += ',';
+    }
+    out += ']';
+  }
+  out += ']';
+  if (model.kind != ModelKind::planar) {
+    key("link_quat", out);
+    out += '[';
+    for (int l = 0; l < model.link_count(); ++l) {
+      if (l) out += ',';
+      const Eigen::Quaterniond r(kin.joint_frames[size_t(model.links[size_t(l)].last_joint)].linear());
+      const double w[4] = {r.w(), r.x(), r.y(), r.z()};
+      array(w, 4, out);
+    }
+    out += ']';
+  }
+  key("ee", out);
+  array(f.ee_position, 3, out);
+  key("ee_quat", out);
+  const double eq[4] = {f.ee_orientation.w(), f.ee_orientation.x(), f.ee_orientation.y(), f.ee_orientation.z()};
+  array(eq, 4, out);
+  key("target", out);
+  array(f.target, 3, out);
+  key("obstacles", out);
+  out += '[';
+  for (size_t i = 0; i < scene.obstacles.size(); ++i) {
+    if (i) out += ',';
+    array(scene.obstacles[i].position, 3, out);
+  }
+  out += ']';
+  key("scene_version", out);
+  out += std::to_string(c.scene_version);
+  key("metrics", out);
+  out += "{\"task_error\":";
+  num(f.task_error, out);
+  key("orientation_error", out);
+  num(f.orientation_error, out);
+  key("min_distance", out);
+  num(f.min_distance, out);
+  key("min_distance_link", out);
+  out += std::to_string(f.min_distance_link + 1);
+  key("collided", out);
+  out += f.collided ? "true" : "false";
+  key("joint_limit_margin", out);
+  num(f.joint_limit_margin, out);
+  key("manipulability", out);
+  num(f.manipulability, out);
+  key("condition_number", out);
+  num(f.condition_number, out);
+  key("step_us", out);
+  num(f.step_us, out);
+  out += '}';
+  key("diagnostics", out);
+  array(f.diagnostics, f.diagnostics.size(), out);
+  if (!f.overlays.empty()) {
+    key("overlays", out);
+    overlays(f.overlays, out);
+  }
+  out += '}';
+}
+
+nlohmann::json model_json(const Model& model) {
+  using nlohmann::json;
+  const auto vec = [](const Eigen::VectorXd& v) {
+    json a = json::array();
+    for (Eigen::Index i = 0; i < v.size(); ++i) a.push_back(std::isfinite(v[i]) ? json(v[i]) : json());
+    return a;
+  };
+  json links = json::array();
+  for (const Link& l : model.links) links.push_back({{"radius", l.radius}, {"last_joint", l.last_joint + 1}});
+  const Eigen::Vector3d base = model.base.translation();
+  return {{"kind", to_string(model.kind)},
+          {"dof", model.dof()},
+          {"base", {base.x(), base.y(), base.z()}},
+          {"reach", model.reach()},
+          {"links", links},
+          {"limits",
+           {{"lower", vec(model.limits.lower)},
+            {"upper", vec(model.limits.upper)},
+            {"velocity", vec(model.limits.velocity)},
+            {"acceleration", vec(model.limits.acceleration)}}}};
+}
+
+nlohmann::json params_json(const Simulator& sim) {
+  nlohmann::json params = nlohmann::json::object();
+  const Method& method = sim.method();
+  for (size_t i = 0; i < method.specs().size(); ++i)
+    params[method.specs()[i].name] = method.param_values()[Eigen::Index(i)];
+  return params;
+}
+
+nlohmann::json snapshot_json(const FrameContext& c, const Simulator& sim, const std::string& frame_text) {
+  using nlohmann::json;
+  json specs = json::array();
+  for (const ParamSpec& spec : sim.method().specs()) specs.push_back(param_spec_json(spec));
+  json obstacles = json::array();
+  for (const Obstacle& o : sim.scene().obstacles) obstacles.push_back(obstacle_to_json(o));
+  // The path for drawing: the target sampled over the run (empty for a joystick).
+  json path = json::array();
+  if (!sim.task().is_joystick()) {
+    const int samples = 200;
+    const double duration = sim.scenario().duration;
+    for (int i = 0; i <= samples; ++i) {
+      const Eigen::Vector3d p = sim.task().target_position(duration * i / samples);
+      path.push_back({p.x(), p.y(), p.z()});
+    }
+  }
+  return {{"type", "snapshot"},
+          {"run", c.run_id},
+          {"status", c.status},
+          {"scenario", sim.scenario().name},
+          {"method", sim.method_name()},
+          {"dt", sim.scenario().dt},
+          {"duration", sim.scenario().duration},
+          {"params", params_json(sim)},
+          {"param_specs", specs},
+          {"diagnostic_names", sim.diagnostic_names()},
+          {"model", model_json(sim.model())},
+          {"task",
+           {{"space", to_string(sim.scenario().task.space)},
+            {"trajectory", to_string(sim.scenario().task.trajectory.type)},
+            {"path", path}}},
+          {"obstacles", obstacles},
+          {"scene_version", c.scene_version},
+          {"frame", frame_text.empty() ? json() : json::parse(frame_text)}};
+}
+
+}  // namespace rrlab::server

@@ -1,0 +1,37 @@
+// Messages of the WebSocket stream. Frames are written by hand (not through
+// nlohmann::json) because they are encoded up to 60 times a second per run:
+// numbers carry 7 significant digits, enough to draw; exact values come from
+// GET /api/runs/{id}/frames.
+#pragma once
+
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "kinematics/kinematics.hpp"
+#include "sim/frame.hpp"
+#include "sim/simulator.hpp"
+
+namespace rrlab::server {
+
+struct FrameContext {
+  std::int64_t run_id = 0, seq = 0;
+  std::uint64_t scene_version = 0;
+  const char* status = "running";
+};
+
+// {"type":"frame","run","seq","step","t","status","q","qdot","links":[[sx,sy,sz,ex,ey,ez],..],
+//  "link_quat":[[w,x,y,z],..] (3D models),"ee","ee_quat","target","obstacles":[[x,y,z],..],
+//  "scene_version","metrics":{..},"diagnostics":[..],"overlays":{..}}
+void encode_frame(const FrameContext& context, const Frame& frame, const Model& model,
+                  const KinematicsData& kin, const Scene& scene, std::string& out);
+
+// The model for drawing: kind, dof, link radii, joint limits, base.
+nlohmann::json model_json(const Model& model);
+// {"type":"snapshot", run, scenario, method, status, params, param_specs, diagnostic_names,
+//  model, task {space, path}, obstacles, scene_version, frame}
+nlohmann::json snapshot_json(const FrameContext& context, const Simulator& sim, const std::string& frame_text);
+// The current parameter values of the simulator's method, by name.
+nlohmann::json params_json(const Simulator& sim);
+
+}  // namespace rrlab::server

@@ -1,0 +1,174 @@
+// One HTTP connection: read a request (body limit, timeout), answer it (API,
+// static file or WebSocket upgrade), then read the next. Deferred API answers
+// (batch runs waited for) come back onto the connection's strand.
+#include "net/sessions.hpp"
+#include "app/replay_player.hpp"
+#include "net/static_files.hpp"
+
+namespace rrlab::server {
+
+namespace {
+
+const char* status_code_name(int status) {
+  switch (status) {
+    case 404: return "not_found";
+    case 405: return "method_not_allowed";
+    case 413: return "body_too_large";
+    case 503: return "busy";
+    default: return "bad_request";
+  }
+}
+
+class HttpSession : public std::enable_shared_from_this<HttpSession> {
+ public:
+  HttpSession(tcp::socket&& socket, std::shared_ptr<ServerState> state)
+      : stream_(std::move(socket)), state_(std::move(state)) {}
+
+  void run() { net::dispatch(stream_.get_executor(), [self = shared_from_this()] { self->read(); }); }
+
+ private:
+  void read() {
+    parser_.emplace();
+    parser_->body_limit(state_->limits.body_limit);
+    parser_->header_limit(16 * 1024);
+    stream_.expires_after(state_->limits.read_timeout);
+    http::async_read(stream_, buffer_, *parser_,
+                     [self = shared_from_this()](beast::error_code ec, std::size_t) { self->on_read(ec); });
+  }
+
+  void on_read(beast::error_code ec) {
+    if (ec == http::error::end_of_stream) return close();
+    if (ec == http::error::body_limit) {
+      keep_alive_ = false;
+      return send_error(413, "the request body is larger than " + std::to_string(state_->limits.body_limit) +
+                                 " bytes");
+    }
+    if (ec) return;  // timeout or reset: drop the connection
+    http::request<http::string_body> request = parser_->release();
+    keep_alive_ = request.keep_alive();
+    version_ = request.version();
+    const std::string target(request.target());
+    const auto question = target.find('?');
+    const std::string path = target.substr(0, question);
+
+    if (websocket::is_upgrade(request)) return upgrade(std::move(request), path);
+    if (path.rfind("/api/", 0) == 0 || path == "/api") return answer_api(request, path, target, question);
+    return answer_static(request, path);
+  }
+
+  void answer_api(const http::request<http::string_body>& request, const std::string& path,
+                  const std::string& target, std::size_t question) {
+    ApiRequest api;
+    api.method = std::string(request.method_string());
+    api.path = path;
+    if (question != std::string::npos) api.query = parse_query(target.substr(question + 1));
+    api.body = request.body();
+    api.content_type = std::string(request[http::field::content_type]);
+    api.accept = std::string(request[http::field::accept]);
+    ApiResponse response = handle_api(state_->runs, state_->info, api);
+    if (response.deferred) {
+      stream_.expires_never();  // a batch run may take a while
+      auto self = shared_from_this();
+      response.deferred([self](ApiResponse ready) {
+        net::post(self->stream_.get_executor(), [self, ready = std::move(ready)] { self->send_api(ready); });
+      });
+      return;
+    }
+    send_api(response);
+  }
+
+  void send_api(const ApiResponse& api) {
+    auto response = std::make_shared<http::response<http::string_body>>(http::status(api.status), version_);
+    response->set(http::field::server, "rrlab/" + state_->info.version);
+    response->set(http::field::content_type, api.content_type);
+    response->set(http::field::cache_control, "no-store");
+    response->keep_alive(keep_alive_);
+    response->body() = api.body;
+    response->prepare_payload();
+    write(response);
+  }
+
+  void send_error(int status, const std::string& message) {
+    send_api(error_response(ApiError(status, status_code_name(status), message, "")));
+  }
+
+  void answer_static(const http::request<http::string_body>& request, const std::string& path) {
+    if (request.method() != http::verb::get && request.method() != http::verb::head)
+      return send_error(405, "static files take GET or HEAD");
+    const auto file = resolve_static(state_->web_root, path);
+    if (!file) return send_error(404, "no file " + path);
+    http::file_body::value_type body;
+    beast::error_code ec;
+    body.open(file->path.c_str(), beast::file_mode::scan, ec);
+    if (ec) return send_error(404, "no file " + path);
+    const auto size = body.size();
+    if (request.method() == http::verb::head) {
+      auto response = std::make_shared<http::response<http::empty_body>>(http::status::ok, version_);
+      response->set(http::field::content_type, file->mime_type);
+      response->content_length(size);
+      response->keep_alive(keep_alive_);
+      return write(response);
+    }
+    auto response = std::make_shared<http::response<http::file_body>>(
+        std::piecewise_construct, std::make_tuple(std::move(body)), std::make_tuple(http::status::ok, version_));
+    response->set(http::field::server, "rrlab/" + state_->info.version);
+    response->set(http::field::content_type, file->mime_type);
+    response->content_length(size);
+    response->keep_alive(keep_alive_);
+    write(response);
+  }
+
+  // /ws/runs/{id} and /ws/replays/{id}
+  void upgrade(http::request<http::string_body>&& request, const std::string& path) {
+    std::shared_ptr<FrameSource> source;
+    const auto id_of = [&](const std::string& prefix) -> std::int64_t {
+      const std::string text = path.substr(prefix.size());
+      if (text.empty() || text.size() > 18 || text.find_first_not_of("0123456789") != std::string::npos) return -1;
+      return std::stoll(text);
+    };
+    if (path.rfind("/ws/runs/", 0) == 0) {
+      const std::int64_t id = id_of("/ws/runs/");
+      int lane = 0;
+      if (id >= 0)
+        if (auto group = state_->runs.group_of(id, lane)) source = group->source(lane);
+    } else if (path.rfind("/ws/replays/", 0) == 0) {
+      const std::int64_t id = id_of("/ws/replays/");
+      if (id >= 0) source = state_->runs.replay(id);
+    }
+    if (!source) return send_error(404, "no live run or replay at " + path);
+    if (state_->websockets.load() >= state_->limits.max_websockets)
+      return send_error(503, "too many WebSocket clients");
+    double display_hz = state_->runs.limits().default_display_hz;
+    start_websocket_session(std::move(stream_), state_, std::move(source), std::move(request), display_hz);
+  }
+
+  template <typename Response>
+  void write(std::shared_ptr<Response> response) {
+    stream_.expires_after(state_->limits.read_timeout);
+    http::async_write(stream_, *response, [self = shared_from_this(), response](beast::error_code ec, std::size_t) {
+      if (ec) return;
+      if (!self->keep_alive_) return self->close();
+      self->read();
+    });
+  }
+
+  void close() {
+    beast::error_code ec;
+    stream_.socket().shutdown(tcp::socket::shutdown_send, ec);
+  }
+
+  beast::tcp_stream stream_;
+  beast::flat_buffer buffer_;
+  std::shared_ptr<ServerState> state_;
+  std::optional<http::request_parser<http::string_body>> parser_;
+  bool keep_alive_ = true;
+  unsigned version_ = 11;
+};
+
+}  // namespace
+
+void start_http_session(tcp::socket&& socket, std::shared_ptr<ServerState> state) {
+  std::make_shared<HttpSession>(std::move(socket), std::move(state))->run();
+}
+
+}  // namespace rrlab::server

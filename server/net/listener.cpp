@@ -1,0 +1,43 @@
+#include "net/sessions.hpp"
+
+namespace rrlab::server {
+
+namespace {
+
+class Listener : public std::enable_shared_from_this<Listener> {
+ public:
+  Listener(net::io_context& ioc, tcp::endpoint endpoint, std::shared_ptr<ServerState> state)
+      : ioc_(ioc), acceptor_(net::make_strand(ioc)), state_(std::move(state)) {
+    acceptor_.open(endpoint.protocol());
+    acceptor_.set_option(net::socket_base::reuse_address(true));
+    acceptor_.bind(endpoint);
+    acceptor_.listen(net::socket_base::max_listen_connections);
+  }
+  unsigned short port() const { return acceptor_.local_endpoint().port(); }
+  void run() { accept(); }
+
+ private:
+  void accept() {
+    // each connection gets its own strand
+    acceptor_.async_accept(net::make_strand(ioc_), [self = shared_from_this()](beast::error_code ec, tcp::socket socket) {
+      if (!ec) start_http_session(std::move(socket), self->state_);
+      if (ec != net::error::operation_aborted) self->accept();
+    });
+  }
+
+  net::io_context& ioc_;
+  tcp::acceptor acceptor_;
+  std::shared_ptr<ServerState> state_;
+};
+
+}  // namespace
+
+unsigned short start_listener(net::io_context& ioc, const std::string& host, unsigned short port,
+                              std::shared_ptr<ServerState> state) {
+  const auto address = net::ip::make_address(host);
+  auto listener = std::make_shared<Listener>(ioc, tcp::endpoint(address, port), std::move(state));
+  listener->run();
+  return listener->port();
+}
+
+}  // namespace rrlab::server

@@ -1,0 +1,65 @@
+// `rrlab serve`: database, frame writer, run manager, listener and an I/O
+// thread pool; SIGINT/SIGTERM stop runs (stored as "stopped"), flush frames
+// and exit.
+#include <boost/asio/signal_set.hpp>
+#include <filesystem>
+#include <iostream>
+#include <thread>
+#include <vector>
+
+#include "cli.hpp"
+#include "net/sessions.hpp"
+#include "storage/frame_writer.hpp"
+#include "storage/run_store.hpp"
+
+namespace rrlab::cli {
+
+namespace {
+// A directory given on the command line, else ./NAME, else the source tree's.
+std::string find_dir(const std::optional<std::string>& given, const char* name) {
+  if (given) return *given;
+  std::error_code ec;
+  if (std::filesystem::is_directory(name, ec)) return name;
+  const std::string source = std::string(RRLAB_SOURCE_DIR) + "/" + name;
+  if (std::filesystem::is_directory(source, ec)) return source;
+  return name;
+}
+}  // namespace
+
+int serve(const ServeOptions& options) {
+  using namespace rrlab::server;
+  try {
+    const std::filesystem::path db(options.db);
+    if (db.has_parent_path()) std::filesystem::create_directories(db.parent_path());
+    storage::RunStore store(options.db);
+    storage::FrameWriter writer(store);
+    ServerLimits limits;
+    limits.default_display_hz = options.display_hz;
+    RunManager runs(store, writer, find_dir(options.scenarios_dir, "scenarios"), limits);
+
+    auto state = std::make_shared<ServerState>(runs, ServerInfo{RRLAB_VERSION, std::chrono::steady_clock::now()},
+                                               find_dir(options.web_dir, "web"));
+    state->limits.body_limit = options.body_limit;
+    net::io_context ioc(options.threads);
+    const unsigned short port = start_listener(ioc, options.host, options.port, state);
+    std::cout << "rrlab: serving http://" << options.host << ":" << port << "/ (database " << options.db;
+    if (store.interrupted_at_open() > 0) std::cout << ", " << store.interrupted_at_open() << " runs marked interrupted";
+    std::cout << ")" << std::endl;
+
+    net::signal_set signals(ioc, SIGINT, SIGTERM);
+    signals.async_wait([&](beast::error_code, int) { ioc.stop(); });
+    std::vector<std::thread> pool;
+    for (int i = 1; i < options.threads; ++i) pool.emplace_back([&] { ioc.run(); });
+    ioc.run();
+    for (auto& t : pool) t.join();
+    runs.stop_all();
+    writer.flush();
+    std::cout << "rrlab: stopped" << std::endl;
+    return 0;
+  } catch (const std::exception& e) {
+    std::cerr << "rrlab: error: " << e.what() << '\n';
+    return 2;
+  }
+}
+
+}  // namespace rrlab::cli

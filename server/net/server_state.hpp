@@ -1,0 +1,32 @@
+// What every connection shares: the run manager, limits and the web root.
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <string>
+
+#include "app/run_manager.hpp"
+#include "routes/routes.hpp"
+
+namespace rrlab::server {
+
+struct NetLimits {
+  std::size_t body_limit = 1 << 20;                   // bytes per request body (413 beyond)
+  std::chrono::seconds read_timeout{30};              // per request
+  std::size_t ws_message_limit = 64 << 10;            // bytes per incoming WebSocket message
+  int ws_messages_per_second = 200;                   // incoming, per socket (errors beyond)
+  std::chrono::milliseconds ws_stall_timeout{5000};   // a write pending this long drops the client
+  int max_websockets = 1024;
+};
+
+struct ServerState {
+  ServerState(RunManager& runs, ServerInfo info, std::string web_root)
+      : runs(runs), info(std::move(info)), web_root(std::move(web_root)) {}
+  RunManager& runs;
+  ServerInfo info;
+  std::string web_root;
+  NetLimits limits;
+  std::atomic<int> websockets{0};
+};
+
+}  // namespace rrlab::server

@@ -1,0 +1,34 @@
+// Connection classes of the server (Beast's advanced server example shape).
+// Included by net/*.cpp only: it brings Beast in.
+#pragma once
+
+#include <boost/asio.hpp>
+#include <boost/beast/core.hpp>
+#include <boost/beast/http.hpp>
+#include <boost/beast/websocket.hpp>
+#include <memory>
+
+#include "app/frame_source.hpp"
+#include "net/server_state.hpp"
+
+namespace rrlab::server {
+
+namespace beast = boost::beast;
+namespace http = beast::http;
+namespace websocket = beast::websocket;
+namespace net = boost::asio;
+using tcp = net::ip::tcp;
+
+// Reads HTTP requests on one connection; upgrades to a WebSocket on /ws/...
+void start_http_session(tcp::socket&& socket, std::shared_ptr<ServerState> state);
+
+// Takes over an upgraded connection and streams `source` to it.
+void start_websocket_session(beast::tcp_stream&& stream, std::shared_ptr<ServerState> state,
+                             std::shared_ptr<FrameSource> source, http::request<http::string_body>&& request,
+                             double display_hz);
+
+// Accepts connections on host:port (0: ephemeral); returns the bound port.
+unsigned short start_listener(net::io_context& ioc, const std::string& host, unsigned short port,
+                              std::shared_ptr<ServerState> state);
+
+}  // namespace rrlab::server

@@ -1,0 +1,164 @@
+// One WebSocket client of a live run or replay. A timer at the display rate
+// sends the latest published frame if the previous write has completed
+// (latest wins: a slow client skips frames and never holds up the run or the
+// other clients); a write pending longer than the stall timeout drops the
+// client. Replies to the client's messages go first, one write in flight.
+#include <deque>
+
+#include "net/sessions.hpp"
+
+namespace rrlab::server {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
+ public:
+  WebSocketSession(beast::tcp_stream&& stream, std::shared_ptr<ServerState> state,
+                   std::shared_ptr<FrameSource> source, double display_hz)
+      : ws_(std::move(stream)),
+        state_(std::move(state)),
+        source_(std::move(source)),
+        tick_(ws_.get_executor()),
+        period_(std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / display_hz))) {
+    ++state_->websockets;
+  }
+  ~WebSocketSession() { --state_->websockets; }
+
+  void run(http::request<http::string_body>&& request) {
+    beast::get_lowest_layer(ws_).expires_never();  // the WebSocket has its own timeouts
+    ws_.set_option(websocket::stream_base::timeout::suggested(beast::role_type::server));
+    ws_.set_option(websocket::stream_base::decorator(
+        [](websocket::response_type& res) { res.set(http::field::server, "rrlab"); }));
+    ws_.read_message_max(state_->limits.ws_message_limit);
+    ws_.async_accept(request, [self = shared_from_this()](beast::error_code ec) {
+      if (ec) return;
+      self->open_ = true;
+      self->send_snapshot();
+      self->read();
+      self->arm_timer();
+    });
+  }
+
+ private:
+  void send_snapshot() {
+    const PublishedFrame latest = source_->latest();
+    sent_version_ = latest.version;
+    sent_scene_ = latest.scene_version;
+    queue(std::make_shared<const std::string>(source_->snapshot()));
+  }
+
+  void queue(std::shared_ptr<const std::string> message) {
+    if (replies_.size() >= 64) return close();  // a client that floods without reading
+    replies_.push_back(std::move(message));
+    if (!writing_) write_next();
+  }
+
+  void arm_timer() {
+    tick_.expires_after(period_);
+    tick_.async_wait([self = shared_from_this()](beast::error_code ec) {
+      if (ec || !self->open_) return;
+      self->on_tick();
+      self->arm_timer();
+    });
+  }
+
+  void on_tick() {
+    if (writing_) {
+      if (Clock::now() - write_started_ > state_->limits.ws_stall_timeout) close();
+      return;  // latest wins: this tick's frame is skipped
+    }
+    const PublishedFrame latest = source_->latest();
+    if (latest.scene_version != sent_scene_) return send_snapshot();
+    if (latest.version == sent_version_ || !latest.text) return;
+    sent_version_ = latest.version;
+    start_write(latest.text);
+  }
+
+  void write_next() {
+    if (replies_.empty()) return;
+    auto message = replies_.front();
+    replies_.pop_front();
+    start_write(std::move(message));
+  }
+
+  void start_write(std::shared_ptr<const std::string> message) {
+    writing_ = true;
+    write_started_ = Clock::now();
+    ws_.text(true);
+    ws_.async_write(net::buffer(*message),
+                    [self = shared_from_this(), message](beast::error_code ec, std::size_t) {
+                      self->writing_ = false;
+                      if (ec) return self->close();
+                      self->write_next();
+                    });
+  }
+
+  void read() {
+    ws_.async_read(buffer_, [self = shared_from_this()](beast::error_code ec, std::size_t) {
+      if (ec) return self->close();
+      self->on_message();
+      self->read();
+    });
+  }
+
+  void on_message() {
+    const std::string text = beast::buffers_to_string(buffer_.data());
+    buffer_.consume(buffer_.size());
+    // rate limit: at most N messages per second window
+    const auto now = Clock::now();
+    if (now - window_start_ > std::chrono::seconds(1)) {
+      window_start_ = now;
+      window_count_ = 0;
+    }
+    nlohmann::json reply;
+    if (++window_count_ > state_->limits.ws_messages_per_second) {
+      reply = {{"type", "error"},
+               {"error", {{"code", "rate_limited"},
+                          {"message", "more than " + std::to_string(state_->limits.ws_messages_per_second) +
+                                          " messages per second; this one was dropped"},
+                          {"path", ""}}}};
+    } else {
+      try {
+        reply = source_->handle_message(nlohmann::json::parse(text));
+      } catch (const nlohmann::json::parse_error& e) {
+        reply = {{"type", "error"},
+                 {"error", {{"code", "malformed_json"}, {"message", std::string("invalid JSON: ") + e.what()}, {"path", ""}}}};
+      }
+    }
+    queue(std::make_shared<const std::string>(reply.dump()));
+  }
+
+  void close() {
+    if (!open_) return;
+    open_ = false;
+    tick_.cancel();
+    beast::error_code ec;
+    beast::get_lowest_layer(ws_).socket().shutdown(tcp::socket::shutdown_both, ec);
+    beast::get_lowest_layer(ws_).socket().close(ec);
+  }
+
+  websocket::stream<beast::tcp_stream> ws_;
+  std::shared_ptr<ServerState> state_;
+  std::shared_ptr<FrameSource> source_;
+  beast::flat_buffer buffer_;
+  net::steady_timer tick_;
+  Clock::duration period_;
+  std::deque<std::shared_ptr<const std::string>> replies_;
+  bool open_ = false, writing_ = false;
+  Clock::time_point write_started_{}, window_start_{};
+  int window_count_ = 0;
+  std::uint64_t sent_version_ = 0, sent_scene_ = 0;
+};
+
+}  // namespace
+
+void start_websocket_session(beast::tcp_stream&& stream, std::shared_ptr<ServerState> state,
+                             std::shared_ptr<FrameSource> source, http::request<http::string_body>&& request,
+                             double display_hz) {
+  std::make_shared<WebSocketSession>(std::move(stream), std::move(state), std::move(source), display_hz)
+      ->run(std::move(request));
+}
+
+}  // namespace rrlab::server

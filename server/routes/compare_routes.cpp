@@ -1,0 +1,108 @@
+// Several methods on one scenario in lockstep: the same steps, and the same
+// scene, joystick and reset inputs applied to every lane.
+#include "methods/registry.hpp"
+#include "routes/routes.hpp"
+#include "scenario/json_reader.hpp"
+
+namespace rrlab::server {
+
+using nlohmann::json;
+
+namespace {
+
+// Per-method rows of the metrics people compare, from each lane's summary.
+json comparison(RunGroup& group) {
+  json rows = json::array();
+  for (int lane = 0; lane < group.lane_count(); ++lane) {
+    const json s = group.summary_json(lane);
+    rows.push_back({{"run", group.run_id(lane)},
+                    {"method", s.at("method")},
+                    {"collided", s.at("collided")},
+                    {"min_distance", s.at("min_distance")},
+                    {"max_tracking_error", s.at("max_tracking_error")},
+                    {"joint_limit_violated", s.at("joint_limit_violated")},
+                    {"max_qdot_ratio", s.at("max_qdot_ratio")},
+                    {"max_condition_number", s.at("max_condition_number")},
+                    {"step_us_mean", s.at("step_us").at("mean")}});
+  }
+  return rows;
+}
+
+}  // namespace
+
+ApiResponse post_compare(RouteContext& c) {
+  const json doc = parse_body(c.request);
+  if (!doc.is_object()) throw ApiError(400, "invalid", "the body must be a JSON object", "");
+  std::vector<Scenario> lanes;
+  GroupOptions options;
+  options.compare = true;
+  bool wait = true;
+  try {
+    JsonObject body(doc, "");
+    body.check_keys({"scenario", "methods", "mode", "steps", "wait", "rate", "paused"});
+    if (!body.has("scenario")) throw ScenarioError("scenario", "is required (a scenario name or object)");
+    const Scenario base = c.runs.resolve_scenario(doc.at("scenario"), "scenario");
+    const json& methods = body.array("methods", 8);
+    if (methods.size() < 2) throw ScenarioError("methods", "compare needs 2 to 8 methods");
+    for (size_t i = 0; i < methods.size(); ++i) {
+      const std::string path = index_path("methods", i);
+      Scenario lane = base;
+      lane.method.params.clear();
+      if (methods[i].is_string()) {
+        lane.method.name = methods[i].get<std::string>();
+        if (!find_method(lane.method.name))
+          throw ScenarioError(path, "unknown method \"" + lane.method.name + "\" (known: " + method_names() + ")");
+      } else {
+        JsonObject m(methods[i], path);
+        m.check_keys({"name", "params"});
+        lane.method.name = m.string("name");
+        if (!find_method(lane.method.name))
+          throw ScenarioError(m.child("name"), "unknown method \"" + lane.method.name + "\" (known: " + method_names() + ")");
+        if (m.has("params")) {
+          JsonObject params = m.object("params");
+          for (auto it = methods[i]["params"].begin(); it != methods[i]["params"].end(); ++it)
+            lane.method.params.push_back(
+                resolve_method_param(lane.method.name, it.key(), it.value(), params.child(it.key())));
+        }
+      }
+      if (lane.method.name == base.method.name && methods[i].is_string()) lane.method.params = base.method.params;
+      lanes.push_back(std::move(lane));
+    }
+    options.mode = body.choice("mode", {"live", "batch"}, "batch");
+    options.rate = options.mode == "batch" ? 0.0 : body.number("rate", 1.0);
+    if (!(options.rate >= 0 && options.rate <= 1000)) throw ScenarioError("rate", "must be in [0, 1000]");
+    if (body.has("paused")) options.paused = doc.at("paused").is_boolean() && doc.at("paused").get<bool>();
+    if (body.has("wait")) {
+      if (!doc.at("wait").is_boolean()) throw ScenarioError("wait", "must be true or false");
+      wait = doc.at("wait").get<bool>();
+    }
+    if (auto steps = body.optional_number("steps")) {
+      if (!(*steps >= 1 && *steps <= double(ScenarioLimits::max_steps)) || *steps != double(long(*steps)))
+        throw ScenarioError("steps", "must be an integer in [1, " + std::to_string(ScenarioLimits::max_steps) + "]");
+      options.steps = long(*steps);
+    }
+  } catch (...) {
+    rethrow_as_api_error("");
+  }
+  auto group = c.runs.start_group(lanes, options);
+  json runs = json::array();
+  for (int lane = 0; lane < group->lane_count(); ++lane)
+    runs.push_back({{"id", group->run_id(lane)},
+                    {"method", lanes[size_t(lane)].method.name},
+                    {"ws", "/ws/runs/" + std::to_string(group->run_id(lane))}});
+  const json head = {{"group", group->run_id(0)}, {"runs", runs}};
+  if (options.mode == "batch" && wait) {
+    ApiResponse response;
+    response.deferred = [group, head](Responder respond) {
+      group->when_finished([group, head, respond] {
+        json body = head;
+        body["comparison"] = comparison(*group);
+        respond(json_response(200, body));
+      });
+    };
+    return response;
+  }
+  return json_response(201, head);
+}
+
+}  // namespace rrlab::server

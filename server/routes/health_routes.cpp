@@ -1,0 +1,14 @@
+#include "methods/registry_json.hpp"
+#include "routes/routes.hpp"
+
+namespace rrlab::server {
+
+ApiResponse get_health(RouteContext& c) {
+  const double uptime =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - c.info.started).count();
+  return json_response(200, {{"status", "ok"}, {"version", c.info.version}, {"uptime_s", uptime}});
+}
+
+ApiResponse get_methods(RouteContext&) { return json_response(200, methods_json()); }
+
+}  // namespace rrlab::server

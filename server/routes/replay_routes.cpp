@@ -1,0 +1,103 @@
+// Replay: stream a run's stored frames (mode "frames", to /ws/replays/{id})
+// or re-simulate it from its recorded events into a new run and compare every
+// frame byte for byte (mode "resimulate").
+#include <thread>
+
+#include "app/replay_player.hpp"
+#include "app/resimulation.hpp"
+#include "routes/routes.hpp"
+#include "scenario/json_reader.hpp"
+#include "storage/frame_writer.hpp"
+#include "storage/run_store.hpp"
+
+namespace rrlab::server {
+
+using nlohmann::json;
+
+namespace {
+
+ApiResponse resimulate_run(RouteContext& c, const storage::RunRecord& run) {
+  RunManager& runs = c.runs;
+  ApiResponse response;
+  response.deferred = [&runs, run](Responder respond) {
+    std::thread([&runs, run, respond] {
+      try {
+        storage::NewRun fresh;
+        fresh.scenario_name = run.scenario_name;
+        fresh.scenario_json = run.scenario_json;
+        fresh.method = run.method;
+        fresh.params_json = run.params_json;
+        fresh.mode = "resimulation";
+        fresh.seed = run.seed;
+        fresh.dof = run.dof;
+        fresh.diagnostic_names_json = run.diagnostic_names_json;
+        fresh.source_run = run.id;
+        const std::int64_t id = runs.store().create_run(fresh);
+        for (const storage::StoredEvent& e : runs.store().events(run.id)) runs.store().add_event(id, e);
+        const ResimulationResult result =
+            resimulate(runs.store(), run, [&](std::int64_t seq, const Frame& f, const std::string& packed) {
+              storage::StoredFrame stored{seq, f.step, f.t, f.task_error, f.min_distance, f.collided, packed};
+              runs.writer().push(id, std::move(stored));
+            });
+        runs.writer().flush();
+        json summary = summary_to_json(result.summary);
+        summary["run"] = id;
+        const json verification = {{"run", id},
+                                   {"source_run", run.id},
+                                   {"identical", result.identical()},
+                                   {"frames_compared", result.frames_compared},
+                                   {"first_mismatch", result.first_mismatch ? json(*result.first_mismatch) : json()},
+                                   {"mismatch", result.mismatch}};
+        summary["verification"] = verification;
+        runs.store().finish_run(id, "completed", summary.dump());
+        respond(json_response(200, verification));
+      } catch (const std::exception& e) {
+        respond(error_response(ApiError(500, "resimulation_failed", e.what(), "")));
+      }
+    }).detach();
+  };
+  return response;
+}
+
+}  // namespace
+
+ApiResponse post_replay(RouteContext& c) {
+  const storage::RunRecord run = find_run(c, c.id());
+  const json doc = c.request.body.empty() ? json::object() : parse_body(c.request);
+  std::string mode;
+  double speed = 1.0;
+  std::int64_t from = 0;
+  try {
+    JsonObject body(doc, "");
+    body.check_keys({"mode", "speed", "from"});
+    mode = body.choice("mode", {"frames", "resimulate"}, "frames");
+    speed = body.number("speed", 1.0);
+    if (!(speed > 0 && speed <= 1000)) throw ScenarioError("speed", "must be in (0, 1000]");
+    from = std::int64_t(body.number("from", 0));
+  } catch (...) {
+    rethrow_as_api_error("");
+  }
+  int lane = 0;
+  auto group = c.runs.group_of(run.id, lane);
+  if (group && !group->finished())
+    throw ApiError(409, "wrong_state", "run " + std::to_string(run.id) + " is still running; stop it first", "id");
+  if (mode == "resimulate") return resimulate_run(c, run);
+  auto player = std::make_shared<ReplayPlayer>(c.runs.store(), run, speed, from, c.runs.limits().default_display_hz);
+  player->set_id(c.runs.add_replay(player));
+  player->start();
+  return json_response(201, player->status());
+}
+
+ApiResponse get_replay(RouteContext& c) {
+  auto player = c.runs.replay(c.id());
+  if (!player) throw ApiError(404, "not_found", "no replay " + c.captures.at(0), "id");
+  return json_response(200, player->status());
+}
+
+ApiResponse post_replay_control(RouteContext& c) {
+  auto player = c.runs.replay(c.id());
+  if (!player) throw ApiError(404, "not_found", "no replay " + c.captures.at(0), "id");
+  return json_response(200, player->control(parse_body(c.request)));
+}
+
+}  // namespace rrlab::server

@@ -1,0 +1,109 @@
+#include <string_view>
+
+#include "routes/routes.hpp"
+#include "storage/run_store.hpp"
+
+namespace rrlab::server {
+
+namespace {
+
+struct Route {
+  const char* verb;
+  const char* pattern;  // "{}" matches one path segment
+  RouteHandler handler;
+};
+
+constexpr Route kRoutes[] = {
+    {"GET", "/api/health", get_health},
+    {"GET", "/api/methods", get_methods},
+    {"GET", "/api/scenarios", list_scenarios},
+    {"POST", "/api/scenarios", post_scenario},
+    {"GET", "/api/scenarios/{}", get_scenario},
+    {"POST", "/api/runs", post_run},
+    {"GET", "/api/runs", list_runs},
+    {"GET", "/api/runs/{}", get_run},
+    {"GET", "/api/runs/{}/record", get_run_record},
+    {"GET", "/api/runs/{}/events", get_run_events},
+    {"POST", "/api/runs/{}/control", post_control},
+    {"PATCH", "/api/runs/{}/params", patch_params},
+    {"POST", "/api/runs/{}/obstacles", post_obstacle},
+    {"PUT", "/api/runs/{}/obstacles/{}", put_obstacle},
+    {"DELETE", "/api/runs/{}/obstacles/{}", delete_obstacle},
+    {"POST", "/api/runs/{}/joystick", post_joystick},
+    {"POST", "/api/runs/{}/method", post_method},
+    {"GET", "/api/runs/{}/frames", get_frames},
+    {"POST", "/api/runs/{}/replay", post_replay},
+    {"GET", "/api/replays/{}", get_replay},
+    {"POST", "/api/replays/{}/control", post_replay_control},
+    {"POST", "/api/compare", post_compare},
+};
+
+std::vector<std::string_view> segments(std::string_view path) {
+  std::vector<std::string_view> out;
+  size_t start = 1;
+  while (start <= path.size()) {
+    size_t end = path.find('/', start);
+    if (end == std::string_view::npos) end = path.size();
+    out.push_back(path.substr(start, end - start));
+    start = end + 1;
+  }
+  return out;
+}
+
+bool match(std::string_view pattern, const std::vector<std::string_view>& path, std::vector<std::string>& captures) {
+  const std::vector<std::string_view> parts = segments(pattern);
+  if (parts.size() != path.size()) return false;
+  captures.clear();
+  for (size_t i = 0; i < parts.size(); ++i) {
+    if (parts[i] == "{}") {
+      if (path[i].empty()) return false;
+      captures.emplace_back(path[i]);
+    } else if (parts[i] != path[i]) {
+      return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+std::int64_t RouteContext::id(size_t index) const {
+  const std::string& text = captures.at(index);
+  std::int64_t value = 0;
+  if (text.empty() || text.size() > 18) throw ApiError(404, "not_found", "no such id \"" + text + "\"", "id");
+  for (char c : text) {
+    if (c < '0' || c > '9') throw ApiError(404, "not_found", "no such id \"" + text + "\"", "id");
+    value = value * 10 + (c - '0');
+  }
+  return value;
+}
+
+ApiResponse handle_api(RunManager& runs, const ServerInfo& info, const ApiRequest& request) {
+  std::string_view path = request.path;
+  while (path.size() > 1 && path.back() == '/') path.remove_suffix(1);
+  const std::vector<std::string_view> parts = segments(path);
+  RouteContext context{runs, info, request, {}};
+  bool path_known = false;
+  std::string allowed;
+  try {
+    for (const Route& route : kRoutes) {
+      if (!match(route.pattern, parts, context.captures)) continue;
+      path_known = true;
+      if (request.method == route.verb) return route.handler(context);
+      allowed += (allowed.empty() ? "" : ", ") + std::string(route.verb);
+    }
+    if (path_known)
+      throw ApiError(405, "method_not_allowed", request.method + " is not allowed here (allowed: " + allowed + ")", "");
+    throw ApiError(404, "not_found", "no API route " + std::string(path), "");
+  } catch (const ApiError& e) {
+    return error_response(e);
+  } catch (...) {
+    try {
+      rethrow_as_api_error("");
+    } catch (const ApiError& e) {
+      return error_response(e);
+    }
+  }
+}
+
+}  // namespace rrlab::server

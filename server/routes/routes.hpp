@@ -1,0 +1,72 @@
+// REST routes, one file per resource; router.cpp holds the table.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "app/api.hpp"
+#include "app/run_manager.hpp"
+#include "storage/run_store.hpp"
+
+namespace rrlab::server {
+
+struct ServerInfo {
+  std::string version;
+  std::chrono::steady_clock::time_point started;
+};
+
+struct RouteContext {
+  RunManager& runs;
+  const ServerInfo& info;
+  const ApiRequest& request;
+  std::vector<std::string> captures;  // the {} segments of the route's pattern
+
+  std::int64_t id(size_t index = 0) const;  // a numeric capture (404 if not a number)
+};
+
+using RouteHandler = ApiResponse (*)(RouteContext&);
+
+// Dispatches /api/... requests; unknown paths 404, known paths with another verb 405.
+ApiResponse handle_api(RunManager& runs, const ServerInfo& info, const ApiRequest& request);
+
+// health_routes.cpp
+ApiResponse get_health(RouteContext&);
+ApiResponse get_methods(RouteContext&);
+// scenario_routes.cpp
+ApiResponse list_scenarios(RouteContext&);
+ApiResponse get_scenario(RouteContext&);
+ApiResponse post_scenario(RouteContext&);
+// run_routes.cpp
+ApiResponse post_run(RouteContext&);
+ApiResponse list_runs(RouteContext&);
+ApiResponse get_run(RouteContext&);
+ApiResponse get_run_record(RouteContext&);
+ApiResponse get_run_events(RouteContext&);
+// run_input_routes.cpp
+ApiResponse post_control(RouteContext&);
+ApiResponse patch_params(RouteContext&);
+ApiResponse put_obstacle(RouteContext&);
+ApiResponse post_obstacle(RouteContext&);
+ApiResponse delete_obstacle(RouteContext&);
+ApiResponse post_joystick(RouteContext&);
+ApiResponse post_method(RouteContext&);
+// frame_routes.cpp
+ApiResponse get_frames(RouteContext&);
+// replay_routes.cpp
+ApiResponse post_replay(RouteContext&);
+ApiResponse get_replay(RouteContext&);
+ApiResponse post_replay_control(RouteContext&);
+// compare_routes.cpp
+ApiResponse post_compare(RouteContext&);
+
+// Shared by the run routes: the stored run (404 if unknown) and its live group if any.
+storage::RunRecord find_run(RouteContext& context, std::int64_t id);
+std::shared_ptr<RunGroup> live_group(RouteContext& context, std::int64_t id, int& lane);
+nlohmann::json run_record_json(const storage::RunRecord& run);
+// A query parameter as an integer in [min, max] (400 naming it otherwise).
+std::int64_t query_int(const RouteContext& context, const std::string& name, std::int64_t def, std::int64_t min,
+                       std::int64_t max);
+
+}  // namespace rrlab::server

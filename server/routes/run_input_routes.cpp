@@ -1,0 +1,61 @@
+// Inputs to a live run: control, parameters, obstacles, joystick, method.
+// Each is validated (400 naming the field, 409 in the wrong state) and stored
+// as an event with the step at which it took effect.
+#include "routes/routes.hpp"
+
+namespace rrlab::server {
+
+using nlohmann::json;
+
+namespace {
+ApiResponse apply(RouteContext& c, const std::string& kind, const json& payload) {
+  int lane = 0;
+  auto group = live_group(c, c.id(), lane);
+  return json_response(200, group->input(lane, kind, payload, ""));
+}
+}  // namespace
+
+ApiResponse post_control(RouteContext& c) {
+  const json body = parse_body(c.request);
+  int lane = 0;
+  auto group = live_group(c, c.id(), lane);
+  return json_response(200, group->control(lane, body));
+}
+
+ApiResponse patch_params(RouteContext& c) { return apply(c, "params", parse_body(c.request)); }
+
+ApiResponse put_obstacle(RouteContext& c) {
+  json payload = parse_body(c.request);
+  if (!payload.is_object()) throw ApiError(400, "invalid", "the body must be a JSON object", "");
+  if (payload.contains("id") && payload["id"] != c.captures.at(1))
+    throw ApiError(400, "invalid", "differs from the obstacle id in the path", "id");
+  payload["id"] = c.captures.at(1);
+  int lane = 0;
+  auto group = live_group(c, c.id(), lane);
+  try {
+    return json_response(200, group->input(lane, "obstacle", payload, ""));
+  } catch (const ApiError& e) {
+    // an unknown obstacle is a missing resource
+    if (e.path() == "id" && e.status() == 400) throw ApiError(404, "not_found", e.what(), "obstacle");
+    throw;
+  }
+}
+
+ApiResponse post_obstacle(RouteContext& c) { return apply(c, "obstacle_add", parse_body(c.request)); }
+
+ApiResponse delete_obstacle(RouteContext& c) {
+  int lane = 0;
+  auto group = live_group(c, c.id(), lane);
+  try {
+    return json_response(200, group->input(lane, "obstacle_remove", {{"id", c.captures.at(1)}}, ""));
+  } catch (const ApiError& e) {
+    if (e.path() == "id" && e.status() == 400) throw ApiError(404, "not_found", e.what(), "obstacle");
+    throw;
+  }
+}
+
+ApiResponse post_joystick(RouteContext& c) { return apply(c, "joystick", parse_body(c.request)); }
+
+ApiResponse post_method(RouteContext& c) { return apply(c, "method", parse_body(c.request)); }
+
+}  // namespace rrlab::server

@@ -1,0 +1,184 @@
+#include "methods/registry.hpp"
+#include "routes/routes.hpp"
+#include "scenario/json_reader.hpp"
+#include "storage/run_store.hpp"
+
+namespace rrlab::server {
+
+using nlohmann::json;
+
+namespace {
+
+json parse_or_null(const std::optional<std::string>& text) { return text ? json::parse(*text) : json(); }
+
+// Method and parameters of a request ("method", "params") applied to a scenario.
+void apply_method_choice(JsonObject& body, const json& doc, Scenario& scenario) {
+  if (body.has("method")) {
+    const std::string method = body.string("method");
+    if (!find_method(method))
+      throw ApiError(400, "invalid", "unknown method \"" + method + "\" (known: " + method_names() + ")", "method");
+    if (method != scenario.method.name) {
+      scenario.method.name = method;
+      scenario.method.params.clear();  // the scenario's parameters belong to its own method
+    }
+  }
+  if (body.has("params")) {
+    JsonObject params = body.object("params");
+    const json& values = doc.at("params");
+    for (auto it = values.begin(); it != values.end(); ++it)
+      scenario.method.params.push_back(
+          resolve_method_param(scenario.method.name, it.key(), it.value(), params.child(it.key())));
+  }
+}
+
+}  // namespace
+
+storage::RunRecord find_run(RouteContext& c, std::int64_t id) {
+  auto run = c.runs.store().run(id);
+  if (!run) throw ApiError(404, "not_found", "no run " + std::to_string(id), "id");
+  return *run;
+}
+
+std::shared_ptr<RunGroup> live_group(RouteContext& c, std::int64_t id, int& lane) {
+  auto group = c.runs.group_of(id, lane);
+  if (!group) {
+    find_run(c, id);  // 404 when unknown
+    throw ApiError(409, "wrong_state", "run " + std::to_string(id) + " is not running in this server", "id");
+  }
+  return group;
+}
+
+json run_record_json(const storage::RunRecord& r) {
+  return {{"id", r.id},
+          {"scenario", r.scenario_name},
+          {"method", r.method},
+          {"params", json::parse(r.params_json)},
+          {"seed", r.seed},
+          {"mode", r.mode},
+          {"created", r.created},
+          {"status", r.status},
+          {"frames", r.frames},
+          {"dof", r.dof},
+          {"diagnostic_names", json::parse(r.diagnostic_names_json)},
+          {"summary", parse_or_null(r.summary_json)},
+          {"source_run", r.source_run ? json(*r.source_run) : json()},
+          {"compare_group", r.compare_group ? json(*r.compare_group) : json()}};
+}
+
+std::int64_t query_int(const RouteContext& c, const std::string& name, std::int64_t def, std::int64_t min,
+                       std::int64_t max) {
+  auto it = c.request.query.find(name);
+  if (it == c.request.query.end()) return def;
+  try {
+    size_t used = 0;
+    const long long v = std::stoll(it->second, &used);
+    if (used == it->second.size() && v >= min && v <= max) return v;
+  } catch (const std::exception&) {
+  }
+  throw ApiError(400, "invalid", "must be an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "]",
+                 name);
+}
+
+ApiResponse post_run(RouteContext& c) {
+  const json doc = parse_body(c.request);
+  if (!doc.is_object()) throw ApiError(400, "invalid", "the body must be a JSON object", "");
+  GroupOptions options;
+  Scenario scenario;
+  bool wait = true;
+  try {
+    JsonObject body(doc, "");
+    body.check_keys({"scenario", "method", "params", "mode", "rate", "paused", "steps", "wait", "display_hz"});
+    if (!body.has("scenario")) throw ScenarioError("scenario", "is required (a scenario name or object)");
+    scenario = c.runs.resolve_scenario(doc.at("scenario"), "scenario");
+    apply_method_choice(body, doc, scenario);
+    options.mode = body.choice("mode", {"live", "batch"}, "live");
+    options.rate = body.number("rate", options.mode == "batch" ? 0.0 : 1.0);
+    if (!(options.rate >= 0 && options.rate <= 1000)) throw ScenarioError("rate", "must be in [0, 1000] (0: as fast as possible)");
+    if (options.mode == "batch") options.rate = 0;
+    options.display_hz = body.number("display_hz", c.runs.limits().default_display_hz);
+    if (!(options.display_hz >= 1 && options.display_hz <= 240)) throw ScenarioError("display_hz", "must be in [1, 240]");
+    if (body.has("paused")) {
+      if (!doc.at("paused").is_boolean()) throw ScenarioError("paused", "must be true or false");
+      options.paused = doc.at("paused").get<bool>() && options.mode == "live";
+    }
+    if (body.has("wait")) {
+      if (!doc.at("wait").is_boolean()) throw ScenarioError("wait", "must be true or false");
+      wait = doc.at("wait").get<bool>();
+    }
+    if (auto steps = body.optional_number("steps")) {
+      if (!(*steps >= 1 && *steps <= double(ScenarioLimits::max_steps)) || *steps != double(long(*steps)))
+        throw ScenarioError("steps", "must be an integer in [1, " + std::to_string(ScenarioLimits::max_steps) + "]");
+      options.steps = long(*steps);
+    }
+  } catch (...) {
+    rethrow_as_api_error("");
+  }
+  auto group = c.runs.start_group({scenario}, options);
+  const std::int64_t id = group->run_id(0);
+  if (options.mode == "batch" && wait) {
+    ApiResponse response;
+    response.deferred = [group, id](Responder respond) {
+      group->when_finished([group, id, respond] {
+        json body = group->status_json(0);
+        body["summary"] = group->summary_json(0);
+        respond(json_response(200, body));
+      });
+    };
+    return response;
+  }
+  json body = group->status_json(0);
+  body["ws"] = "/ws/runs/" + std::to_string(id);
+  return json_response(201, body);
+}
+
+ApiResponse list_runs(RouteContext& c) {
+  storage::RunFilter filter;
+  const auto& q = c.request.query;
+  if (auto it = q.find("scenario"); it != q.end()) filter.scenario = it->second;
+  if (auto it = q.find("method"); it != q.end()) filter.method = it->second;
+  if (auto it = q.find("status"); it != q.end()) filter.status = it->second;
+  filter.limit = int(query_int(c, "limit", 100, 1, 1000));
+  filter.offset = int(query_int(c, "offset", 0, 0, 1'000'000'000));
+  json list = json::array();
+  for (const storage::RunRecord& r : c.runs.store().runs(filter)) list.push_back(run_record_json(r));
+  return json_response(200, list);
+}
+
+ApiResponse get_run(RouteContext& c) {
+  const std::int64_t id = c.id();
+  json body = run_record_json(find_run(c, id));
+  int lane = 0;
+  if (auto group = c.runs.group_of(id, lane)) {
+    body["live"] = group->status_json(lane);
+    body["status"] = body["live"]["status"];
+    if (!group->finished()) body["summary"] = group->summary_json(lane);
+  }
+  return json_response(200, body);
+}
+
+ApiResponse get_run_events(RouteContext& c) {
+  const std::int64_t id = c.id();
+  find_run(c, id);
+  json list = json::array();
+  for (const storage::StoredEvent& e : c.runs.store().events(id))
+    list.push_back({{"seq", e.seq}, {"step", e.step}, {"kind", e.kind}, {"payload", json::parse(e.payload_json)}});
+  return json_response(200, list);
+}
+
+// The run as a record `rrlab run` takes back (sim/run_record.hpp).
+ApiResponse get_run_record(RouteContext& c) {
+  const storage::RunRecord run = find_run(c, c.id());
+  json scenario = json::parse(run.scenario_json);
+  scenario["method"] = {{"name", run.method}, {"params", json::parse(run.params_json)}};
+  scenario["seed"] = run.seed;
+  json events = json::array();
+  for (const storage::StoredEvent& e : c.runs.store().events(run.id))
+    events.push_back({{"seq", e.seq}, {"step", e.step}, {"kind", e.kind}, {"payload", json::parse(e.payload_json)}});
+  return json_response(200, {{"rrlab_record", 1},
+                             {"run", run.id},
+                             {"scenario", scenario},
+                             {"frames", run.frames},
+                             {"events", events}});
+}
+
+}  // namespace rrlab::server

@@ -1,0 +1,227 @@
+#include "storage/run_store.hpp"
+
+#include <cmath>
+#include <ctime>
+#include <limits>
+
+#include "storage/database.hpp"
+#include "storage/schema_sql.hpp"
+
+namespace rrlab::storage {
+
+namespace {
+
+std::string utc_now() {
+  const std::time_t now = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&now, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+constexpr const char* kRunColumns =
+    "id, scenario_name, scenario, method, params, seed, mode, created, status, frames, summary, dof, "
+    "diagnostic_names, source_run, compare_group";
+
+RunRecord read_run(const Statement& s) {
+  RunRecord r;
+  r.id = s.column_int(0);
+  r.scenario_name = s.column_text(1);
+  r.scenario_json = s.column_text(2);
+  r.method = s.column_text(3);
+  r.params_json = s.column_text(4);
+  r.seed = std::uint64_t(s.column_int(5));
+  r.mode = s.column_text(6);
+  r.created = s.column_text(7);
+  r.status = s.column_text(8);
+  r.frames = s.column_int(9);
+  if (!s.is_null(10)) r.summary_json = s.column_text(10);
+  r.dof = int(s.column_int(11));
+  r.diagnostic_names_json = s.column_text(12);
+  if (!s.is_null(13)) r.source_run = s.column_int(13);
+  if (!s.is_null(14)) r.compare_group = s.column_int(14);
+  return r;
+}
+
+}  // namespace
+
+RunStore::RunStore(const std::string& path) : db_(std::make_unique<Database>(path)) {
+  db_->exec("PRAGMA journal_mode=WAL");
+  db_->exec("PRAGMA synchronous=NORMAL");
+  db_->exec("PRAGMA foreign_keys=ON");
+  Transaction tx(*db_);
+  db_->exec(kSchemaSql);
+  Statement version = db_->prepare("SELECT version FROM schema_version");
+  if (!version.step()) {
+    db_->prepare("INSERT INTO schema_version(version) VALUES (?)").bind(1, kSchemaVersion).step();
+  } else if (version.column_int(0) != kSchemaVersion) {
+    throw StorageError("database schema version " + std::to_string(version.column_int(0)) +
+                       " is not supported (this rrlab writes version " + std::to_string(kSchemaVersion) +
+                       ")");
+  }
+  Statement mark = db_->prepare("UPDATE runs SET status = 'interrupted' WHERE status IN ('running', 'paused')");
+  mark.step();
+  interrupted_at_open_ = db_->changes();
+  tx.commit();
+}
+
+RunStore::~RunStore() = default;
+
+std::int64_t RunStore::create_run(const NewRun& run) {
+  std::lock_guard lock(mutex_);
+  Statement s = db_->prepare(
+      "INSERT INTO runs(scenario_name, scenario, method, params, seed, mode, created, status, dof, "
+      "diagnostic_names, source_run, compare_group) VALUES (?,?,?,?,?,?,?,'running',?,?,?,?)");
+  s.bind(1, run.scenario_name).bind(2, run.scenario_json).bind(3, run.method).bind(4, run.params_json);
+  s.bind(5, std::int64_t(run.seed)).bind(6, run.mode).bind(7, utc_now()).bind(8, run.dof);
+  s.bind(9, run.diagnostic_names_json);
+  if (run.source_run) s.bind(10, *run.source_run); else s.bind_null(10);
+  if (run.compare_group) s.bind(11, *run.compare_group); else s.bind_null(11);
+  s.step();
+  return db_->last_insert_id();
+}
+
+void RunStore::set_status(std::int64_t id, std::string_view status) {
+  std::lock_guard lock(mutex_);
+  db_->prepare("UPDATE runs SET status = ? WHERE id = ?").bind(1, status).bind(2, id).step();
+}
+
+void RunStore::set_compare_group(std::int64_t id, std::int64_t group) {
+  std::lock_guard lock(mutex_);
+  db_->prepare("UPDATE runs SET compare_group = ? WHERE id = ?").bind(1, group).bind(2, id).step();
+}
+
+void RunStore::finish_run(std::int64_t id, std::string_view status, const std::string& summary_json) {
+  std::lock_guard lock(mutex_);
+  db_->prepare("UPDATE runs SET status = ?, summary = ? WHERE id = ?")
+      .bind(1, status)
+      .bind(2, summary_json)
+      .bind(3, id)
+      .step();
+}
+
+void RunStore::add_event(std::int64_t run, const StoredEvent& e) {
+  std::lock_guard lock(mutex_);
+  db_->prepare("INSERT INTO events(run_id, seq, step, kind, payload) VALUES (?,?,?,?,?)")
+      .bind(1, run)
+      .bind(2, e.seq)
+      .bind(3, e.step)
+      .bind(4, e.kind)
+      .bind(5, e.payload_json)
+      .step();
+}
+
+void RunStore::add_frames(const std::vector<std::pair<std::int64_t, StoredFrame>>& frames) {
+  if (frames.empty()) return;
+  std::lock_guard lock(mutex_);
+  Transaction tx(*db_);
+  Statement insert = db_->prepare(
+      "INSERT INTO frames(run_id, seq, step, t, task_error, min_distance, collided, data) "
+      "VALUES (?,?,?,?,?,?,?,?)");
+  Statement count = db_->prepare("UPDATE runs SET frames = frames + ? WHERE id = ?");
+  std::int64_t run = frames.front().first, in_run = 0;
+  const auto flush_count = [&] {
+    count.bind(1, in_run).bind(2, run).step();
+    count.reset();
+  };
+  for (const auto& [run_id, f] : frames) {
+    if (run_id != run) {
+      flush_count();
+      run = run_id;
+      in_run = 0;
+    }
+    insert.bind(1, run_id).bind(2, f.seq).bind(3, f.step).bind(4, f.t).bind(5, f.task_error);
+    if (std::isfinite(f.min_distance)) insert.bind(6, f.min_distance); else insert.bind_null(6);
+    insert.bind(7, f.collided ? 1 : 0).bind_blob(8, f.data);
+    insert.step();
+    insert.reset();
+    ++in_run;
+  }
+  flush_count();
+  tx.commit();
+}
+
+std::optional<RunRecord> RunStore::run(std::int64_t id) {
+  std::lock_guard lock(mutex_);
+  Statement s = db_->prepare(std::string("SELECT ") + kRunColumns + " FROM runs WHERE id = ?");
+  s.bind(1, id);
+  if (!s.step()) return std::nullopt;
+  return read_run(s);
+}
+
+std::vector<RunRecord> RunStore::runs(const RunFilter& filter) {
+  std::lock_guard lock(mutex_);
+  Statement s = db_->prepare(std::string("SELECT ") + kRunColumns +
+                             " FROM runs WHERE (?1 IS NULL OR scenario_name = ?1) AND (?2 IS NULL OR method = ?2)"
+                             " AND (?3 IS NULL OR status = ?3) ORDER BY id DESC LIMIT ?4 OFFSET ?5");
+  if (filter.scenario) s.bind(1, *filter.scenario); else s.bind_null(1);
+  if (filter.method) s.bind(2, *filter.method); else s.bind_null(2);
+  if (filter.status) s.bind(3, *filter.status); else s.bind_null(3);
+  s.bind(4, filter.limit).bind(5, filter.offset);
+  std::vector<RunRecord> out;
+  while (s.step()) out.push_back(read_run(s));
+  return out;
+}
+
+std::vector<StoredEvent> RunStore::events(std::int64_t run) {
+  std::lock_guard lock(mutex_);
+  Statement s = db_->prepare("SELECT seq, step, kind, payload FROM events WHERE run_id = ? ORDER BY id");
+  s.bind(1, run);
+  std::vector<StoredEvent> out;
+  while (s.step()) out.push_back({s.column_int(0), s.column_int(1), s.column_text(2), s.column_text(3)});
+  return out;
+}
+
+void RunStore::frames(std::int64_t run, std::int64_t from, std::int64_t to, std::int64_t stride,
+                      const std::function<bool(const StoredFrame&)>& visit) {
+  std::lock_guard lock(mutex_);
+  Statement s = db_->prepare(
+      "SELECT seq, step, t, task_error, min_distance, collided, data FROM frames WHERE run_id = ?1 "
+      "AND seq BETWEEN ?2 AND ?3 AND (seq - ?2) % ?4 = 0 ORDER BY seq");
+  s.bind(1, run).bind(2, from).bind(3, to).bind(4, stride < 1 ? 1 : stride);
+  StoredFrame f;
+  while (s.step()) {
+    f.seq = s.column_int(0);
+    f.step = s.column_int(1);
+    f.t = s.column_double(2);
+    f.task_error = s.column_double(3);
+    f.min_distance = s.is_null(4) ? std::numeric_limits<double>::infinity() : s.column_double(4);
+    f.collided = s.column_int(5) != 0;
+    f.data.assign(s.column_blob(6));
+    if (!visit(f)) break;
+  }
+}
+
+bool RunStore::put_scenario(const std::string& name, const std::string& json) {
+  std::lock_guard lock(mutex_);
+  Statement s = db_->prepare("INSERT OR IGNORE INTO scenarios(name, json, created) VALUES (?,?,?)");
+  s.bind(1, name).bind(2, json).bind(3, utc_now()).step();
+  return db_->changes() == 1;
+}
+
+std::optional<std::string> RunStore::scenario(const std::string& name) {
+  std::lock_guard lock(mutex_);
+  Statement s = db_->prepare("SELECT json FROM scenarios WHERE name = ?");
+  s.bind(1, name);
+  if (!s.step()) return std::nullopt;
+  return s.column_text(0);
+}
+
+std::vector<std::string> RunStore::scenario_names() {
+  std::lock_guard lock(mutex_);
+  Statement s = db_->prepare("SELECT name FROM scenarios ORDER BY name");
+  std::vector<std::string> out;
+  while (s.step()) out.push_back(s.column_text(0));
+  return out;
+}
+
+std::string RunStore::integrity_check() {
+  std::lock_guard lock(mutex_);
+  Statement s = db_->prepare("PRAGMA integrity_check");
+  std::string out;
+  while (s.step()) out += (out.empty() ? "" : "; ") + s.column_text(0);
+  return out;
+}
+
+}  // namespace rrlab::storage

@@ -1,0 +1,93 @@
+// Runs, frames, events and user scenarios in one SQLite file (schema.sql).
+// Thread-safe: one connection behind a mutex (SQLite in WAL mode with
+// synchronous=NORMAL: a crash loses at most the last uncommitted batch).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace rrlab::storage {
+
+class Database;
+
+struct NewRun {
+  std::string scenario_name, scenario_json, method, params_json, mode;
+  std::uint64_t seed = 1;
+  int dof = 0;
+  std::string diagnostic_names_json = "[]";
+  std::optional<std::int64_t> source_run, compare_group;
+};
+
+struct RunRecord {
+  std::int64_t id = 0;
+  std::string scenario_name, scenario_json, method, params_json, mode, created, status;
+  std::uint64_t seed = 1;
+  std::int64_t frames = 0;
+  std::optional<std::string> summary_json;
+  int dof = 0;
+  std::string diagnostic_names_json;
+  std::optional<std::int64_t> source_run, compare_group;
+};
+
+struct StoredEvent {
+  std::int64_t seq = 0, step = 0;
+  std::string kind, payload_json;
+};
+
+struct StoredFrame {
+  std::int64_t seq = 0, step = 0;
+  double t = 0, task_error = 0, min_distance = 0;
+  bool collided = false;
+  std::string data;  // frame_codec.hpp
+};
+
+struct RunFilter {
+  std::optional<std::string> scenario, method, status;
+  int limit = 100, offset = 0;
+};
+
+class RunStore {
+ public:
+  // Opens (creating if missing) and migrates; runs left "running" or "paused"
+  // by a previous process are marked "interrupted".
+  explicit RunStore(const std::string& path);
+  ~RunStore();
+
+  int interrupted_at_open() const { return interrupted_at_open_; }
+
+  std::int64_t create_run(const NewRun& run);
+  void set_status(std::int64_t id, std::string_view status);
+  void set_compare_group(std::int64_t id, std::int64_t group);
+  void finish_run(std::int64_t id, std::string_view status, const std::string& summary_json);
+  void add_event(std::int64_t run, const StoredEvent& event);
+  // Frames of one or more runs in one transaction; updates the runs' frame counts.
+  void add_frames(const std::vector<std::pair<std::int64_t, StoredFrame>>& frames);
+
+  std::optional<RunRecord> run(std::int64_t id);
+  std::vector<RunRecord> runs(const RunFilter& filter);
+  std::vector<StoredEvent> events(std::int64_t run);
+  // Frames with from <= seq <= to, every stride-th; visit returns false to stop.
+  void frames(std::int64_t run, std::int64_t from, std::int64_t to, std::int64_t stride,
+              const std::function<bool(const StoredFrame&)>& visit);
+
+  // User scenarios (validated by the caller).
+  bool put_scenario(const std::string& name, const std::string& json);  // false: exists
+  std::optional<std::string> scenario(const std::string& name);
+  std::vector<std::string> scenario_names();
+
+  std::string integrity_check();  // "ok" when sound
+
+ private:
+  std::mutex mutex_;
+  std::unique_ptr<Database> db_;
+  int interrupted_at_open_ = 0;
+};
+
+}  // namespace rrlab::storage

@@ -1,0 +1,53 @@
+-- rrlab storage schema. Version 1. Applied at open; idempotent.
+-- A run's frames are numbered by seq, the count of steps taken in the run
+-- (a reset starts the simulation's step count over, seq goes on). An event
+-- took effect before the frame with the same seq.
+CREATE TABLE IF NOT EXISTS schema_version (version INTEGER NOT NULL);
+
+CREATE TABLE IF NOT EXISTS runs (
+  id               INTEGER PRIMARY KEY AUTOINCREMENT,
+  scenario_name    TEXT NOT NULL,
+  scenario         TEXT NOT NULL,              -- scenario JSON as given
+  method           TEXT NOT NULL,              -- at the start
+  params           TEXT NOT NULL,              -- JSON {name: value} at the start
+  seed             INTEGER NOT NULL,
+  mode             TEXT NOT NULL,              -- live | batch | resimulation
+  created          TEXT NOT NULL,              -- UTC, ISO 8601
+  status           TEXT NOT NULL,              -- running | paused | completed | stopped | interrupted | failed
+  frames           INTEGER NOT NULL DEFAULT 0, -- stored frames
+  summary          TEXT,                       -- JSON, when ended
+  dof              INTEGER NOT NULL,
+  diagnostic_names TEXT NOT NULL,              -- JSON array, of the starting method
+  source_run       INTEGER,                    -- a re-simulation: the run it re-simulates
+  compare_group    INTEGER                     -- runs started together by /api/compare
+);
+CREATE INDEX IF NOT EXISTS runs_scenario ON runs(scenario_name);
+CREATE INDEX IF NOT EXISTS runs_method ON runs(method);
+
+CREATE TABLE IF NOT EXISTS frames (
+  run_id       INTEGER NOT NULL REFERENCES runs(id) ON DELETE CASCADE,
+  seq          INTEGER NOT NULL,
+  step         INTEGER NOT NULL,
+  t            REAL NOT NULL,
+  task_error   REAL,
+  min_distance REAL,                           -- NULL: no obstacles (+inf)
+  collided     INTEGER NOT NULL,
+  data         BLOB NOT NULL,                  -- every deterministic field, packed (frame_codec.hpp)
+  PRIMARY KEY (run_id, seq)
+) WITHOUT ROWID;
+
+CREATE TABLE IF NOT EXISTS events (
+  id       INTEGER PRIMARY KEY AUTOINCREMENT,
+  run_id   INTEGER NOT NULL REFERENCES runs(id) ON DELETE CASCADE,
+  seq      INTEGER NOT NULL,
+  step     INTEGER NOT NULL,
+  kind     TEXT NOT NULL,
+  payload  TEXT NOT NULL                       -- JSON
+);
+CREATE INDEX IF NOT EXISTS events_run ON events(run_id, id);
+
+CREATE TABLE IF NOT EXISTS scenarios (
+  name     TEXT PRIMARY KEY,
+  json     TEXT NOT NULL,
+  created  TEXT NOT NULL
+);
