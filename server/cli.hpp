@@ -25,6 +25,7 @@ struct ServeOptions {
   int threads = 2;
   double display_hz = 60;
   std::size_t body_limit = 1 << 20;
+  int ws_stall_ms = 5000;  // a WebSocket write pending this long drops the client
 };
 
 struct ReplayOptions {

@@ -18,6 +18,8 @@ int main(int argc, char** argv) {
   serve_cmd->add_option("--display-hz", serve.display_hz, "WebSocket frame rate")->check(CLI::Range(1.0, 240.0));
   serve_cmd->add_option("--body-limit", serve.body_limit, "largest request body in bytes")
       ->check(CLI::Range(std::size_t(1024), std::size_t(64) << 20));
+  serve_cmd->add_option("--ws-stall-ms", serve.ws_stall_ms, "drop a WebSocket client whose write is stuck this long")
+      ->check(CLI::Range(100, 600000));
 
   rrlab::cli::RunOptions run;
   CLI::App* run_cmd = app.add_subcommand("run", "simulate a scenario (or a run record) and print a JSON summary");

@@ -142,6 +142,11 @@ void RunStore::add_frames(const std::vector<std::pair<std::int64_t, StoredFrame>
   tx.commit();
 }
 
+void RunStore::replace_frame_data(std::int64_t run, std::int64_t seq, const std::string& data) {
+  std::lock_guard lock(mutex_);
+  db_->prepare("UPDATE frames SET data = ? WHERE run_id = ? AND seq = ?").bind_blob(1, data).bind(2, run).bind(3, seq).step();
+}
+
 std::optional<RunRecord> RunStore::run(std::int64_t id) {
   std::lock_guard lock(mutex_);
   Statement s = db_->prepare(std::string("SELECT ") + kRunColumns + " FROM runs WHERE id = ?");

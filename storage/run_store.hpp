@@ -70,6 +70,9 @@ class RunStore {
   // Frames of one or more runs in one transaction; updates the runs' frame counts.
   void add_frames(const std::vector<std::pair<std::int64_t, StoredFrame>>& frames);
 
+  // Overwrites one stored frame's blob (tests of verification only).
+  void replace_frame_data(std::int64_t run, std::int64_t seq, const std::string& data);
+
   std::optional<RunRecord> run(std::int64_t id);
   std::vector<RunRecord> runs(const RunFilter& filter);
   std::vector<StoredEvent> events(std::int64_t run);

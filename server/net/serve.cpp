@@ -40,6 +40,8 @@ int serve(const ServeOptions& options) {
     auto state = std::make_shared<ServerState>(runs, ServerInfo{RRLAB_VERSION, std::chrono::steady_clock::now()},
                                                find_dir(options.web_dir, "web"));
     state->limits.body_limit = options.body_limit;
+    state->limits.ws_stall_timeout = std::chrono::milliseconds(options.ws_stall_ms);
+    state->info.websockets = &state->websockets;
     net::io_context ioc(options.threads);
     const unsigned short port = start_listener(ioc, options.host, options.port, state);
     std::cout << "rrlab: serving http://" << options.host << ":" << port << "/ (database " << options.db;

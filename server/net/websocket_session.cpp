@@ -28,6 +28,9 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
 
   void run(http::request<http::string_body>&& request) {
     beast::get_lowest_layer(ws_).expires_never();  // the WebSocket has its own timeouts
+    // a small kernel send queue: a slow client holds a few frames, not seconds of them
+    beast::error_code ec;
+    beast::get_lowest_layer(ws_).socket().set_option(net::socket_base::send_buffer_size(64 * 1024), ec);
     ws_.set_option(websocket::stream_base::timeout::suggested(beast::role_type::server));
     ws_.set_option(websocket::stream_base::decorator(
         [](websocket::response_type& res) { res.set(http::field::server, "rrlab"); }));

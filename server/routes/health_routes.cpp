@@ -6,7 +6,10 @@ namespace rrlab::server {
 ApiResponse get_health(RouteContext& c) {
   const double uptime =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - c.info.started).count();
-  return json_response(200, {{"status", "ok"}, {"version", c.info.version}, {"uptime_s", uptime}});
+  return json_response(200, {{"status", "ok"},
+                             {"version", c.info.version},
+                             {"uptime_s", uptime},
+                             {"websockets", c.info.websockets ? c.info.websockets->load() : 0}});
 }
 
 ApiResponse get_methods(RouteContext&) { return json_response(200, methods_json()); }

@@ -1,6 +1,7 @@
 // REST routes, one file per resource; router.cpp holds the table.
 #pragma once
 
+#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <string>
@@ -15,6 +16,7 @@ namespace rrlab::server {
 struct ServerInfo {
   std::string version;
   std::chrono::steady_clock::time_point started;
+  const std::atomic<int>* websockets = nullptr;  // connected WebSocket clients
 };
 
 struct RouteContext {

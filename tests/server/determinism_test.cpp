@@ -1,0 +1,113 @@
+// A live run with obstacle moves, weight changes and joystick input is
+// re-simulated from its stored events with identical frames; a server killed
+// mid-run leaves a sound database.
+#include "server_fixture.hpp"
+#include "storage/run_store.hpp"
+
+namespace rrlab::testing {
+namespace {
+
+using nlohmann::json;
+
+class Determinism : public ServerTest {};
+
+TEST_F(Determinism, LiveInputsReSimulateBitForBit) {
+  json scenario = small_scenario("joystick", 600);
+  scenario["obstacles"].push_back({{"id", "drifter"}, {"shape", "point"}, {"position", {1.5, 1.2}}, {"velocity", {-0.05, 0}}});
+  const std::int64_t id = start_live({{"scenario", scenario}, {"rate", 4}});
+  const std::string base = "/api/runs/" + std::to_string(id);
+  const auto pause = [] { std::this_thread::sleep_for(std::chrono::milliseconds(150)); };
+  pause();
+  ASSERT_EQ(send("POST", base + "/joystick", {{"linear", {0.2, 0.1}}}).status, 200);
+  pause();
+  ASSERT_EQ(send("PUT", base + "/obstacles/ball", {{"position", {0.6, 1.1}}, {"velocity", {0.02, -0.01}}}).status, 200);
+  pause();
+  ASSERT_EQ(send("PATCH", base + "/params", {{"gain", 6}}).status, 200);
+  pause();
+  ASSERT_EQ(send("POST", base + "/joystick", {{"linear", {-0.1, 0.2}}}).status, 200);
+  pause();
+  ASSERT_EQ(send("POST", base + "/method", {{"name", "closest_point"}}).status, 200);
+  pause();
+  ASSERT_EQ(send("POST", base + "/obstacles", {{"id", "late"}, {"shape", "sphere"}, {"center", {-0.5, 1.0}}, {"radius", 0.1}}).status, 200);
+  pause();
+  ASSERT_EQ(send("POST", base + "/control", {{"action", "stop"}}).status, 200);
+  const json run = wait_ended(id);
+  EXPECT_GT(run["frames"].get<long>(), 100);
+  EXPECT_EQ(get(base + "/events").json().size(), 6u);
+
+  // the command line re-simulates it from the database, bit for bit
+  const CommandResult verify = run_rrlab({"replay", std::to_string(id), "--db", server_->db(), "--verify"});
+  EXPECT_EQ(verify.exit_code, 0) << verify.out;
+  const json result = json::parse(verify.out);
+  EXPECT_TRUE(result["identical"].get<bool>());
+  EXPECT_EQ(result["frames_compared"], run["frames"]);
+
+  // and so does the REST replay, into a new stored run
+  const HttpResult resim = send("POST", base + "/replay", {{"mode", "resimulate"}});
+  ASSERT_EQ(resim.status, 200) << resim.body;
+  EXPECT_TRUE(resim.json()["identical"].get<bool>());
+  const std::int64_t copy = resim.json()["run"];
+  EXPECT_EQ(get("/api/runs/" + std::to_string(copy)).json()["source_run"], id);
+}
+
+TEST_F(Determinism, AChangedFrameFailsVerification) {
+  const HttpResult batch = send("POST", "/api/runs", {{"scenario", "01_planar7_obstacles"}, {"mode", "batch"}, {"steps", 50}});
+  ASSERT_EQ(batch.status, 200);
+  const std::int64_t id = batch.json()["id"];
+  {
+    // tamper with one stored frame: flip the lowest bit of q1 in frame 30
+    storage::RunStore store(server_->db());
+    std::string data;
+    store.frames(id, 30, 30, 1, [&](const storage::StoredFrame& f) {
+      data = f.data;
+      return false;
+    });
+    ASSERT_FALSE(data.empty());
+    data[24] ^= 1;  // after u32 n, u32 k, i64 step, double t
+    store.replace_frame_data(id, 30, data);
+  }
+  const CommandResult verify = run_rrlab({"replay", std::to_string(id), "--db", server_->db(), "--verify"});
+  EXPECT_EQ(verify.exit_code, 1);
+  EXPECT_EQ(json::parse(verify.out)["first_mismatch"], 30);
+  EXPECT_EQ(run_rrlab({"replay", "424242", "--db", server_->db()}).exit_code, 2);
+}
+
+TEST(CrashSafety, KillDuringABatchRunLeavesASoundDatabase) {
+  const std::string dir = temp_dir();
+  const std::string db = dir + "/crash.db";
+  std::int64_t completed = 0, interrupted = 0;
+  long completed_frames = 0;
+  {
+    ServerProcess server(db);
+    const HttpResult done = http_json(server.port(), "POST", "/api/runs",
+                                      {{"scenario", "01_planar7_obstacles"}, {"mode", "batch"}});
+    ASSERT_EQ(done.status, 200);
+    completed = done.json()["id"];
+    completed_frames = done.json()["summary"]["steps"];
+    json long_run = small_scenario("circle", 99999);  // ten million steps: still running at the kill
+    const HttpResult running = http_json(server.port(), "POST", "/api/runs",
+                                         {{"scenario", long_run}, {"mode", "batch"}, {"wait", false}});
+    ASSERT_EQ(running.status, 201) << running.body;
+    interrupted = running.json()["id"];
+    for (int i = 0; i < 200; ++i) {  // until some of its frames are committed
+      if (http(server.port(), "GET", "/api/runs/" + std::to_string(interrupted)).json()["frames"].get<long>() > 1000) break;
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    server.kill_hard();
+  }
+  {
+    storage::RunStore store(db);  // opens: WAL recovery
+    EXPECT_EQ(store.integrity_check(), "ok");
+    EXPECT_EQ(store.run(interrupted)->status, "interrupted");
+    EXPECT_EQ(store.run(completed)->status, "completed");
+    EXPECT_EQ(store.run(completed)->frames, completed_frames);
+  }
+  ServerProcess restarted(db);
+  EXPECT_EQ(http(restarted.port(), "GET", "/api/runs/" + std::to_string(completed)).json()["status"], "completed");
+  const CommandResult verify = run_rrlab({"replay", std::to_string(completed), "--db", db, "--verify"});
+  EXPECT_EQ(verify.exit_code, 0) << verify.out;
+  std::system(("rm -rf '" + dir + "'").c_str());
+}
+
+}  // namespace
+}  // namespace rrlab::testing

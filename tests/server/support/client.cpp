@@ -1,0 +1,131 @@
+#include "client.hpp"
+
+#include <boost/asio.hpp>
+#include <boost/beast/core.hpp>
+#include <boost/beast/http.hpp>
+#include <boost/beast/websocket.hpp>
+#include <stdexcept>
+
+namespace rrlab::testing {
+
+namespace beast = boost::beast;
+namespace http_ns = beast::http;
+namespace websocket = beast::websocket;
+namespace net = boost::asio;
+using tcp = net::ip::tcp;
+
+HttpResult http(unsigned short port, const std::string& method, const std::string& target, const std::string& body,
+                const std::string& accept) {
+  net::io_context ioc;
+  beast::tcp_stream stream(ioc);
+  stream.expires_after(std::chrono::seconds(120));
+  stream.connect(tcp::endpoint(net::ip::make_address("127.0.0.1"), port));
+  http_ns::request<http_ns::string_body> request(http_ns::string_to_verb(method), target, 11);
+  request.set(http_ns::field::host, "127.0.0.1");
+  if (!body.empty()) request.set(http_ns::field::content_type, "application/json");
+  if (!accept.empty()) request.set(http_ns::field::accept, accept);
+  request.body() = body;
+  request.prepare_payload();
+  request.keep_alive(false);
+  HttpResult result;
+  beast::flat_buffer buffer;
+  http_ns::response_parser<http_ns::string_body> parser;
+  parser.body_limit(1ull << 30);
+  beast::error_code error;
+  http_ns::async_write(stream, request, [&](beast::error_code ec, std::size_t) {
+    if (ec) {
+      error = ec;
+      return;
+    }
+    http_ns::async_read(stream, buffer, parser, [&](beast::error_code ec2, std::size_t) { error = ec2; });
+  });
+  ioc.run();
+  // a server may answer (e.g. 413) and close before reading the whole body
+  if (error && !parser.is_header_done()) throw std::runtime_error("http " + method + " " + target + ": " + error.message());
+  auto response = parser.release();
+  result.status = int(response.result_int());
+  result.body = response.body();
+  result.content_type = std::string(response[http_ns::field::content_type]);
+  return result;
+}
+
+struct WsClient::Impl {
+  net::io_context ioc;
+  websocket::stream<beast::tcp_stream> ws{ioc};
+  beast::flat_buffer buffer;
+  bool open = false;
+};
+
+WsClient::WsClient(unsigned short port, const std::string& target) : impl_(std::make_unique<Impl>()) {
+  auto& lowest = beast::get_lowest_layer(impl_->ws);
+  lowest.expires_after(std::chrono::seconds(10));
+  lowest.connect(tcp::endpoint(net::ip::make_address("127.0.0.1"), port));
+  beast::error_code error;
+  impl_->ws.async_handshake("127.0.0.1", target, [&](beast::error_code ec) { error = ec; });
+  impl_->ioc.run();
+  if (error) throw std::runtime_error("websocket " + target + ": " + error.message());
+  lowest.expires_never();
+  impl_->open = true;
+}
+
+WsClient::~WsClient() {
+  beast::error_code ec;
+  beast::get_lowest_layer(impl_->ws).socket().close(ec);
+}
+
+bool WsClient::open() const { return impl_->open; }
+
+std::optional<std::string> WsClient::read(std::chrono::milliseconds timeout) {
+  if (!impl_->open) return std::nullopt;
+  bool done = false;
+  beast::error_code error;
+  impl_->ws.async_read(impl_->buffer, [&](beast::error_code ec, std::size_t) {
+    error = ec;
+    done = true;
+  });
+  impl_->ioc.restart();
+  impl_->ioc.run_for(timeout);
+  if (!done) {
+    // give up: the connection cannot be read again after a cancelled read
+    beast::error_code ec;
+    beast::get_lowest_layer(impl_->ws).socket().cancel(ec);
+    impl_->ioc.restart();
+    impl_->ioc.run();
+    impl_->open = false;
+    return std::nullopt;
+  }
+  if (error) {
+    impl_->open = false;
+    return std::nullopt;
+  }
+  std::string text = beast::buffers_to_string(impl_->buffer.data());
+  impl_->buffer.consume(impl_->buffer.size());
+  return text;
+}
+
+std::optional<nlohmann::json> WsClient::read_json(std::chrono::milliseconds timeout) {
+  auto text = read(timeout);
+  if (!text) return std::nullopt;
+  return nlohmann::json::parse(*text);
+}
+
+std::optional<nlohmann::json> WsClient::read_type(const std::string& type, std::chrono::milliseconds timeout) {
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  while (std::chrono::steady_clock::now() < deadline) {
+    auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    auto message = read_json(left);
+    if (!message) return std::nullopt;
+    if (message->value("type", "") == type) return message;
+  }
+  return std::nullopt;
+}
+
+void WsClient::send(const std::string& text) {
+  beast::error_code error;
+  impl_->ws.async_write(net::buffer(text), [&](beast::error_code ec, std::size_t) { error = ec; });
+  impl_->ioc.restart();
+  impl_->ioc.run();
+  if (error) throw std::runtime_error("websocket send: " + error.message());
+}
+
+}  // namespace rrlab::testing

@@ -1,0 +1,45 @@
+// A small Beast client for tests and load benchmarks: HTTP requests and
+// WebSocket connections to 127.0.0.1, every wait bounded by a timeout.
+#pragma once
+
+#include <chrono>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+namespace rrlab::testing {
+
+struct HttpResult {
+  int status = 0;
+  std::string body, content_type;
+  nlohmann::json json() const { return nlohmann::json::parse(body); }
+};
+
+HttpResult http(unsigned short port, const std::string& method, const std::string& target,
+                const std::string& body = "", const std::string& accept = "");
+inline HttpResult http_json(unsigned short port, const std::string& method, const std::string& target,
+                            const nlohmann::json& body) {
+  return http(port, method, target, body.dump());
+}
+
+class WsClient {
+ public:
+  // Connects and upgrades; throws on failure.
+  WsClient(unsigned short port, const std::string& target);
+  ~WsClient();
+  // The next text message, or nothing within the timeout.
+  std::optional<std::string> read(std::chrono::milliseconds timeout = std::chrono::milliseconds(5000));
+  std::optional<nlohmann::json> read_json(std::chrono::milliseconds timeout = std::chrono::milliseconds(5000));
+  // The next message of this type, skipping others.
+  std::optional<nlohmann::json> read_type(const std::string& type,
+                                          std::chrono::milliseconds timeout = std::chrono::milliseconds(5000));
+  void send(const std::string& text);
+  bool open() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace rrlab::testing

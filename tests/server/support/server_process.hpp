@@ -1,0 +1,41 @@
+// Starts a real `rrlab serve` on an ephemeral port with a temporary database
+// and stops it (SIGTERM, or SIGKILL for crash tests).
+#pragma once
+
+#include <sys/types.h>
+
+#include <string>
+#include <vector>
+
+namespace rrlab::testing {
+
+class ServerProcess {
+ public:
+  // `db` empty: a new temporary file. Extra arguments go after `serve`.
+  explicit ServerProcess(std::string db = "", std::vector<std::string> extra_args = {});
+  ~ServerProcess();
+  ServerProcess(const ServerProcess&) = delete;
+  ServerProcess& operator=(const ServerProcess&) = delete;
+
+  unsigned short port() const { return port_; }
+  const std::string& db() const { return db_; }
+  void kill_hard();       // SIGKILL, as a crash
+  int stop();             // SIGTERM and wait; the exit status
+  bool running() const { return pid_ > 0; }
+
+ private:
+  pid_t pid_ = -1;
+  unsigned short port_ = 0;
+  std::string db_, dir_;
+};
+
+// Runs the rrlab binary with arguments; returns its exit code and stdout.
+struct CommandResult {
+  int exit_code = -1;
+  std::string out;
+};
+CommandResult run_rrlab(const std::vector<std::string>& args);
+
+std::string temp_dir();  // a fresh directory under /tmp
+
+}  // namespace rrlab::testing

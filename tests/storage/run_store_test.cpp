@@ -1,0 +1,121 @@
+#include "storage/run_store.hpp"
+
+#include <gtest/gtest.h>
+#include <stdlib.h>
+
+#include <cmath>
+#include <filesystem>
+#include <limits>
+
+#include "storage/database.hpp"
+#include "storage/frame_writer.hpp"
+
+namespace rrlab::storage {
+namespace {
+
+class RunStoreTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    std::string pattern = "/tmp/rrlab-store-XXXXXX";
+    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
+    dir_ = pattern;
+    path_ = dir_ + "/test.db";
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+  NewRun new_run(const std::string& method = "pinv") {
+    NewRun r;
+    r.scenario_name = "demo";
+    r.scenario_json = "{}";
+    r.method = method;
+    r.params_json = "{}";
+    r.mode = "batch";
+    r.dof = 3;
+    return r;
+  }
+  std::string dir_, path_;
+};
+
+TEST_F(RunStoreTest, CreatesRunsAndFilters) {
+  RunStore store(path_);
+  const auto a = store.create_run(new_run("pinv"));
+  const auto b = store.create_run(new_run("dls"));
+  EXPECT_LT(a, b);
+  EXPECT_EQ(store.run(a)->status, "running");
+  store.finish_run(a, "completed", R"({"steps":3})");
+  EXPECT_EQ(store.run(a)->status, "completed");
+  EXPECT_EQ(*store.run(a)->summary_json, R"({"steps":3})");
+  RunFilter filter;
+  filter.method = "dls";
+  ASSERT_EQ(store.runs(filter).size(), 1u);
+  EXPECT_EQ(store.runs(filter)[0].id, b);
+  EXPECT_FALSE(store.run(999).has_value());
+  EXPECT_EQ(store.integrity_check(), "ok");
+}
+
+TEST_F(RunStoreTest, FramesAndEventsRoundTrip) {
+  RunStore store(path_);
+  const auto id = store.create_run(new_run());
+  std::vector<std::pair<std::int64_t, StoredFrame>> batch;
+  for (int i = 0; i < 10; ++i)
+    batch.push_back({id, StoredFrame{i, i, 0.01 * i, 0.0, std::numeric_limits<double>::infinity(), false,
+                                     std::string(8, char('a' + i))}});
+  store.add_frames(batch);
+  store.add_event(id, {3, 3, "params", R"({"gain":2})"});
+  EXPECT_EQ(store.run(id)->frames, 10);
+  std::vector<std::int64_t> seqs;
+  store.frames(id, 2, 8, 3, [&](const StoredFrame& f) {
+    seqs.push_back(f.seq);
+    EXPECT_TRUE(std::isinf(f.min_distance));
+    EXPECT_EQ(f.data, std::string(8, char('a' + f.seq)));
+    return true;
+  });
+  EXPECT_EQ(seqs, (std::vector<std::int64_t>{2, 5, 8}));
+  ASSERT_EQ(store.events(id).size(), 1u);
+  EXPECT_EQ(store.events(id)[0].kind, "params");
+}
+
+TEST_F(RunStoreTest, UnfinishedRunsAreMarkedInterruptedOnReopen) {
+  std::int64_t done = 0, open = 0;
+  {
+    RunStore store(path_);
+    done = store.create_run(new_run());
+    store.finish_run(done, "completed", "{}");
+    open = store.create_run(new_run());
+  }
+  RunStore reopened(path_);
+  EXPECT_EQ(reopened.interrupted_at_open(), 1);
+  EXPECT_EQ(reopened.run(open)->status, "interrupted");
+  EXPECT_EQ(reopened.run(done)->status, "completed");
+}
+
+TEST_F(RunStoreTest, ScenariosAreUniqueByName) {
+  RunStore store(path_);
+  EXPECT_TRUE(store.put_scenario("mine", "{\"name\":\"mine\"}"));
+  EXPECT_FALSE(store.put_scenario("mine", "{}"));
+  EXPECT_EQ(*store.scenario("mine"), "{\"name\":\"mine\"}");
+  EXPECT_EQ(store.scenario_names(), std::vector<std::string>{"mine"});
+}
+
+TEST_F(RunStoreTest, RejectsAFileThatIsNotADatabase) {
+  { std::FILE* f = std::fopen(path_.c_str(), "w"); std::fputs("not a database, just text that is long enough to matter", f); std::fclose(f); }
+  EXPECT_THROW(RunStore store(path_), StorageError);
+}
+
+TEST_F(RunStoreTest, FrameWriterCommitsEverythingOnFlush) {
+  RunStore store(path_);
+  const auto a = store.create_run(new_run()), b = store.create_run(new_run());
+  {
+    FrameWriter writer(store, 64, 16);  // a small queue: push() must wait, not drop
+    for (int i = 0; i < 1000; ++i) {
+      writer.push(a, StoredFrame{i, i, 0, 0, 0, false, "x"});
+      writer.push(b, StoredFrame{i, i, 0, 0, 0, false, "y"});
+    }
+    writer.flush();
+    EXPECT_EQ(store.run(a)->frames, 1000);
+    EXPECT_EQ(store.run(b)->frames, 1000);
+    EXPECT_EQ(writer.last_error(), "");
+  }
+}
+
+}  // namespace
+}  // namespace rrlab::storage
