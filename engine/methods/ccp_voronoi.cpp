@@ -18,13 +18,14 @@
 //    the obstacles are moved to the stage's time;
 //  - lagrangian: Chang's position method, eq. 6–7: at each step solve
 //    f(θ) = X_d(t + dt) together with Z∇H(θ) = 0, Z = [(J_a⁻¹J_b)ᵀ  −I]
-//    (J_a the first m columns of J, J_b the rest), by Newton's method with a
+//    (J_a m independent columns of J, J_b the rest), by Newton's method with a
 //    forward-difference Jacobian, warm-started at the previous θ. The first
 //    step jumps to the constrained stationary point near θ0 (the paper uses
 //    the Lagrangian method for the initial condition of every run).
 // The CCP Jacobians are point Jacobians of the kinematics module (the paper's
 // eq. 12–13 specialised to its 3-link arm).
 #include <Eigen/LU>
+#include <Eigen/QR>
 #include <algorithm>
 #include <string>
 #include <cmath>
@@ -63,7 +64,13 @@ class CcpVoronoi final : public Method {
         newton_jac_(n_, n_),
         newton_lu_(n_),
         head_lu_(m_),
-        w_(m_, std::max(0, n_ - m_)) {
+        w_(m_, std::max(0, n_ - m_)),
+        ja_(m_, m_),
+        jb_(m_, std::max(0, n_ - m_)),
+        ga_(m_),
+        gb_(std::max(0, n_ - m_)),
+        colpiv_(m_, n_),
+        split_(n_) {
     vertices_.reserve(64);
     scratch_b_.reserve(64);
     voronoi_.reserve(64);
@@ -226,12 +233,28 @@ class CcpVoronoi final : public Method {
     r.head(m_) = ref_.error;
     if (n_ <= m_) return true;
     criterion_gradient(in.model, probe_, in.scene, in.dt, dm, grad_);
-    head_lu_.compute(jac_.leftCols(m_));
+    // J = [J_a J_b] over the step's column split (see choose_split)
+    for (int c = 0; c < n_; ++c) {
+      const int j = split_[c];
+      if (c < m_) ja_.col(c) = jac_.col(j), ga_[c] = grad_[j];
+      else jb_.col(c - m_) = jac_.col(j), gb_[c - m_] = grad_[j];
+    }
+    head_lu_.compute(ja_);
     if (std::abs(head_lu_.determinant()) < 1e-12) return false;
-    w_ = head_lu_.solve(jac_.rightCols(n_ - m_));  // J_a⁻¹ J_b
-    r.tail(n_ - m_).noalias() = w_.transpose() * grad_.head(m_);
-    r.tail(n_ - m_) -= grad_.tail(n_ - m_);  // Z∇H, eq. 7
+    w_ = head_lu_.solve(jb_);  // J_a⁻¹ J_b
+    r.tail(n_ - m_).noalias() = w_.transpose() * ga_;
+    r.tail(n_ - m_) -= gb_;  // Z∇H, eq. 7
     return true;
+  }
+
+  // Eq. 7 splits J into an invertible m x m block J_a and the rest; the paper's
+  // arm uses the first m columns. Here the split is chosen once per step by
+  // column-pivoted QR of J at the current configuration (the m best-conditioned
+  // columns), so that an arm posture where the first m columns are dependent
+  // does not stop the method; Z∇H = 0 is the same condition for any invertible split.
+  void choose_split(const StepInput& in) {
+    colpiv_.compute(in.task_jacobian);
+    for (int c = 0; c < n_; ++c) split_[c] = colpiv_.colsPermutation().indices()[c];
   }
 
   // Start of the Lagrangian run: Newton finds the nearest stationary point of
@@ -239,8 +262,11 @@ class CcpVoronoi final : public Method {
   // of DM); so the first step first climbs (DI) or descends (DM) along the
   // self-motion, θ += J⁺e + α(I − J⁺J)(±∇H) with a step of at most 0.05 rad,
   // until the projected gradient vanishes; Newton then follows that branch.
-  void settle_on_optimum(const StepInput& in, bool dm) {
-    for (int it = 0; it < 2000; ++it) {
+  // Newton steps are damped (at most 0.2 rad, backtracking on ‖F‖); a step
+  // where Newton does not converge takes at most 20 such climbing iterations
+  // instead (reported as newton_iterations = −1).
+  void settle_on_optimum(const StepInput& in, bool dm, int max_iterations) {
+    for (int it = 0; it < max_iterations; ++it) {
       forward_kinematics(in.model, theta_, probe_);
       task_jacobian(in.model, probe_, space_, jac_);
       in.task.reference(in.state.t + in.dt, probe_.end_effector(), ref_);
@@ -249,23 +275,27 @@ class CcpVoronoi final : public Method {
       if (dm) grad_ = -grad_;
       inverse_.null_project(grad_, null_);
       const double size = null_.cwiseAbs().maxCoeff();
-      if (size < 1e-6) break;
       inverse_.apply(ref_.error, delta_);
+      if (size < 1e-6) {
+        theta_ += delta_;
+        if (delta_.cwiseAbs().maxCoeff() < 1e-9) break;
+        continue;
+      }
       theta_ += delta_ + (std::min(0.05, size) / size) * null_;
     }
   }
 
   void step_lagrangian(const StepInput& in, StepOutput& out, bool dm) {
     theta_ = in.state.q;
-    if (in.state.step == 0) settle_on_optimum(in, dm);
+    choose_split(in);
+    if (in.state.step == 0) settle_on_optimum(in, dm, 2000);
     int iterations = 0;
-    double norm = 0;
+    double norm = std::numeric_limits<double>::infinity();
     const int max_iterations = int(p(kNewtonIters));
     const double fd = 1e-7;
-    for (; iterations < max_iterations; ++iterations) {
-      if (!lagrange_residual(in, theta_, dm, residual_)) break;
-      norm = residual_.norm();
-      if (norm < 1e-10) break;
+    bool ok = lagrange_residual(in, theta_, dm, residual_);
+    if (ok) norm = residual_.norm();
+    for (; ok && iterations < max_iterations && norm >= 1e-10; ++iterations) {
       for (int j = 0; j < n_; ++j) {
         theta_probe_ = theta_;
         theta_probe_[j] += fd;
@@ -276,10 +306,29 @@ class CcpVoronoi final : public Method {
       delta_ = newton_lu_.solve(residual_);
       const double largest = delta_.cwiseAbs().maxCoeff();
       if (!std::isfinite(largest)) break;
-      if (largest > 0.2) delta_ *= 0.2 / largest;  // damped Newton: at most 0.2 rad per iteration
-      theta_ -= delta_;
+      if (largest > 0.2) delta_ *= 0.2 / largest;  // at most 0.2 rad per iteration
+      // backtracking: accept the largest of 1, 1/2, 1/4, ... that lowers ‖F‖
+      bool improved = false;
+      for (double alpha = 1.0; alpha > 1e-3 && !improved; alpha *= 0.5) {
+        theta_probe_ = theta_ - alpha * delta_;
+        if (lagrange_residual(in, theta_probe_, dm, residual_probe_) && residual_probe_.norm() < norm) {
+          theta_ = theta_probe_;
+          residual_ = residual_probe_;
+          norm = residual_.norm();
+          improved = true;
+        }
+      }
+      if (!improved) break;
     }
-    out.diag.values[newton_iterations_] = iterations;
+    // No stationary point nearby (the branch ended, or the nearest vertex
+    // switched): fall back to a bounded climb along the self-motion from the
+    // current configuration, which also keeps the end-effector on the path.
+    const bool converged = norm < 1e-8;
+    if (!converged) {
+      theta_ = in.state.q;
+      settle_on_optimum(in, dm, 20);
+    }
+    out.diag.values[newton_iterations_] = converged ? iterations : -1;
     out.diag.values[newton_residual_] = norm;
     out.q_next = theta_;
     out.qdot = (theta_ - in.state.q) / in.dt;
@@ -296,7 +345,10 @@ class CcpVoronoi final : public Method {
   Eigen::VectorXd theta_, theta_probe_, residual_, residual_probe_, delta_;
   Eigen::MatrixXd newton_jac_;
   Eigen::PartialPivLU<Eigen::MatrixXd> newton_lu_, head_lu_;
-  Eigen::MatrixXd w_;
+  Eigen::MatrixXd w_, ja_, jb_;
+  Eigen::VectorXd ga_, gb_;
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> colpiv_;
+  Eigen::VectorXi split_;
   std::vector<ControlPoint> vertices_, scratch_b_;
   std::vector<Eigen::Vector3d> voronoi_;
   Ccp ccps_[kMaxCcp];
