@@ -201,6 +201,15 @@ class CcpVoronoi final : public Method {
     forward_kinematics(in.model, q, probe_);
     task_jacobian(in.model, probe_, space_, jac_);
     in.task.reference(in.state.t + tau, probe_.end_effector(), ref_);
+    if (!in.task.is_joystick()) {
+      // RK4 wants the path velocity at the stage's instant, not the mean over
+      // the coming step that the reference carries for Euler integrators
+      const double t = in.state.t + tau, h = 1e-3 * in.dt;
+      const Eigen::Vector3d v = (in.task.target_position(t + h) - in.task.target_position(std::max(0.0, t - h))) /
+                                (t + h - std::max(0.0, t - h));
+      const int rows = std::min(3, m_);
+      ref_.xdot.head(rows) = v.head(rows) + in.task.gain() * ref_.error.head(rows);
+    }
     inverse_.factor_pinv(jac_);  // eq. 3
     inverse_.apply(ref_.xdot, qdot);
     criterion_gradient(in.model, probe_, in.scene, tau, dm, grad_);
