@@ -95,6 +95,14 @@ class PostureGeneration final : public Method {
     primary_.factor_dls(in.task_jacobian, lambda);
     primary_.apply(in.ref.xdot, out.qdot);  // J_E* ẋ_E, eq. 8
 
+    const size_t most = size_t(links_) * size_t(std::max(1, in.distances.obstacles));
+    if (out.overlays.segments.capacity() < most) {  // once: no allocation in steady state
+      out.overlays.points.reserve(most);
+      out.overlays.segments.reserve(most);
+    }
+    out.overlays.points.clear();  // x̃_{i+1} of links with an active cone
+    out.overlays.segments.clear();  // x̃_{i+1} → b_ki of each active cone (Γ1)
+    overlays_ = &out.overlays;
     Eigen::Vector3d xdot_next = Eigen::Vector3d::Zero();  // ẋ_{n+1} = ẋ_E
     xdot_next.head(std::min<Eigen::Index>(3, in.ref.xdot.size())) =
         in.ref.xdot.head(std::min<Eigen::Index>(3, in.ref.xdot.size()));
@@ -152,6 +160,10 @@ class PostureGeneration final : public Method {
         if (!cn.active) continue;
         d123[c] += p(kWCollision) * cn.slope * a.dpsi;
         closeness = std::max(closeness, cn.closeness);
+        if (c == 0 && overlays_) {
+          overlays_->points.push_back(tip);
+          overlays_->segments.emplace_back(tip, in.distances.at(l, k).on_obstacle);
+        }
       }
       if (!counted) g1 += 1;
     }
@@ -275,6 +287,7 @@ class PostureGeneration final : public Method {
   Eigen::MatrixXd gamma_;  // per link: Γ1, Γ2, Γ3, Γ4, γ1, γ2
   Eigen::VectorXd lower_, upper_;
   int d_gamma_[4], d_weight_[2], d_link_;
+  Overlays* overlays_ = nullptr;
 };
 
 }  // namespace
