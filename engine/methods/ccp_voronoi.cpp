@@ -71,9 +71,11 @@ class CcpVoronoi final : public Method {
         gb_(std::max(0, n_ - m_)),
         colpiv_(m_, n_),
         split_(n_) {
-    vertices_.reserve(64);
-    scratch_b_.reserve(64);
-    voronoi_.reserve(64);
+    // sized for the worst case up front (scenario limits: 1024 vertices per
+    // polygon; ties of the smallest gap are rare), so steps do not allocate
+    vertices_.reserve(2 * 1024 + 8);
+    scratch_b_.reserve(2 * 1024 + 8);
+    voronoi_.reserve(size_t(64 + 4 * ctx.obstacle_count * ctx.obstacle_count));
     criterion_ = declare_diagnostic("criterion");
     dm_active_ = declare_diagnostic("dm_active");
     target_distance_[0] = declare_diagnostic("ccp1_target_distance");
@@ -159,7 +161,14 @@ class CcpVoronoi final : public Method {
     grad.setZero();
     double h = 0;
     if (dm) voronoi_control_points(scene, tau, vertices_, scratch_b_, voronoi_);
-    if (report_) report_->overlays.points.clear(), report_->overlays.segments.clear();
+    if (report_) {
+      report_->overlays.points.clear();
+      report_->overlays.segments.clear();
+      if (report_->overlays.points.capacity() < voronoi_.capacity() + kMaxCcp) {
+        report_->overlays.points.reserve(voronoi_.capacity() + kMaxCcp);
+        report_->overlays.segments.reserve(kMaxCcp);
+      }
+    }
     for (int i = 0; i < ccp_count_; ++i) {
       const Eigen::Vector3d f = ccp_point(kin, ccps_[i]);
       Eigen::Vector3d target;
