@@ -18,6 +18,11 @@ const std::vector<MethodInfo>& method_registry() {
        sr_task_priority_params(), make_sr_task_priority},
       {"closest_point", "Obstacle avoidance at the closest link point (Maciejewski & Klein 1985)",
        closest_point_params(), make_closest_point},
+      {"posture_generation",
+       "Multi-criteria posture generation, link by link from the end-effector (Chen et al. 2002)",
+       posture_generation_params(), make_posture_generation},
+      {"ccp_voronoi", "Configuration control points, DI / Voronoi-boundary DM criteria (Sezgin et al. 1997)",
+       ccp_voronoi_params(), make_ccp_voronoi},
   };
   return table;
 }

@@ -67,7 +67,19 @@ TEST_P(NoAllocation, SteadyStateStepAmongObstacles) {
 
 INSTANTIATE_TEST_SUITE_P(Baselines, NoAllocation,
                          ::testing::Values("pinv", "dls", "gpm", "task_priority", "sr_task_priority",
-                                           "closest_point"));
+                                           "closest_point", "posture_generation", "ccp_voronoi"));
+
+// Variants of the paper methods beyond their defaults.
+TEST(NoAllocation, CcpVoronoiLagrangianAndHybrid) {
+  nlohmann::json doc = dh7_scenario("ccp_voronoi");
+  doc["obstacles"] = {{{"shape", "box"}, {"center", {0.6, 0.0, 0.1}}, {"size", {0.4, 0.6, 0.2}}},
+                      {{"shape", "sphere"}, {"center", {0.4, 0.3, 0.6}}, {"radius", 0.1}}};
+  for (const char* params : {R"({"integrator": "lagrangian", "ccp2_link": 5})", R"({"mode": "hybrid", "ccp2_link": 5})"}) {
+    doc["method"]["params"] = nlohmann::json::parse(params);
+    Simulator sim(parse_scenario(doc));
+    EXPECT_EQ(allocations_in_steps(sim, 50), 0) << params;
+  }
+}
 
 TEST(NoAllocation, CounterSeesAllocations) {
   g_allocations = 0;
