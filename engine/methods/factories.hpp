@@ -18,6 +18,7 @@ RRLAB_DECLARE_METHOD(gpm)
 RRLAB_DECLARE_METHOD(task_priority)
 RRLAB_DECLARE_METHOD(sr_task_priority)
 RRLAB_DECLARE_METHOD(closest_point)
+RRLAB_DECLARE_METHOD(multi_preview)
 
 #undef RRLAB_DECLARE_METHOD
 

@@ -18,6 +18,8 @@ const std::vector<MethodInfo>& method_registry() {
        sr_task_priority_params(), make_sr_task_priority},
       {"closest_point", "Obstacle avoidance at the closest link point (Maciejewski & Klein 1985)",
        closest_point_params(), make_closest_point},
+      {"multi_preview", "Multi-preview control by avoidance manipulability and a 1-step GA (Zhang et al.)",
+       multi_preview_params(), make_multi_preview},
   };
   return table;
 }
