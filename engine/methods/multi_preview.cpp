@@ -173,8 +173,16 @@ class MultiPreview final : public Method {
         amsip[k * candidates + c] = arm_.score(genes.col(k * candidates + c), target).fitness;
       }
     }
-    // the first knot is the arm's own configuration's neighbourhood: a plan
-    // may start anywhere on the self-motion manifold, the arm then moves there
+    // the plan starts from the arm's own configuration (the paper's
+    // reachability from the initial configuration): knot 0 has one candidate, q(t)
+    {
+      PreviewTarget start;
+      start.position = in.task.target_position(plan_times_[0]);
+      start.orientation = in.ref.orientation;
+      arm_.set_scene(in.scene, 0.0);
+      genes.col(0) = in.state.q;
+      amsip[0] = arm_.score(genes.col(0), start).amsip;
+    }
     const JointBox& box = arm_.box();
     auto excess = [&](int k, int a, int b) {  // how far a step from candidate a (knot k−1) to b (knot k) is out of reach
       double worst = 0;
@@ -186,7 +194,7 @@ class MultiPreview final : public Method {
       }
       return std::max(worst, 0.0);
     };
-    for (int c = 0; c < candidates; ++c) value(c, 0) = amsip[c];
+    for (int c = 0; c < candidates; ++c) value(c, 0) = c == 0 ? amsip[0] : -std::numeric_limits<double>::infinity();
     for (int k = 1; k < knots; ++k)
       for (int b = 0; b < candidates; ++b) {
         double best = -std::numeric_limits<double>::infinity();

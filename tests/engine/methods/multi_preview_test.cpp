@@ -284,5 +284,68 @@ TEST(MultiPreview, ListedWithValidDefaults) {
   for (const ParamSpec& spec : info->params) EXPECT_EQ(param_problem(spec, spec.def), "") << spec.name;
 }
 
+
+// --- the paper's comparison (Sec. VII, Figs 11-13), scenarios 30-32 --------
+
+struct PaperRun {
+  test::RunResult result;
+  double first_collision = -1;  // s, -1 when none
+};
+
+PaperRun run_paper(const std::string& file) {
+  Simulator sim(load_scenario_file(test::source_path("scenarios/" + file)));
+  test::FrameLog log;
+  PaperRun run;
+  run.result.summary = run_to_end(sim, &log);
+  run.result.frames = std::move(log.frames);
+  for (const Frame& f : run.result.frames)
+    if (f.collided) {
+      run.first_collision = f.t;
+      break;
+    }
+  return run;
+}
+
+TEST(MultiPreviewPaper, SinglePreviewCollidesNearThirtySecondsThreePreviewsDoNot) {
+  const PaperRun single = run_paper("30_zhang_single_preview.json");
+  const PaperRun multi = run_paper("31_zhang_multi_preview.json");
+  // the paper: single preview (t̃ = 10 s) hits the object at t = 30 s
+  EXPECT_TRUE(single.result.summary.collided);
+  EXPECT_GT(single.first_collision, 25.0);
+  EXPECT_LT(single.first_collision, 35.0);
+  // three previews (t̃ = 5 s, k = 0.3, 0.65, 0.05) track the whole path without collision
+  EXPECT_FALSE(multi.result.summary.collided);
+  EXPECT_GT(multi.result.summary.min_distance, 0.01);
+  for (const PaperRun* run : {&single, &multi}) {
+    EXPECT_LT(run->result.summary.max_tracking_error, 1e-3);
+    EXPECT_EQ(run->result.summary.nonfinite_steps, 0);
+  }
+  // seeded: a second run gives the same frames, bit for bit
+  EXPECT_TRUE(same_frames(single.result.frames, run_paper("30_zhang_single_preview.json").result.frames));
+  EXPECT_TRUE(same_frames(multi.result.frames, run_paper("31_zhang_multi_preview.json").result.frames));
+  std::cout << "[ paper ] single preview: first collision at t = " << single.first_collision
+            << " s, min distance " << single.result.summary.min_distance << " m; three previews: min distance "
+            << multi.result.summary.min_distance << " m\n";
+}
+
+TEST(MultiPreviewPaper, PathPlanningTracksWithoutCollisionAndTheMostAmsip) {
+  const PaperRun plan = run_paper("32_zhang_path_planning.json");
+  const PaperRun multi = run_paper("31_zhang_multi_preview.json");
+  EXPECT_FALSE(plan.result.summary.collided);
+  EXPECT_LT(plan.result.summary.max_tracking_error, 2e-3);
+  const std::vector<std::string> names = find_method("multi_preview")->make({Model(make_planar({{1.0, 0.0}, {1.0, 0.0}}, {0, 0})),
+                                                         TaskSpace::xy, 0})->diagnostic_names();
+  const auto amsip = std::find(names.begin(), names.end(), "amsip") - names.begin();
+  auto mean_amsip = [amsip](const PaperRun& run) {
+    double sum = 0;
+    for (const Frame& f : run.result.frames) sum += f.diagnostics[amsip];
+    return sum / double(run.result.frames.size());
+  };
+  // the paper (Fig. 12): the planned path keeps ¹S at the peaks
+  EXPECT_GT(mean_amsip(plan), mean_amsip(multi));
+  std::cout << "[ paper ] mean AMSIP: path planning " << mean_amsip(plan) << ", three previews " << mean_amsip(multi)
+            << "\n";
+}
+
 }  // namespace
 }  // namespace rrlab
