@@ -46,7 +46,6 @@ class MultiPreview final : public Method {
   explicit MultiPreview(const MethodContext& ctx)
       : Method(multi_preview_params()),
         n_(ctx.model.dof()),
-        space_(ctx.space),
         arm_(ctx.model, ctx.space),
         actual_(ctx.model, ctx.space),
         plan_population_(ctx.model.dof(), kMaxPopulation),
@@ -55,7 +54,6 @@ class MultiPreview final : public Method {
         target_(n_),
         v_(n_),
         null_v_(n_),
-        preview_q_(n_),
         plan_q_(n_),
         plan_next_(n_),
         velocity_limits_(ctx.model.limits.velocity) {
@@ -268,14 +266,13 @@ class MultiPreview final : public Method {
   }
 
   int n_;
-  TaskSpace space_;
   ImaginaryManipulator arm_;
   AvoidanceManipulability actual_;
   std::vector<PreviewPopulation> populations_;
   PreviewPopulation plan_population_;
   Rng rng_;
   RightInverse inverse_;
-  Eigen::VectorXd target_, v_, null_v_, preview_q_, plan_q_, plan_next_, velocity_limits_;
+  Eigen::VectorXd target_, v_, null_v_, plan_q_, plan_next_, velocity_limits_;
   std::vector<Eigen::VectorXd> previews_;
   std::vector<double> preview_s_;
   std::vector<bool> circular_;

@@ -119,7 +119,7 @@ Evaluation ImaginaryManipulator::evaluate(Eigen::Ref<Eigen::VectorXd> q, const P
     box_.confine(q_);
   }
   q = q_;
-  Evaluation e = score(q_, target);
+  Evaluation e = score_current(target);  // kin_ is already at q_
   e.residual = residual;
   e.fitness = e.amsip - kMissPenalty * residual;
   if (!std::isfinite(e.fitness)) e.fitness = kWorst;
@@ -127,9 +127,13 @@ Evaluation ImaginaryManipulator::evaluate(Eigen::Ref<Eigen::VectorXd> q, const P
 }
 
 Evaluation ImaginaryManipulator::score(const Eigen::VectorXd& q, const PreviewTarget& target) {
-  ++evaluations_;
-  if (&q != &q_) q_ = q;
+  q_ = q;
   forward_kinematics(model_, q_, kin_);
+  return score_current(target);
+}
+
+Evaluation ImaginaryManipulator::score_current(const PreviewTarget& target) {
+  ++evaluations_;
   task_jacobian(model_, kin_, space_, hand_jacobian_);
   Evaluation e;
   e.residual = hand_error(target);

@@ -68,6 +68,7 @@ class ImaginaryManipulator {
 
  private:
   double hand_error(const PreviewTarget& target);  // fills error_ at kin_, returns its norm
+  Evaluation score_current(const PreviewTarget& target);  // at kin_ (forward kinematics done)
   static std::uint64_t geometry_fingerprint(const Scene& scene);
 
   Model model_;  // a copy: the evaluator outlives no one but may outlive the caller's reference

@@ -347,5 +347,21 @@ TEST(MultiPreviewPaper, PathPlanningTracksWithoutCollisionAndTheMostAmsip) {
             << "\n";
 }
 
+
+TEST(MultiPreviewPaper, Fig5ScenarioDrawsTwoLinesAndAnEllipse) {
+  Simulator sim(load_scenario_file(test::source_path("scenarios/33_zhang_fig5_ellipsoids.json")));
+  sim.step();
+  const Overlays& o = sim.frame().overlays;
+  ASSERT_EQ(o.ellipses.size(), 3u);
+  for (int i = 0; i < 3; ++i) {
+    const Eigen::Matrix3d& axes = o.ellipses[i].axes;
+    EXPECT_GT(axes.col(0).norm(), 0.05) << i;
+    // ¹P_1, ¹P_3: segments (second semi-axis zero); ¹P_2: a full ellipse
+    if (i == 1) EXPECT_GT(axes.col(1).norm(), 0.04);
+    else EXPECT_LT(axes.col(1).norm(), 1e-6) << i;
+    EXPECT_LT(axes.col(0).dot(axes.col(1)), 1e-12);  // perpendicular semi-axes
+  }
+}
+
 }  // namespace
 }  // namespace rrlab
