@@ -69,6 +69,14 @@ INSTANTIATE_TEST_SUITE_P(Baselines, NoAllocation,
                          ::testing::Values("pinv", "dls", "gpm", "task_priority", "sr_task_priority",
                                            "closest_point", "multi_preview"));
 
+// multi_preview's path planning (previews = 0) plans on its first step, then only follows the plan
+TEST(NoAllocation, MultiPreviewPathPlanningAfterThePlan) {
+  nlohmann::json doc = dh7_scenario("multi_preview");
+  doc["method"]["params"] = {{"previews", 0}, {"plan_interval", 0.25}, {"warmup_generations", 5}};
+  Simulator sim(parse_scenario(doc));
+  EXPECT_EQ(allocations_in_steps(sim, 100), 0);
+}
+
 TEST(NoAllocation, CounterSeesAllocations) {
   g_allocations = 0;
   g_counting = true;
