@@ -261,8 +261,10 @@ class MultiPreview final : public Method {
   }
 
   void on_param_changed(int index) override {
-    // a new path-planning request (previews back to 0, or a new knot spacing) replans
-    if (index == kPlanInterval || index == kPotentialWidth || index == kPotentialHeight) plan_.resize(n_, 0);
+    // a new path-planning request (previews set to 0 again, a new knot spacing or
+    // potential) replans from the arm's configuration at that step
+    if (index == kPreviews || index == kPlanInterval || index == kPotentialWidth || index == kPotentialHeight)
+      plan_.resize(n_, 0);
   }
 
   int n_;

@@ -205,6 +205,20 @@ TEST(MultiPreview, NullSpacePartNeverMovesTheHand) {
   EXPECT_GT(largest_null, 1e-3);
 }
 
+TEST(MultiPreview, SwitchingToPathPlanningPlansFromTheCurrentConfiguration) {
+  Simulator sim(parse_scenario(fig5_hold()));
+  for (int k = 0; k < 50; ++k) sim.step();
+  const auto& names = sim.diagnostic_names();
+  const auto gap = std::find(names.begin(), names.end(), "preview_gap") - names.begin();
+  EXPECT_GT(sim.frame().diagnostics[gap], 0.1);  // previews pull from afar
+  sim.set_param("previews", 0);
+  sim.step();
+  EXPECT_LT(sim.frame().diagnostics[gap], 1e-12);  // the plan starts where the arm is
+  EXPECT_EQ(sim.frame().overlays.ghosts.size(), 3u);
+  for (int k = 0; k < 100; ++k) sim.step();
+  EXPECT_LT(sim.frame().task_error, 1e-3);
+}
+
 bool same_frames(const std::vector<Frame>& a, const std::vector<Frame>& b) {
   if (a.size() != b.size()) return false;
   for (size_t i = 0; i < a.size(); ++i) {
