@@ -1,9 +1,9 @@
-# Thin wrapper over CMake; the README's two commands are `make demo` and `make test`.
+# Thin wrapper over CMake; the README's two commands are `make serve` and `make test`.
 BUILD ?= build
 JOBS ?= 2
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
 
-.PHONY: deps configure build demo test bench clean
+.PHONY: deps configure build serve demo test bench clean
 
 deps:
 	./scripts/install-deps
@@ -14,7 +14,11 @@ configure: deps
 build: configure
 	cmake --build $(BUILD) --parallel $(JOBS)
 
-# Main job (until the server lands): run the planar demo and print its summary.
+# Main job: serve the dashboard and API on http://127.0.0.1:8080, runs in data/rrlab.db.
+serve: build
+	$(BUILD)/server/rrlab serve --db data/rrlab.db
+
+# One command-line run of the planar demo, printing its summary.
 demo: build
 	$(BUILD)/server/rrlab run scenarios/01_planar7_obstacles.json
 

@@ -20,6 +20,7 @@ RRLAB_DECLARE_METHOD(sr_task_priority)
 RRLAB_DECLARE_METHOD(closest_point)
 RRLAB_DECLARE_METHOD(posture_generation)
 RRLAB_DECLARE_METHOD(ccp_voronoi)
+RRLAB_DECLARE_METHOD(multi_preview)
 
 #undef RRLAB_DECLARE_METHOD
 

@@ -23,6 +23,8 @@ const std::vector<MethodInfo>& method_registry() {
        posture_generation_params(), make_posture_generation},
       {"ccp_voronoi", "Configuration control points, DI / Voronoi-boundary DM criteria (Sezgin et al. 1997)",
        ccp_voronoi_params(), make_ccp_voronoi},
+      {"multi_preview", "Multi-preview control by avoidance manipulability and a 1-step GA (Zhang et al.)",
+       multi_preview_params(), make_multi_preview},
   };
   return table;
 }

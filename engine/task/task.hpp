@@ -50,6 +50,8 @@ class Task {
   double gain() const { return gain_; }
   void set_gain(double gain) { gain_ = gain; }
   bool is_joystick() const { return trajectory_.is_joystick(); }
+  // Length of the trajectory in time (the scenario's duration): previews and plans stop there.
+  double duration() const { return trajectory_.duration(); }
   const Eigen::Vector3d& joystick_linear() const { return joy_linear_; }
 
  private:

@@ -153,7 +153,9 @@ const char* RunGroup::lane_status(const Lane& lane) const {
 }
 
 void RunGroup::publish(Lane& lane) {
-  const FrameContext context{lane.run_id, lane.seq, lane.scene_version, lane_status(lane)};
+  const auto wall = std::chrono::system_clock::now().time_since_epoch();
+  const FrameContext context{lane.run_id, lane.seq, lane.scene_version, lane_status(lane),
+                             std::chrono::duration_cast<std::chrono::microseconds>(wall).count()};
   encode_frame(context, lane.sim->frame(), lane.sim->model(), lane.sim->kinematics(), lane.sim->scene(),
                lane.encode_buffer);
   auto text = std::make_shared<const std::string>(lane.encode_buffer);
@@ -319,7 +321,10 @@ json RunGroup::control(int lane_index, const json& body) {
     wake_.notify_all();
     stepped_.wait_for(lock, std::chrono::seconds(5), [&] { return finished_ || lane.seq >= target; });
   } else if (action == "stop") {
+    // answer once the run has ended and its frames are committed
     stop_requested_ = true;
+    wake_.notify_all();
+    stepped_.wait_for(lock, std::chrono::seconds(10), [&] { return finished_.load(); });
   }
   wake_.notify_all();
   return status_locked(lane);

@@ -135,6 +135,10 @@ void encode_frame(const FrameContext& c, const Frame& f, const Model& model, con
   out += ']';
   key("scene_version", out);
   out += std::to_string(c.scene_version);
+  if (c.wall_us != 0) {
+    key("wall_us", out);
+    out += std::to_string(c.wall_us);
+  }
   key("metrics", out);
   out += "{\"task_error\":";
   num(f.task_error, out);

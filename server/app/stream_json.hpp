@@ -18,6 +18,7 @@ struct FrameContext {
   std::int64_t run_id = 0, seq = 0;
   std::uint64_t scene_version = 0;
   const char* status = "running";
+  std::int64_t wall_us = 0;  // publication time (system clock, µs): clients measure latency; 0: omitted
 };
 
 // {"type":"frame","run","seq","step","t","status","q","qdot","links":[[sx,sy,sz,ex,ey,ez],..],

@@ -58,9 +58,13 @@ TEST(Cli, RunPrintsTheSummaryJson) {
 }
 
 TEST(Cli, EveryScenarioRunsWithEveryBaseline) {
-  for (const char* file : {"01_planar7_obstacles.json", "02_spatial_xz_reach.json", "03_dh7_pose.json"})
+  std::vector<std::string> files;
+  for (const auto& entry : std::filesystem::directory_iterator(std::string(RRLAB_SOURCE_DIR) + "/scenarios"))
+    if (entry.path().extension() == ".json") files.push_back(entry.path().filename().string());
+  ASSERT_GE(files.size(), 4u);
+  for (const std::string& file : files)
     for (const char* method : {"pinv", "dls", "gpm", "task_priority", "sr_task_priority", "closest_point"}) {
-      const Result r = rrlab("run " + scenario(file) + " --method " + method + " --steps 200");
+      const Result r = rrlab("run " + scenario(file) + " --method " + method + " --steps 100");
       EXPECT_EQ(r.code, 0) << file << " " << method << ": " << r.err;
       EXPECT_EQ(json::parse(r.out)["method"], method);
     }

@@ -67,7 +67,8 @@ TEST_P(NoAllocation, SteadyStateStepAmongObstacles) {
 
 INSTANTIATE_TEST_SUITE_P(Baselines, NoAllocation,
                          ::testing::Values("pinv", "dls", "gpm", "task_priority", "sr_task_priority",
-                                           "closest_point", "posture_generation", "ccp_voronoi"));
+                                           "closest_point", "posture_generation", "ccp_voronoi",
+                                           "multi_preview"));
 
 // Variants of the paper methods beyond their defaults.
 TEST(NoAllocation, CcpVoronoiLagrangianAndHybrid) {
@@ -79,6 +80,15 @@ TEST(NoAllocation, CcpVoronoiLagrangianAndHybrid) {
     Simulator sim(parse_scenario(doc));
     EXPECT_EQ(allocations_in_steps(sim, 50), 0) << params;
   }
+}
+
+
+// multi_preview's path planning (previews = 0) plans on its first step, then only follows the plan
+TEST(NoAllocation, MultiPreviewPathPlanningAfterThePlan) {
+  nlohmann::json doc = dh7_scenario("multi_preview");
+  doc["method"]["params"] = {{"previews", 0}, {"plan_interval", 0.25}, {"warmup_generations", 5}};
+  Simulator sim(parse_scenario(doc));
+  EXPECT_EQ(allocations_in_steps(sim, 100), 0);
 }
 
 TEST(NoAllocation, CounterSeesAllocations) {
