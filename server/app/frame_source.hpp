@@ -5,9 +5,13 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
+#include <map>
 #include <memory>
+#include <mutex>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 namespace rrlab::server {
 
@@ -17,9 +21,38 @@ struct PublishedFrame {
   std::shared_ptr<const std::string> text;
 };
 
+// Callbacks told when a new frame is published (sessions post to their own
+// strand from there, so a publication reaches every client at once).
+class Subscribers {
+ public:
+  std::uint64_t add(std::function<void()> notify) {
+    std::lock_guard lock(mutex_);
+    callbacks_[++next_] = std::move(notify);
+    return next_;
+  }
+  void remove(std::uint64_t id) {
+    std::lock_guard lock(mutex_);
+    callbacks_.erase(id);
+  }
+  void notify_all() {
+    std::vector<std::function<void()>> callbacks;  // called unlocked: a callback may remove itself
+    {
+      std::lock_guard lock(mutex_);
+      for (auto& [id, notify] : callbacks_) callbacks.push_back(notify);
+    }
+    for (auto& notify : callbacks) notify();
+  }
+
+ private:
+  std::mutex mutex_;
+  std::map<std::uint64_t, std::function<void()>> callbacks_;
+  std::uint64_t next_ = 0;
+};
+
 class FrameSource {
  public:
   virtual ~FrameSource() = default;
+  virtual Subscribers& subscribers() = 0;
   virtual std::string snapshot() = 0;
   virtual PublishedFrame latest() = 0;
   // A client message (inputs, control); returns the reply to send. Never throws.

@@ -77,6 +77,7 @@ void ReplayPlayer::show_locked(std::int64_t seq) {
   published_.version += 1;
   published_.scene_version = scene_version_;
   published_.text = std::make_shared<const std::string>(encoded_);
+  subscribers_.notify_all();
 }
 
 void ReplayPlayer::loop() {

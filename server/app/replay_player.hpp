@@ -32,6 +32,7 @@ class ReplayPlayer final : public FrameSource, public std::enable_shared_from_th
 
   std::string snapshot() override;
   PublishedFrame latest() override;
+  Subscribers& subscribers() override { return subscribers_; }
   nlohmann::json handle_message(const nlohmann::json& message) override;
 
  private:
@@ -56,6 +57,7 @@ class ReplayPlayer final : public FrameSource, public std::enable_shared_from_th
   std::string encoded_;
   PublishedFrame published_;
   std::uint64_t scene_version_ = 1;
+  Subscribers subscribers_;
 };
 
 }  // namespace rrlab::server

@@ -33,6 +33,8 @@ class RunGroup::LaneSource final : public FrameSource {
     return group_->lanes_[size_t(lane_)].published;
   }
 
+  Subscribers& subscribers() override { return *group_->lanes_[size_t(lane_)].subscribers; }
+
   json handle_message(const json& message) override {
     try {
       if (!message.is_object()) throw ApiError(400, "invalid", "a message must be a JSON object", "");
@@ -163,6 +165,7 @@ void RunGroup::publish(Lane& lane) {
   lane.published.version += 1;
   lane.published.scene_version = lane.scene_version;
   lane.published.text = std::move(text);
+  lane.subscribers->notify_all();
 }
 
 void RunGroup::loop() {
@@ -188,10 +191,13 @@ void RunGroup::loop() {
       break;
     }
     ++anchor_steps;
+    // publish on a display-rate schedule (deadlines, so that steps of 10 ms
+    // still give 60 publications a second on average)
     const auto now = Clock::now();
-    if (single || all_done() || now - last_publish_ >= publish_period) {
+    if (single || all_done() || now >= next_publish_) {
       for (Lane& lane : lanes_) publish(lane);
-      last_publish_ = now;
+      next_publish_ += std::chrono::duration_cast<Clock::duration>(publish_period);
+      if (next_publish_ < now) next_publish_ = now + std::chrono::duration_cast<Clock::duration>(publish_period);
     }
     if (single) stepped_.notify_all();
     if (!paused_ && options_.rate > 0) {

@@ -81,6 +81,7 @@ class RunGroup : public std::enable_shared_from_this<RunGroup> {
     // published for clients (guarded by publish_mutex_)
     PublishedFrame published;
     std::string encode_buffer;
+    std::shared_ptr<Subscribers> subscribers = std::make_shared<Subscribers>();
   };
   class LaneSource;
 
@@ -105,7 +106,7 @@ class RunGroup : public std::enable_shared_from_this<RunGroup> {
   bool paused_ = false, stop_requested_ = false;
   int step_requests_ = 0;
   std::uint64_t pacing_generation_ = 0;  // bumped on pause/rate changes
-  std::chrono::steady_clock::time_point last_publish_{};
+  std::chrono::steady_clock::time_point next_publish_{};
 
   std::mutex publish_mutex_;
   std::atomic<bool> finished_{false};

@@ -20,7 +20,12 @@ class Listener : public std::enable_shared_from_this<Listener> {
   void accept() {
     // each connection gets its own strand
     acceptor_.async_accept(net::make_strand(ioc_), [self = shared_from_this()](beast::error_code ec, tcp::socket socket) {
-      if (!ec) start_http_session(std::move(socket), self->state_);
+      if (!ec) {
+        // frames are small and latency matters: no Nagle delay behind unacknowledged data
+        beast::error_code ignored;
+        socket.set_option(tcp::no_delay(true), ignored);
+        start_http_session(std::move(socket), self->state_);
+      }
       if (ec != net::error::operation_aborted) self->accept();
     });
   }

@@ -24,7 +24,10 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
         period_(std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / display_hz))) {
     ++state_->websockets;
   }
-  ~WebSocketSession() { --state_->websockets; }
+  ~WebSocketSession() {
+    if (subscription_) source_->subscribers().remove(subscription_);
+    --state_->websockets;
+  }
 
   void run(http::request<http::string_body>&& request) {
     beast::get_lowest_layer(ws_).expires_never();  // the WebSocket has its own timeouts
@@ -41,6 +44,12 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
       self->send_snapshot();
       self->read();
       self->arm_timer();
+      // new frames are pushed at once: the publisher posts onto this strand
+      std::weak_ptr<WebSocketSession> weak = self;
+      self->subscription_ = self->source_->subscribers().add([weak] {
+        if (auto session = weak.lock())
+          net::post(session->ws_.get_executor(), [session] { session->send_latest(); });
+      });
     });
   }
 
@@ -67,11 +76,19 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
     });
   }
 
+  // The timer: drops a stalled client, and sends what a notification missed.
   void on_tick() {
     if (writing_) {
       if (Clock::now() - write_started_ > state_->limits.ws_stall_timeout) close();
-      return;  // latest wins: this tick's frame is skipped
+      return;
     }
+    send_latest();
+  }
+
+  // Latest wins: while a write is in flight nothing is queued; the newest
+  // frame goes out when it completes, frames published meanwhile are skipped.
+  void send_latest() {
+    if (!open_ || writing_) return;
     const PublishedFrame latest = source_->latest();
     if (latest.scene_version != sent_scene_) return send_snapshot();
     if (latest.version == sent_version_ || !latest.text) return;
@@ -94,7 +111,10 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
                     [self = shared_from_this(), message](beast::error_code ec, std::size_t) {
                       self->writing_ = false;
                       if (ec) return self->close();
-                      self->write_next();
+                      if (!self->replies_.empty())
+                        self->write_next();
+                      else
+                        self->send_latest();
                     });
   }
 
@@ -153,6 +173,7 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
   Clock::time_point write_started_{}, window_start_{};
   int window_count_ = 0;
   std::uint64_t sent_version_ = 0, sent_scene_ = 0;
+  std::uint64_t subscription_ = 0;
 };
 
 }  // namespace
