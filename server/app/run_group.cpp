@@ -20,7 +20,7 @@ class RunGroup::LaneSource final : public FrameSource {
   LaneSource(std::shared_ptr<RunGroup> group, int lane) : group_(std::move(group)), lane_(lane) {}
 
   std::string snapshot() override {
-    std::lock_guard lock(group_->mutex_);
+    auto lock = group_->lock_for_input();
     Lane& lane = group_->lanes_[size_t(lane_)];
     const FrameContext context{lane.run_id, lane.seq, lane.scene_version, group_->lane_status(lane)};
     std::string frame;
@@ -106,7 +106,7 @@ void RunGroup::start() {
 
 void RunGroup::request_stop() {
   {
-    std::lock_guard lock(mutex_);
+    auto lock = lock_for_input();
     stop_requested_ = true;
   }
   wake_.notify_all();
@@ -262,7 +262,7 @@ json RunGroup::summary_locked(Lane& lane) {
 }
 
 json RunGroup::summary_json(int lane) {
-  std::lock_guard lock(mutex_);
+  auto lock = lock_for_input();
   return summary_locked(lanes_[size_t(lane)]);
 }
 
@@ -281,10 +281,12 @@ json RunGroup::status_locked(const Lane& lane) const {
 }
 
 json RunGroup::status_json(int lane) {
-  std::lock_guard lock(mutex_);
+  auto lock = lock_for_input();
   return status_locked(lanes_[size_t(lane)]);
 }
 
+// Every lock taken from outside the simulation thread goes through here: an
+// as-fast-as-possible run yields between steps while someone is waiting.
 std::unique_lock<std::mutex> RunGroup::lock_for_input() {
   ++pending_inputs_;
   std::unique_lock lock(mutex_);
