@@ -18,6 +18,8 @@ RRLAB_DECLARE_METHOD(gpm)
 RRLAB_DECLARE_METHOD(task_priority)
 RRLAB_DECLARE_METHOD(sr_task_priority)
 RRLAB_DECLARE_METHOD(closest_point)
+RRLAB_DECLARE_METHOD(qp_constraints)
+RRLAB_DECLARE_METHOD(direct_search)
 
 #undef RRLAB_DECLARE_METHOD
 

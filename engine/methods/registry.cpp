@@ -18,6 +18,9 @@ const std::vector<MethodInfo>& method_registry() {
        sr_task_priority_params(), make_sr_task_priority},
       {"closest_point", "Obstacle avoidance at the closest link point (Maciejewski & Klein 1985)",
        closest_point_params(), make_closest_point},
+      {"qp_constraints",
+       "QP with joint range/velocity/acceleration bounds, obstacle inequalities and singularity avoidance (Qiu, Cao & Sun)",
+       qp_constraints_params(), make_qp_constraints},
   };
   return table;
 }
