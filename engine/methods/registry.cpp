@@ -21,6 +21,9 @@ const std::vector<MethodInfo>& method_registry() {
       {"qp_constraints",
        "QP with joint range/velocity/acceleration bounds, obstacle inequalities and singularity avoidance (Qiu, Cao & Sun)",
        qp_constraints_params(), make_qp_constraints},
+      {"direct_search",
+       "Direct search over perturbed self-motion options, weighted JRA/JVM/DM/clearance criteria (Kapoor, Cetin & Tesar)",
+       direct_search_params(), make_direct_search},
   };
   return table;
 }

@@ -67,7 +67,7 @@ TEST_P(NoAllocation, SteadyStateStepAmongObstacles) {
 
 INSTANTIATE_TEST_SUITE_P(Baselines, NoAllocation,
                          ::testing::Values("pinv", "dls", "gpm", "task_priority", "sr_task_priority",
-                                           "closest_point", "qp_constraints"));
+                                           "closest_point", "qp_constraints", "direct_search"));
 
 TEST(NoAllocation, CounterSeesAllocations) {
   g_allocations = 0;
