@@ -71,7 +71,8 @@ class DirectSearch final : public Method {
         probe_(ctx.model),
         jacobian_(m_, n_),
         scaled_jacobian_(m_, n_),
-        conditioning_(m_, n_),
+        jjt_(m_, m_),
+        eigenvalues_(m_),
         block_jacobian_(m_, n_),
         block_inverse_(m_, std::max(1, n_ - 1)),
         option_inverse_(m_, std::max(1, n_ - 1)),
@@ -159,8 +160,14 @@ class DirectSearch final : public Method {
         previous = residual;
         // eq 3 with J_b at θ (a full Newton step; the block is often poorly conditioned)
         for (int c = 0; c < block_count_; ++c) block_jacobian_.col(c) = jacobian_.col(block_[c]);
-        option_inverse_.factor_pinv(block_jacobian_);
-        apply_block_step(option_inverse_, error_);
+        if (block_count_ == m_) {  // the paper's square J_m×m: eq 3 by LU
+          lu_.compute(block_jacobian_);
+          block_step_.noalias() = lu_.solve(error_);
+          for (int c = 0; c < block_count_; ++c) theta_[block_[c]] += block_step_[c];
+        } else {
+          option_inverse_.factor_pinv(block_jacobian_);
+          apply_block_step(option_inverse_, error_);
+        }
         ++it;
       }
       max_iterations_used = std::max(max_iterations_used, it);
@@ -241,8 +248,10 @@ class DirectSearch final : public Method {
   double dexterity(const Eigen::MatrixXd& jacobian) {
     scaled_jacobian_ = jacobian;
     if (space_ == TaskSpace::pose) scaled_jacobian_.topRows(3) *= p(kDmScale);
-    conditioning_.compute(scaled_jacobian_);
-    return conditioning_.condition_number();
+    jjt_.noalias() = scaled_jacobian_ * scaled_jacobian_.transpose();
+    eigenvalues_.compute(jjt_, Eigen::EigenvaluesOnly);
+    const double lo = eigenvalues_.eigenvalues()[0], hi = eigenvalues_.eigenvalues()[m_ - 1];
+    return lo > 0 ? std::sqrt(hi / lo) : kInf;
   }
 
   int option_count() const {
@@ -378,7 +387,8 @@ class DirectSearch final : public Method {
   TaskSpace space_;
   KinematicsData probe_;
   Eigen::MatrixXd jacobian_, scaled_jacobian_;
-  JacobianConditioning conditioning_;
+  Eigen::MatrixXd jjt_;
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigenvalues_;
   Eigen::MatrixXd block_jacobian_;
   RightInverse block_inverse_, option_inverse_;
   Eigen::MatrixXd options_, criteria_;
