@@ -26,6 +26,9 @@
 //  - u_s (eq 23) is oriented so that moving the end-effector along +u_s
 //    increases σ_min (finite difference), so eq 23 removes only the motion
 //    towards the singularity.
+//  - φ (eq 8) is 0 unless `clearance_gain` k > 0: then φ = −k(1 − ρ(d))J_oᵀr_oc
+//    summed over the obstacle rows, a separating push that grows through the
+//    buffer (an extension; the examples use the minimum-norm objective).
 //  - infeasible QP: the task is relaxed with a slack s, J q̇ − s = ẋ_R, at
 //    cost ½ w|s|² (w = slack_weight); if the bounds and obstacle rows alone
 //    conflict (the acceleration bound cannot brake the approach in time), the
@@ -39,7 +42,7 @@
 namespace rrlab {
 namespace {
 
-enum { kSafety, kBuffer, kEta, kSigmaS, kSlackWeight, kApproach };
+enum { kSafety, kBuffer, kEta, kSigmaS, kSlackWeight, kApproach, kClearanceGain };
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kShrink = 1.0 - 1e-9;
@@ -215,6 +218,7 @@ class QpConstraints final : public Method {
     const DistanceTable& table = in.distances;
     int rows = 0;
     double min_critical = kInf;
+    strict_->g.setZero();
     for (int link = 0; link < table.links; ++link) {
       double link_min = kInf;
       for (int o = 0; o < table.obstacles; ++o) {
@@ -246,6 +250,12 @@ class QpConstraints final : public Method {
           t = eta;  // eq 20, inside the safety margin: push away
         }
         strict_->b_in[rows] = t + r_oc.dot(v_obstacle);
+        // eq 8's linear term φ (free in the paper; 0 by default): −k(1 − ρ)(r_ocᵀJ_o)ᵀ
+        // favours separating motion inside the buffer before the row binds
+        if (p(kClearanceGain) > 0) {
+          const double rho = d > ds ? 0.5 * (1.0 - std::cos(M_PI * (d - ds) / sigma)) : 0.0;
+          strict_->g.noalias() -= (p(kClearanceGain) * (1.0 - rho)) * row.transpose();
+        }
         ++rows;
       }
       if (link < static_cast<int>(link_distance_.size()))
@@ -277,6 +287,7 @@ class QpConstraints final : public Method {
       qp.A_in.block(0, n_, rows, m_).setZero();  // column n + m stays 1: e
       qp.b_in.head(rows) = strict_->b_in.head(rows);
     }
+    qp.g.head(n_) = strict_->g;
     qp.lower.head(n_) = lower_;
     qp.upper.head(n_) = upper_;
     qp.lower[n_ + m_] = 0.0;
@@ -320,7 +331,11 @@ std::vector<ParamSpec> qp_constraints_params() {
            "weight w of ½w|s|² when the constraints make the exact task infeasible", 1e6, 1.0, 1e12, 1e3, {}},
           {"approach_rate", "Buffer entry approach rate", "m/s",
            "least approach rate |P_c| allowed at the outer edge of the buffer (eq 20); the entry rate when faster",
-           0.1, 0.0, 10.0, 0.01, {}}};
+           0.1, 0.0, 10.0, 0.01, {}},
+          {"clearance_gain", "Clearance gain k (linear term φ)", "m/s",
+           "φ = −k(1 − ρ(d)) J_oᵀr_oc for each pair in the buffer (eq 8's linear term, not used in the paper's "
+           "examples): moves links away before their rows bind; 0 = the paper's minimum-norm objective",
+           0.0, 0.0, 100.0, 0.1, {}}};
 }
 std::unique_ptr<Method> make_qp_constraints(const MethodContext& ctx) {
   return std::make_unique<QpConstraints>(ctx);

@@ -69,6 +69,20 @@ TEST(QpConstraints, QiuCircleKeepsTheSafetyMarginAndEveryBound) {
               qp.summary.max_tracking_error, qp.summary.min_distance, 100 * exact_steps / qp.frames.size());
 }
 
+TEST(QpConstraints, ClearanceGainMovesLinksAwayBeforeTheRowsBind) {
+  // eq 8's linear term (an extension, 0 in the scenario): less task relaxation
+  Simulator plain(load_scenario_file(test::source_path("scenarios/20_qiu_circle.json")));
+  Simulator pushed(load_scenario_file(test::source_path("scenarios/20_qiu_circle.json")));
+  pushed.set_param("clearance_gain", 10.0);
+  const Summary a = run_to_end(plain, nullptr), b = run_to_end(pushed, nullptr);
+  EXPECT_GE(b.min_distance, 0.1 - 1e-3);
+  EXPECT_GT(b.min_distance, a.min_distance);
+  EXPECT_LT(b.max_tracking_error, 0.5 * a.max_tracking_error);
+  EXPECT_LE(*b.max_qddot_ratio, 1.0);
+  std::printf("qiu circle with clearance_gain 10: max tracking error %.4f m (paper objective %.4f), min distance %.4f m\n",
+              b.max_tracking_error, a.max_tracking_error, b.min_distance);
+}
+
 TEST(QpConstraints, QiuEllipsePseudoinverseBlowsUpWhereQpBypassesTheSingularity) {
   const FileRun pinv = run_file("scenarios/21_qiu_ellipse.json", "pinv");
   const FileRun qp = run_file("scenarios/21_qiu_ellipse.json", "qp_constraints");

@@ -69,6 +69,11 @@ INSTANTIATE_TEST_SUITE_P(Baselines, NoAllocation,
                          ::testing::Values("pinv", "dls", "gpm", "task_priority", "sr_task_priority",
                                            "closest_point", "qp_constraints", "direct_search"));
 
+TEST(NoAllocation, DirectSearchWithBlockSwitch) {
+  Simulator sim(load_scenario_file(test::source_path("scenarios/22_kapoor_square_circle.json")));
+  EXPECT_EQ(allocations_in_steps(sim, 50), 0);
+}
+
 TEST(NoAllocation, CounterSeesAllocations) {
   g_allocations = 0;
   g_counting = true;
