@@ -58,7 +58,7 @@ void BM_qp_constraints_step_dh7_10_obstacles(benchmark::State& state) {
       {"shape": "point", "position": [0.5, -0.35, 0.3]},
       {"shape": "box", "center": [-0.3, 0.0, 0.5], "size": [0.1, 0.6, 0.6]},
       {"shape": "sphere", "center": [0.0, 0.45, 0.4], "radius": 0.1},
-      {"shape": "wall", "point": [0, 0, -0.05], "normal": [0, 0, 1]},
+      {"shape": "wall", "point": [0, 0, -0.1], "normal": [0, 0, 1]},
       {"shape": "polygon", "points": [[0.8, 0.4], [1.0, 0.4], [0.9, 0.6]], "z": [0, 0.9]}],
     "task": {"space": "pose", "trajectory": {"type": "circle", "center": [0.6677, -0.1500, 0.4208],
              "radius": 0.15, "normal": [1, 0, 0]}},

@@ -20,6 +20,9 @@
 //    entered tangentially would otherwise be frozen at d_s + σ); either way
 //    the constraint is not yet active at entry, so q̇ stays continuous.
 //  - moving obstacles: the rate is taken relative, r_ocᵀ(J_o q̇ − v_o) ≥ t.
+//  - a pair whose distance no joint can change (r_ocᵀJ_o = 0, e.g. a base
+//    link turning about its own axis) gets no row: it could only make the QP
+//    infeasible.
 //  - empty bounds (eq 15 can give lower > upper): acceleration wins over
 //    velocity, velocity over the joint-range step; bounds are shrunk by a
 //    relative 1e-9 so rounding never reports a ratio above 1.
@@ -236,6 +239,7 @@ class QpConstraints final : public Method {
         const Eigen::Vector3d& v_obstacle = in.scene.obstacles[o].velocity;
         auto row = strict_->A_in.row(rows);
         row.noalias() = r_oc.transpose() * point_jacobian_;  // P = r_ocᵀ J_o q̇ (eq 19)
+        if (row.squaredNorm() < 1e-18) continue;  // no joint changes this distance (e.g. the base link): no row
         double t;
         if (d > ds) {
           if (!entered_[key]) {  // P_c: the approach rate when entering the buffer
