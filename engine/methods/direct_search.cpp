@@ -25,10 +25,12 @@
 //    joints 1, 2, 3, 5 as in the paper's 81-option example.
 //  - the target is the reference pose at t + dt (the method places the arm
 //    itself: it sets q_next, `integrated`).
-//  - option feasibility: Newton converged within `newton_iterations` and
-//    every joint within its range. With no feasible option the one with the
-//    smallest residual (≤ 10⁶ε, within the joint ranges) is taken, else the
-//    arm stays (feasible_options = 0 reports it).
+//  - option feasibility: Newton converged within `newton_iterations`, every
+//    joint within its range and within its velocity limit over the step (a
+//    near-singular block can otherwise converge on another IK branch). With
+//    no feasible option the one with the smallest residual (≤ 10⁶ε, within
+//    the joint ranges and speeds) is taken, else the arm stays
+//    (feasible_options = 0 reports it).
 //  - block switch (`block_switch` > 0, not in the paper's experiment): when
 //    the mask's block gets near singular (σ_min below it), the step uses the
 //    set of as many perturbed joints whose square block has the largest
@@ -173,7 +175,8 @@ class DirectSearch final : public Method {
       max_iterations_used = std::max(max_iterations_used, it);
       options_.col(j) = theta_;
       residual_[j] = residual;
-      feasible_[j] = residual < p(kTolerance) && within_limits(in.model.limits, theta_);
+      feasible_[j] = residual < p(kTolerance) && within_limits(in.model.limits, theta_) &&
+                     within_speed(in.model.limits, theta_, q, in.dt);
       // criteria at θ^j (probe_ and jacobian_ hold its kinematics)
       criteria_(j, kJra) = (theta_ - centre_).cwiseAbs2().dot(inv_half_range_);
       criteria_(j, kJvm) = (theta_ - q).squaredNorm();
@@ -212,7 +215,8 @@ class DirectSearch final : public Method {
       double best = kInf;
       for (int j = 0; j < count; ++j)
         if (residual_[j] < best && residual_[j] <= 1e6 * p(kTolerance) &&
-            within_limits(in.model.limits, options_.col(j)))
+            within_limits(in.model.limits, options_.col(j)) &&
+            within_speed(in.model.limits, options_.col(j), q, in.dt))
           best = residual_[j], chosen = j;
     }
 
@@ -322,6 +326,12 @@ class DirectSearch final : public Method {
   template <typename Vector>
   static bool within_limits(const JointLimits& limits, const Vector& q) {
     return (q.array() >= limits.lower.array()).all() && (q.array() <= limits.upper.array()).all();
+  }
+
+  // |θ_i − q_i| ≤ q̇_i,max · dt for every joint (no jump to another IK branch).
+  template <typename Vector>
+  static bool within_speed(const JointLimits& limits, const Vector& theta, const Eigen::VectorXd& q, double dt) {
+    return ((theta - q).cwiseAbs().array() <= limits.velocity.array() * dt).all();
   }
 
   // The pose to reach at t + dt.
