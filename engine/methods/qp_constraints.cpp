@@ -250,7 +250,8 @@ class QpConstraints final : public Method {
           const double rho = 0.5 * (1.0 - std::cos(M_PI * (d - ds) / sigma));  // bell ρ(d)
           t = rho * approach_at_entry_[key];  // eq 20, buffer zone
         } else {
-          entered_[key] = true;
+          entered_[key] = true;  // back in the buffer later: approach slowly
+          approach_at_entry_[key] = -p(kApproach);
           t = eta;  // eq 20, inside the safety margin: push away
         }
         strict_->b_in[rows] = t + r_oc.dot(v_obstacle);
