@@ -51,7 +51,7 @@ void expect_kkt(const QpProblem& p, const QpSolver& s, double tol, const std::st
 }
 
 // A feasible random problem: constraints built around a random point x0.
-void random_problem(std::mt19937& rng, QpProblem& p, int me, int mi, bool box) {
+void random_problem(std::mt19937& rng, QpProblem& p, int me, int mi, bool box, Eigen::VectorXd* point = nullptr) {
   std::normal_distribution<double> normal;
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const int n = p.n();
@@ -76,6 +76,7 @@ void random_problem(std::mt19937& rng, QpProblem& p, int me, int mi, bool box) {
     p.lower[i] = box ? x0[i] - 0.5 * unit(rng) : -kInf;
     p.upper[i] = box ? x0[i] + 0.5 * unit(rng) : kInf;
   }
+  if (point) *point = x0;
 }
 
 TEST(QpSolver, RandomStrictlyConvexProblemsMeetKkt) {
@@ -94,6 +95,36 @@ TEST(QpSolver, RandomStrictlyConvexProblemsMeetKkt) {
     ++solved;
   }
   EXPECT_EQ(solved, 400);
+}
+
+TEST(QpSolver, RandomDegenerateProblemsMeetKkt) {
+  // duplicated and scaled copies of rows, equalities repeated as two
+  // inequalities, box bounds equal to each other: still optimal, still KKT
+  std::mt19937 rng(99);
+  for (int trial = 0; trial < 300; ++trial) {
+    const int n = 2 + trial % 7, me = static_cast<int>(rng() % n), mi = static_cast<int>(rng() % (3 * n));
+    QpProblem p(n, n, 6 * n + 2);
+    Eigen::VectorXd x0;
+    random_problem(rng, p, me, mi, trial % 2 == 0, &x0);
+    int rows = mi;
+    for (int k = 0; k < mi && rows < 6 * n; k += 2) {  // duplicates, some scaled
+      const double scale = 1.0 + (k % 3);
+      p.A_in.row(rows) = scale * p.A_in.row(k);
+      p.b_in[rows++] = scale * p.b_in[k];
+    }
+    if (me > 0 && rows + 2 <= 6 * n + 2) {  // an equality written as two inequalities
+      p.A_in.row(rows) = p.A_eq.row(0);
+      p.b_in[rows++] = p.b_eq[0];
+      p.A_in.row(rows) = -p.A_eq.row(0);
+      p.b_in[rows++] = -p.b_eq[0];
+    }
+    p.ineq_count = rows;
+    if (trial % 2 == 0) p.lower[0] = p.upper[0] = x0[0];  // a fixed variable (x0 stays feasible)
+    QpSolver solver(n, n, 6 * n + 2);
+    const QpStatus status = solver.solve(p);
+    ASSERT_EQ(status, QpStatus::optimal) << "trial " << trial;
+    expect_kkt(p, solver, 1e-9, "degenerate trial " + std::to_string(trial));
+  }
 }
 
 TEST(QpSolver, WarmStartGivesTheSameSolutionInFewerIterations) {
