@@ -39,8 +39,7 @@
 //    obstacle, d + nᵀJ_p(θ − θ_curr), from the step's distance table
 //    (exact to O(Δ²); no collision query per option).
 //  - DM mixes lengths and angles: its value depends on the length unit of
-//    the position rows (`dm_length_scale`, 1/m). The paper's DM of 250–300
-//    on a ~1.5 m arm fits inches far better than metres (DM ≈ 5–15 there).
+//    the position rows (`dm_length_scale`, 1/m; the paper does not say).
 //  - DM rule (`dm_threshold` > 0): when the current DM reaches it, the
 //    weights of JRA and JVM are scaled by 0.8 and 0.2 (the paper's change
 //    from (1, 1, 1) to (0.8, 0.2, 1.0) at DM = 250) and stay so until the
@@ -225,15 +224,14 @@ class DirectSearch final : public Method {
       out.q_next = options_.col(chosen);
     else
       out.q_next = q;
-    const int shown = chosen >= 0 ? chosen : (count - 1) / 2;  // the unperturbed option
     out.qdot = (out.q_next - q) / in.dt;
-    for (int c = 0; c < kCriteria; ++c) {
-      const double v = criteria_(shown, c);
+    for (int c = 0; c < kCriteria; ++c) {  // −1: no option taken (the arm stays)
+      const double v = chosen >= 0 ? criteria_(chosen, c) : -1.0;
       out.diag.values[chosen_diag_[c]] = std::isfinite(v) ? v : -1.0;
       out.diag.values[weight_diag_[c]] = weights[c];
     }
-    if (!has_distances_) out.diag.values[chosen_diag_[kObstacle]] = -1.0;
-    else out.diag.values[chosen_diag_[kObstacle]] = -criteria_(shown, kObstacle);
+    if (!has_distances_ || chosen < 0) out.diag.values[chosen_diag_[kObstacle]] = -1.0;
+    else out.diag.values[chosen_diag_[kObstacle]] = -criteria_(chosen, kObstacle);
     out.diag.values[feasible_diag_] = feasible;
     out.diag.values[options_diag_] = count;
     out.diag.values[chosen_diag_index_] = chosen;

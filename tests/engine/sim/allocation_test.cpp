@@ -71,6 +71,7 @@ INSTANTIATE_TEST_SUITE_P(Baselines, NoAllocation,
 
 TEST(NoAllocation, DirectSearchWithBlockSwitch) {
   Simulator sim(load_scenario_file(test::source_path("scenarios/22_kapoor_square_circle.json")));
+  sim.set_param("block_switch", 1.0);  // every step searches the largest-determinant block
   EXPECT_EQ(allocations_in_steps(sim, 50), 0);
 }
 
