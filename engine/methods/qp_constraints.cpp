@@ -32,7 +32,8 @@
 //  - φ (eq 8) is 0 unless `clearance_gain` k > 0: then φ = −k(1 − ρ(d))J_oᵀr_oc
 //    summed over the obstacle rows, a separating push that grows through the
 //    buffer (an extension; the examples use the minimum-norm objective).
-//  - infeasible QP: the task is relaxed with a slack s, J q̇ − s = ẋ_R, at
+//  - infeasible QP (§III end: "the constraints are over stringent
+//    sometimes"): the task is relaxed with a slack s, J q̇ − s = ẋ_R, at
 //    cost ½ w|s|² (w = slack_weight); if the bounds and obstacle rows alone
 //    conflict (the acceleration bound cannot brake the approach in time), the
 //    obstacle rows get one shared slack e ≥ 0 at cost ½·10³w·e² as well.
