@@ -110,6 +110,7 @@ class DirectSearch final : public Method {
 
   void step(const StepInput& in, StepOutput& out) override {
     const Eigen::VectorXd& q = in.state.q;
+    if (in.state.step == 0) rule_active_ = false;  // a (re)started run replays bit for bit
     set_target(in);
     // eq 2: δx at the current configuration
     pose_error(in.kin, error0_);

@@ -38,6 +38,7 @@
 //    conflict (the acceleration bound cannot brake the approach in time), the
 //    obstacle rows get one shared slack e ≥ 0 at cost ½·10³w·e² as well.
 //    Reported in `relaxation` (0, 1, 2) and `obstacle_slack`.
+#include <algorithm>
 #include <cmath>
 
 #include "methods/factories.hpp"
@@ -87,6 +88,7 @@ class QpConstraints final : public Method {
   }
 
   void step(const StepInput& in, StepOutput& out) override {
+    if (in.state.step == 0) start_run();  // a (re)started run replays bit for bit
     if (in.distances.links * in.distances.obstacles > pair_capacity_)
       size_pairs(in.distances.links, in.distances.obstacles);  // obstacles added (allocates once)
     revise_task_velocity(in, out);
@@ -142,6 +144,14 @@ class QpConstraints final : public Method {
     relaxed_->A_eq.col(n_ + m_).setZero();
     relaxed_->A_in.col(n_ + m_).setOnes();
     set_slack_weight();
+  }
+
+  // Forget what the previous run left: buffer entries and warm starts.
+  void start_run() {
+    std::fill(entered_.begin(), entered_.end(), false);
+    std::fill(approach_at_entry_.begin(), approach_at_entry_.end(), 0.0);
+    strict_solver_.forget_warm_start();
+    relaxed_solver_.forget_warm_start();
   }
 
   void set_slack_weight() {
