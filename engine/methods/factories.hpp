@@ -21,6 +21,8 @@ RRLAB_DECLARE_METHOD(closest_point)
 RRLAB_DECLARE_METHOD(posture_generation)
 RRLAB_DECLARE_METHOD(ccp_voronoi)
 RRLAB_DECLARE_METHOD(multi_preview)
+RRLAB_DECLARE_METHOD(qp_constraints)
+RRLAB_DECLARE_METHOD(direct_search)
 
 #undef RRLAB_DECLARE_METHOD
 

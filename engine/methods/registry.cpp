@@ -25,6 +25,12 @@ const std::vector<MethodInfo>& method_registry() {
        ccp_voronoi_params(), make_ccp_voronoi},
       {"multi_preview", "Multi-preview control by avoidance manipulability and a 1-step GA (Zhang et al.)",
        multi_preview_params(), make_multi_preview},
+      {"qp_constraints",
+       "QP with joint range/velocity/acceleration bounds, obstacle inequalities and singularity avoidance (Qiu, Cao & Sun)",
+       qp_constraints_params(), make_qp_constraints},
+      {"direct_search",
+       "Direct search over perturbed self-motion options, weighted JRA/JVM/DM/clearance criteria (Kapoor, Cetin & Tesar)",
+       direct_search_params(), make_direct_search},
   };
   return table;
 }

@@ -68,7 +68,7 @@ TEST_P(NoAllocation, SteadyStateStepAmongObstacles) {
 INSTANTIATE_TEST_SUITE_P(Baselines, NoAllocation,
                          ::testing::Values("pinv", "dls", "gpm", "task_priority", "sr_task_priority",
                                            "closest_point", "posture_generation", "ccp_voronoi",
-                                           "multi_preview"));
+                                           "multi_preview", "qp_constraints", "direct_search"));
 
 // Variants of the paper methods beyond their defaults.
 TEST(NoAllocation, CcpVoronoiLagrangianAndHybrid) {
@@ -89,6 +89,12 @@ TEST(NoAllocation, MultiPreviewPathPlanningAfterThePlan) {
   doc["method"]["params"] = {{"previews", 0}, {"plan_interval", 0.25}, {"warmup_generations", 5}};
   Simulator sim(parse_scenario(doc));
   EXPECT_EQ(allocations_in_steps(sim, 100), 0);
+}
+
+TEST(NoAllocation, DirectSearchWithBlockSwitch) {
+  Simulator sim(load_scenario_file(test::source_path("scenarios/22_kapoor_square_circle.json")));
+  sim.set_param("block_switch", 1.0);  // every step searches the largest-determinant block
+  EXPECT_EQ(allocations_in_steps(sim, 50), 0);
 }
 
 TEST(NoAllocation, CounterSeesAllocations) {

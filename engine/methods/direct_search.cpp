@@ -1,0 +1,456 @@
+// Kapoor, Cetin & Tesar (1998): redundancy resolution by direct search
+// (seed 004_39d6c8bbfc7eeb76.txt). Every step:
+//  1. generate options (§3.1, eq 1–6): the k perturbed joints take −Δ, 0, +Δ
+//     (3^k combinations); the other joints form the block J_b that meets the
+//     end-effector constraint: δθ_b = J_b⁻¹(δx − J_p δθ_p) (eq 3 with eq 6),
+//     then Newton iterations on the block through the forward kinematics
+//     (eq 1–4) until |x − x̄| < ε (eq 5);
+//  2. select (§3.2, eq 7–8): each criterion normalised over the feasible
+//     options, R_j = (1/ℓ) Σ w_i ψ̄_i(θ^j), θ* = argmin_j R_j.
+// Criteria: JRA ψ1 = Σ (θ_i − θ'_i)²/θ_i,max, JVM ψ2 = Σ (θ_i − θ_i,curr)²,
+// DM ψ3 = σmax/σmin of the task Jacobian, and (not in the paper) the engine's
+// obstacle clearance ψ4 = −min_link d_link, minimised.
+//
+// Choices where the paper is silent (README, scenarios 22–23):
+//  - θ_i,max is the joint's half range (the displacement from mid-range to
+//    the limit); joints without both limits do not count in JRA.
+//  - the block is every joint not perturbed; with exactly n − m perturbed
+//    joints it is the paper's square J_m×m (inverse); otherwise J_b⁺. The
+//    first compensation (eq 3 with eq 6) uses J_b at the current
+//    configuration, the Newton iterations J_b at the option (full Newton:
+//    quadratic convergence even where the block is poorly conditioned); an
+//    option whose residual grows is dropped as infeasible.
+//  - the perturbed joints are the set bits of `perturb_mask` (bit i−1:
+//    joint i), at most n − m of them and at most 6 (729 options); default
+//    joints 1, 2, 3, 5 as in the paper's 81-option example.
+//  - the target is the reference pose at t + dt (the method places the arm
+//    itself: it sets q_next, `integrated`).
+//  - option feasibility: Newton converged within `newton_iterations`, every
+//    joint within its range and within its velocity limit over the step (a
+//    near-singular block can otherwise converge on another IK branch). With
+//    no feasible option the one with the smallest residual (≤ 10⁶ε, within
+//    the joint ranges and speeds) is taken, else the arm stays
+//    (feasible_options = 0 reports it).
+//  - block switch (`block_switch` > 0, not in the paper's experiment): when
+//    the mask's block gets near singular (σ_min below it), the step uses the
+//    set of as many perturbed joints whose square block has the largest
+//    |det| — the choice §3.1 calls desirable but did not employ.
+//  - ψ4 uses the first-order change of each link's distance to its nearest
+//    obstacle, d + nᵀJ_p(θ − θ_curr), from the step's distance table
+//    (exact to O(Δ²); no collision query per option).
+//  - DM mixes lengths and angles: its value depends on the length unit of
+//    the position rows (`dm_length_scale`, 1/m; the paper does not say).
+//  - DM rule (`dm_threshold` > 0): when the current DM reaches it, the
+//    weights of JRA and JVM are scaled by 0.8 and 0.2 (the paper's change
+//    from (1, 1, 1) to (0.8, 0.2, 1.0) at DM = 250) and stay so until the
+//    threshold is changed.
+#include <algorithm>
+#include <Eigen/LU>
+#include <bitset>
+#include <cmath>
+
+#include "methods/factories.hpp"
+#include "util/right_inverse.hpp"
+
+namespace rrlab {
+namespace {
+
+enum { kDelta, kMask, kWJra, kWJvm, kWDm, kWObstacle, kDmThreshold, kIterations, kTolerance, kDmScale, kBlockSwitch };
+enum { kJra, kJvm, kDm, kObstacle, kCriteria };
+
+constexpr int kMaxPerturbed = 6;
+constexpr int kMaxOptions = 729;  // 3^6
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+class DirectSearch final : public Method {
+ public:
+  explicit DirectSearch(const MethodContext& ctx)
+      : Method(direct_search_params()),
+        n_(ctx.model.dof()),
+        m_(task_rows(ctx.space)),
+        space_(ctx.space),
+        probe_(ctx.model),
+        jacobian_(m_, n_),
+        scaled_jacobian_(m_, n_),
+        jjt_(m_, m_),
+        eigenvalues_(m_),
+        block_jacobian_(m_, n_),
+        block_inverse_(m_, std::max(1, n_ - 1)),
+        option_inverse_(m_, std::max(1, n_ - 1)),
+        options_(n_, kMaxOptions),
+        criteria_(kMaxOptions, kCriteria),
+        residual_(kMaxOptions),
+        feasible_(kMaxOptions),
+        theta_(n_),
+        error_(m_),
+        error0_(m_),
+        rhs_(m_),
+        delta_theta_(n_),
+        distance_rows_(std::max(1, ctx.model.link_count()), n_),
+        distances_now_(std::max(1, ctx.model.link_count())),
+        point_jacobian_(3, n_),
+        square_block_(m_, m_),
+        lu_(m_) {
+    joint_range_weights(ctx.model.limits);
+    choose_joints();
+    const char* names[] = {"jra", "jvm", "dm", "obstacle_clearance"};
+    for (int c = 0; c < kCriteria; ++c) chosen_diag_[c] = declare_diagnostic(names[c]);
+    const char* weights[] = {"w_jra", "w_jvm", "w_dm", "w_obstacle"};
+    for (int c = 0; c < kCriteria; ++c) weight_diag_[c] = declare_diagnostic(weights[c]);
+    feasible_diag_ = declare_diagnostic("feasible_options");
+    options_diag_ = declare_diagnostic("options");
+    chosen_diag_index_ = declare_diagnostic("chosen_option");
+    rule_diag_ = declare_diagnostic("dm_rule_active");
+    current_dm_diag_ = declare_diagnostic("current_dm");
+    iterations_diag_ = declare_diagnostic("newton_iterations");
+    residual_diag_ = declare_diagnostic("residual");
+    block_sigma_diag_ = declare_diagnostic("block_sigma_min");
+    switched_diag_ = declare_diagnostic("block_switched");
+  }
+
+  void step(const StepInput& in, StepOutput& out) override {
+    const Eigen::VectorXd& q = in.state.q;
+    if (in.state.step == 0) rule_active_ = false;  // a (re)started run replays bit for bit
+    set_target(in);
+    // eq 2: δx at the current configuration
+    pose_error(in.kin, error0_);
+    // the block J_b and the perturbed columns J_p, from the current Jacobian
+    use_joint_set(mask_bits_);
+    for (int c = 0; c < block_count_; ++c) block_jacobian_.col(c) = in.task_jacobian.col(block_[c]);
+    block_inverse_.factor_pinv(block_jacobian_);
+    bool switched = false;
+    if (p(kBlockSwitch) > 0 && block_inverse_.sigma_min() < p(kBlockSwitch) && !alternatives_.empty()) {
+      // §3.1: "the full rank submatrix with the largest determinant" — only
+      // when the chosen block is near singular
+      use_joint_set(largest_determinant_set(in.task_jacobian));
+      for (int c = 0; c < block_count_; ++c) block_jacobian_.col(c) = in.task_jacobian.col(block_[c]);
+      block_inverse_.factor_pinv(block_jacobian_);
+      switched = true;
+    }
+    out.diag.values[block_sigma_diag_] = block_inverse_.sigma_min();
+    out.diag.values[switched_diag_] = switched;
+    prepare_distance_rows(in);
+
+    // the DM rule looks at the current configuration
+    const double dm_now = dexterity(in.task_jacobian);
+    if (p(kDmThreshold) > 0 && dm_now >= p(kDmThreshold)) rule_active_ = true;
+    out.diag.values[current_dm_diag_] = std::isfinite(dm_now) ? dm_now : -1.0;
+
+    // 1. generate options (eq 1–6)
+    const int count = option_count();
+    int max_iterations_used = 0;
+    for (int j = 0; j < count; ++j) {
+      theta_ = q;
+      int code = j;
+      rhs_ = error0_;
+      for (int i = 0; i < perturbed_count_; ++i) {
+        const double d = (code % 3 - 1) * p(kDelta);  // −Δ, 0, +Δ
+        code /= 3;
+        theta_[perturbed_[i]] += d;
+        rhs_.noalias() -= in.task_jacobian.col(perturbed_[i]) * d;  // eq 6: −J_p δθ_p
+      }
+      apply_block_step(block_inverse_, rhs_);  // eq 3 with eq 6, J_b at the current configuration
+      int it = 0;
+      double residual = kInf, previous = kInf;
+      while (true) {  // eq 1–5: Newton on the block through the kinematics
+        forward_kinematics(in.model, theta_, probe_);
+        pose_error(probe_, error_);
+        residual = error_.cwiseAbs().maxCoeff();
+        task_jacobian(in.model, probe_, space_, jacobian_);
+        if (residual < p(kTolerance) || it >= static_cast<int>(p(kIterations))) break;
+        if (!(residual < previous)) break;  // diverging: infeasible option
+        previous = residual;
+        // eq 3 with J_b at θ (a full Newton step; the block is often poorly conditioned)
+        for (int c = 0; c < block_count_; ++c) block_jacobian_.col(c) = jacobian_.col(block_[c]);
+        if (block_count_ == m_) {  // the paper's square J_m×m: eq 3 by LU
+          lu_.compute(block_jacobian_);
+          block_step_.noalias() = lu_.solve(error_);
+          for (int c = 0; c < block_count_; ++c) theta_[block_[c]] += block_step_[c];
+        } else {
+          option_inverse_.factor_pinv(block_jacobian_);
+          apply_block_step(option_inverse_, error_);
+        }
+        ++it;
+      }
+      max_iterations_used = std::max(max_iterations_used, it);
+      options_.col(j) = theta_;
+      residual_[j] = residual;
+      feasible_[j] = residual < p(kTolerance) && within_limits(in.model.limits, theta_) &&
+                     within_speed(in.model.limits, theta_, q, in.dt);
+      // criteria at θ^j (probe_ and jacobian_ hold its kinematics)
+      criteria_(j, kJra) = (theta_ - centre_).cwiseAbs2().dot(inv_half_range_);
+      criteria_(j, kJvm) = (theta_ - q).squaredNorm();
+      criteria_(j, kDm) = dexterity(jacobian_);
+      criteria_(j, kObstacle) = -estimated_clearance(q);
+    }
+
+    // 2. selection (eq 7–8)
+    double weights[kCriteria] = {p(kWJra), p(kWJvm), p(kWDm), p(kWObstacle)};
+    if (rule_active_) weights[kJra] *= 0.8, weights[kJvm] *= 0.2;
+    int feasible = 0;
+    for (int j = 0; j < count; ++j) feasible += feasible_[j];
+    int chosen = -1;
+    if (feasible > 0) {
+      double lo[kCriteria], hi[kCriteria];
+      for (int c = 0; c < kCriteria; ++c) lo[c] = kInf, hi[c] = -kInf;
+      for (int j = 0; j < count; ++j) {
+        if (!feasible_[j]) continue;
+        for (int c = 0; c < kCriteria; ++c) lo[c] = std::min(lo[c], criteria_(j, c)), hi[c] = std::max(hi[c], criteria_(j, c));
+      }
+      double best = kInf;
+      for (int j = 0; j < count; ++j) {
+        if (!feasible_[j]) continue;
+        double r = 0;
+        for (int c = 0; c < kCriteria; ++c) {
+          const double span = hi[c] - lo[c];
+          // normalised ψ̄ (eq 7); a criterion equal on every option counts 0
+          if (span > 0 && std::isfinite(span)) r += weights[c] * (criteria_(j, c) - lo[c]) / span;
+        }
+        r /= kCriteria;  // R_j = (1/ℓ) Σ w_i ψ̄_i
+        if (r < best) best = r, chosen = j;  // eq 8 (ties: the first option)
+      }
+    } else {
+      // no feasible option: the smallest residual within the joint ranges,
+      // or stay where the arm is
+      double best = kInf;
+      for (int j = 0; j < count; ++j)
+        if (residual_[j] < best && residual_[j] <= 1e6 * p(kTolerance) &&
+            within_limits(in.model.limits, options_.col(j)) &&
+            within_speed(in.model.limits, options_.col(j), q, in.dt))
+          best = residual_[j], chosen = j;
+    }
+
+    out.integrated = true;
+    if (chosen >= 0)
+      out.q_next = options_.col(chosen);
+    else
+      out.q_next = q;
+    out.qdot = (out.q_next - q) / in.dt;
+    for (int c = 0; c < kCriteria; ++c) {  // −1: no option taken (the arm stays)
+      const double v = chosen >= 0 ? criteria_(chosen, c) : -1.0;
+      out.diag.values[chosen_diag_[c]] = std::isfinite(v) ? v : -1.0;
+      out.diag.values[weight_diag_[c]] = weights[c];
+    }
+    if (!has_distances_ || chosen < 0) out.diag.values[chosen_diag_[kObstacle]] = -1.0;
+    else out.diag.values[chosen_diag_[kObstacle]] = -criteria_(chosen, kObstacle);
+    out.diag.values[feasible_diag_] = feasible;
+    out.diag.values[options_diag_] = count;
+    out.diag.values[chosen_diag_index_] = chosen;
+    out.diag.values[rule_diag_] = rule_active_;
+    out.diag.values[iterations_diag_] = max_iterations_used;
+    out.diag.values[residual_diag_] = chosen >= 0 ? residual_[chosen] : -1.0;
+  }
+
+ private:
+  void on_param_changed(int index) override {
+    if (index == kMask) choose_joints();
+    if (index == kDmThreshold) rule_active_ = false;
+  }
+
+  // DM = σmax/σmin with the position rows of pose tasks in units of 1/dm_length_scale m.
+  double dexterity(const Eigen::MatrixXd& jacobian) {
+    scaled_jacobian_ = jacobian;
+    if (space_ == TaskSpace::pose) scaled_jacobian_.topRows(3) *= p(kDmScale);
+    jjt_.noalias() = scaled_jacobian_ * scaled_jacobian_.transpose();
+    eigenvalues_.compute(jjt_, Eigen::EigenvaluesOnly);
+    const double lo = eigenvalues_.eigenvalues()[0], hi = eigenvalues_.eigenvalues()[m_ - 1];
+    return lo > 0 ? std::sqrt(hi / lo) : kInf;
+  }
+
+  int option_count() const {
+    int count = 1;
+    for (int i = 0; i < perturbed_count_; ++i) count *= 3;
+    return count;
+  }
+
+  // Perturbed joints: the mask's set bits (joint index < n), at most n − m and 6.
+  void choose_joints() {
+    const long mask = static_cast<long>(p(kMask));
+    const int allowed = std::min(kMaxPerturbed, std::max(0, n_ - m_));
+    mask_bits_ = 0;
+    int count = 0;
+    for (int i = 0; i < n_ && i < 64; ++i)
+      if (((mask >> i) & 1) && count < allowed) mask_bits_ |= 1ULL << i, ++count;
+    use_joint_set(mask_bits_);
+    // a parameter change may allocate; steady-state steps do not
+    block_inverse_ = RightInverse(m_, std::max(1, block_count_));
+    option_inverse_ = RightInverse(m_, std::max(1, block_count_));
+    block_jacobian_ = Eigen::MatrixXd::Zero(m_, std::max(1, block_count_));
+    block_step_ = Eigen::VectorXd::Zero(std::max(1, block_count_));
+    // every other set of as many perturbed joints, for the block switch
+    alternatives_.clear();
+    if (block_count_ == m_ && n_ <= 20) {
+      for (unsigned long long bits = 0; bits < (1ULL << n_); ++bits)
+        if (static_cast<int>(std::bitset<64>(bits).count()) == count) alternatives_.push_back(bits);
+    }
+  }
+
+  void use_joint_set(unsigned long long bits) {
+    perturbed_count_ = 0;
+    block_count_ = 0;
+    for (int i = 0; i < n_; ++i) {
+      if (i < 64 && ((bits >> i) & 1))
+        perturbed_[perturbed_count_++] = i;
+      else
+        block_[block_count_++] = i;
+    }
+  }
+
+  // The perturbed set whose m×m block has the largest |det|.
+  unsigned long long largest_determinant_set(const Eigen::MatrixXd& jacobian) {
+    double best = -1;
+    unsigned long long best_bits = mask_bits_;
+    for (unsigned long long bits : alternatives_) {
+      int c = 0;
+      for (int i = 0; i < n_; ++i)
+        if (!((bits >> i) & 1)) square_block_.col(c++) = jacobian.col(i);
+      lu_.compute(square_block_);
+      const double det = std::abs(lu_.determinant());
+      if (det > best) best = det, best_bits = bits;
+    }
+    return best_bits;
+  }
+
+  void joint_range_weights(const JointLimits& limits) {
+    centre_ = Eigen::VectorXd::Zero(n_);
+    inv_half_range_ = Eigen::VectorXd::Zero(n_);
+    for (int i = 0; i < n_; ++i) {
+      if (!std::isfinite(limits.lower[i]) || !std::isfinite(limits.upper[i])) continue;
+      centre_[i] = 0.5 * (limits.lower[i] + limits.upper[i]);
+      const double half = 0.5 * (limits.upper[i] - limits.lower[i]);
+      if (half > 0) inv_half_range_[i] = 1.0 / half;
+    }
+  }
+
+  template <typename Vector>
+  static bool within_limits(const JointLimits& limits, const Vector& q) {
+    return (q.array() >= limits.lower.array()).all() && (q.array() <= limits.upper.array()).all();
+  }
+
+  // |θ_i − q_i| ≤ q̇_i,max · dt for every joint (no jump to another IK branch).
+  template <typename Vector>
+  static bool within_speed(const JointLimits& limits, const Vector& theta, const Eigen::VectorXd& q, double dt) {
+    return ((theta - q).cwiseAbs().array() <= limits.velocity.array() * dt).all();
+  }
+
+  // The pose to reach at t + dt.
+  void set_target(const StepInput& in) {
+    if (in.task.is_joystick())
+      target_position_ = in.ref.position + in.dt * in.task.joystick_linear();
+    else
+      target_position_ = in.task.target_position(in.state.t + in.dt);
+    target_orientation_ = in.ref.orientation;
+    if (space_ == TaskSpace::pose) {
+      const Eigen::Vector3d w = in.ref.xdot_ff.tail<3>() * in.dt;
+      if (w.norm() > 0) target_orientation_ = Eigen::AngleAxisd(w.norm(), w.normalized()) * target_orientation_;
+    }
+  }
+
+  // Task-space error target − actual in the rows of the task space.
+  void pose_error(const KinematicsData& kin, Eigen::VectorXd& e) const {
+    const Eigen::Vector3d dp = target_position_ - kin.end_effector().translation();
+    switch (space_) {
+      case TaskSpace::xy: e = dp.head<2>(); break;
+      case TaskSpace::xyz: e = dp; break;
+      case TaskSpace::pose:
+        e.head<3>() = dp;
+        e.tail<3>() = orientation_error(target_orientation_, kin.end_effector().linear());
+        break;
+    }
+  }
+
+  // θ_b += J_b⁺ e (eq 3)
+  void apply_block_step(RightInverse& inverse, const Eigen::VectorXd& e) {
+    inverse.apply(e, block_step_);
+    for (int c = 0; c < block_count_; ++c) theta_[block_[c]] += block_step_[c];
+  }
+
+  // Rows nᵀJ_p of each link's nearest obstacle pair, for the clearance criterion.
+  void prepare_distance_rows(const StepInput& in) {
+    has_distances_ = false;
+    links_with_distance_ = 0;
+    const DistanceTable& table = in.distances;
+    for (int link = 0; link < table.links && link < distance_rows_.rows(); ++link) {
+      const int o = table.nearest_obstacle(link);
+      if (o < 0) continue;
+      const LinkObstacleDistance& pair = table.at(link, o);
+      point_jacobian_linear(in.model, in.kin, link, pair.on_link, point_jacobian_);
+      distance_rows_.row(links_with_distance_).noalias() = pair.normal.transpose() * point_jacobian_;
+      distances_now_[links_with_distance_] = pair.distance;
+      ++links_with_distance_;
+      has_distances_ = true;
+    }
+  }
+
+  double estimated_clearance(const Eigen::VectorXd& q) {
+    double clearance = 0;  // no obstacles: the criterion is constant
+    if (!has_distances_) return clearance;
+    clearance = kInf;
+    delta_theta_.noalias() = theta_ - q;
+    for (int l = 0; l < links_with_distance_; ++l)
+      clearance = std::min(clearance, distances_now_[l] + distance_rows_.row(l).dot(delta_theta_));
+    return clearance;
+  }
+
+  int n_, m_;
+  TaskSpace space_;
+  KinematicsData probe_;
+  Eigen::MatrixXd jacobian_, scaled_jacobian_;
+  Eigen::MatrixXd jjt_;
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigenvalues_;
+  Eigen::MatrixXd block_jacobian_;
+  RightInverse block_inverse_, option_inverse_;
+  Eigen::MatrixXd options_, criteria_;
+  Eigen::VectorXd residual_;
+  Eigen::Matrix<bool, Eigen::Dynamic, 1> feasible_;
+  Eigen::VectorXd theta_, error_, error0_, rhs_, delta_theta_, block_step_;
+  Eigen::MatrixXd distance_rows_;
+  Eigen::VectorXd distances_now_;
+  Eigen::MatrixXd point_jacobian_, square_block_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
+  unsigned long long mask_bits_ = 0;
+  std::vector<unsigned long long> alternatives_;
+  Eigen::VectorXd centre_, inv_half_range_;
+  Eigen::Vector3d target_position_ = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d target_orientation_ = Eigen::Matrix3d::Identity();
+  int perturbed_[kMaxPerturbed] = {}, perturbed_count_ = 0;
+  int block_[64] = {}, block_count_ = 0;
+  bool rule_active_ = false, has_distances_ = false;
+  int links_with_distance_ = 0;
+  int chosen_diag_[kCriteria], weight_diag_[kCriteria];
+  int feasible_diag_, options_diag_, chosen_diag_index_, rule_diag_, current_dm_diag_, iterations_diag_,
+      residual_diag_, block_sigma_diag_, switched_diag_;
+};
+
+}  // namespace
+
+std::vector<ParamSpec> direct_search_params() {
+  return {{"delta", "Perturbation Δ", "rad", "step of the perturbed joints: options −Δ, 0, +Δ (§3.1)", 0.002, 0.0,
+           0.5, 0.001, {}},
+          {"perturb_mask", "Perturbed joints (bit mask)", "",
+           "bit i−1 set: joint i is perturbed (at most n − m and 6 joints; 23 = joints 1, 2, 3, 5)", 23, 0,
+           (1 << 20) - 1, 1, {}},
+          {"w_jra", "Weight: joint range availability", "", "w1 of eq 7 (JRA)", 1.0, 0.0, 1.0, 0.05, {}},
+          {"w_jvm", "Weight: joint velocity measure", "", "w2 of eq 7 (JVM)", 1.0, 0.0, 1.0, 0.05, {}},
+          {"w_dm", "Weight: dexterity measure", "", "w3 of eq 7 (DM = σmax/σmin)", 1.0, 0.0, 1.0, 0.05, {}},
+          {"w_obstacle", "Weight: obstacle clearance", "", "weight of the engine's obstacle distance criterion",
+           1.0, 0.0, 1.0, 0.05, {}},
+          {"dm_threshold", "DM rule threshold", "",
+           "when DM reaches it, JRA and JVM weights are scaled by 0.8 and 0.2 (the paper's 250); 0 = off", 0.0,
+           0.0, 1e6, 10, {}},
+          {"newton_iterations", "Newton iterations", "", "most iterations of eq 1–4 per option", 8, 1, 100, 1, {}},
+          {"tolerance", "End-effector tolerance ε", "m, rad", "eq 5: an option is feasible below it", 1e-9,
+           1e-14, 1e-2, 1e-9, {}},
+          {"dm_length_scale", "DM length unit", "1/m",
+           "position rows of the Jacobian are multiplied by it for DM (1: metres; 39.37: inches)", 1.0, 1e-3,
+           1e4, 1, {}},
+          {"block_switch", "Block switch below σ", "",
+           "when the block of the non-perturbed joints has σ_min below it, perturb instead the joints whose "
+           "block has the largest determinant (§3.1) for that step; 0 = never",
+           0.0, 0.0, 10.0, 0.01, {}}};
+}
+std::unique_ptr<Method> make_direct_search(const MethodContext& ctx) {
+  return std::make_unique<DirectSearch>(ctx);
+}
+
+}  // namespace rrlab

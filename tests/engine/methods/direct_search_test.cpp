@@ -1,0 +1,206 @@
+// Kapoor, Cetin & Tesar direct search: the 10-DOF square-and-circle example
+// (scenarios 22, 23), the DM weight rule, weights changed at run time, and
+// the option generation on a small planar arm.
+#include <gtest/gtest.h>
+
+#include "engine/sim_helpers.hpp"
+#include "engine/test_models.hpp"
+#include "methods/registry.hpp"
+
+namespace rrlab {
+namespace {
+
+using nlohmann::json;
+
+struct SearchRun {
+  Summary summary;
+  std::vector<Frame> frames;
+  std::vector<std::string> names;
+  double diag(size_t frame, const std::string& name) const {
+    for (size_t i = 0; i < names.size(); ++i)
+      if (names[i] == name) return frames[frame].diagnostics[static_cast<Eigen::Index>(i)];
+    ADD_FAILURE() << "no diagnostic " << name;
+    return 0;
+  }
+  double max_diag(const std::string& name, size_t from = 0) const {
+    double m = -1e300;
+    for (size_t i = from; i < frames.size(); ++i) m = std::max(m, diag(i, name));
+    return m;
+  }
+};
+
+SearchRun run_sim(Simulator& sim) {
+  test::FrameLog log;
+  SearchRun r;
+  r.summary = run_to_end(sim, &log);
+  r.frames = std::move(log.frames);
+  r.names = sim.diagnostic_names();
+  return r;
+}
+
+SearchRun run_file(const std::string& file) {
+  Simulator sim(load_scenario_file(test::source_path(file)));
+  return run_sim(sim);
+}
+
+TEST(DirectSearch, KapoorSquareAndCircleAreTrackedIn6d) {
+  const SearchRun r = run_file("scenarios/22_kapoor_square_circle.json");
+  double max_position = 0, max_orientation = 0;
+  int min_feasible = 81, switched = 0;
+  for (size_t i = 1; i < r.frames.size(); ++i) {  // frame 0: the reference starts before the arm moved
+    max_position = std::max(max_position, r.frames[i].task_error);
+    max_orientation = std::max(max_orientation, r.frames[i].orientation_error);
+    min_feasible = std::min(min_feasible, static_cast<int>(r.diag(i, "feasible_options")));
+    switched += r.diag(i, "block_switched") > 0;
+    EXPECT_EQ(r.diag(i, "options"), 81);
+  }
+  EXPECT_LT(max_position, 1e-8);
+  EXPECT_LT(max_orientation, 1e-8);
+  EXPECT_GT(min_feasible, 0);
+  EXPECT_EQ(switched, 0);  // the paper's block (joints 1, 2, 3, 5 perturbed) throughout
+  EXPECT_FALSE(r.summary.joint_limit_violated);
+  EXPECT_EQ(r.summary.nonfinite_steps, 0);
+  std::printf("kapoor square+circle: max position error %.2e m, orientation %.2e rad, min feasible options %d, "
+              "block switched on %d of %zu steps\n",
+              max_position, max_orientation, min_feasible, switched, r.frames.size());
+}
+
+TEST(DirectSearch, DmRuleShiftsWeightsAndKeepsDexterityBelowTheLimit) {
+  // the paper's threshold 250 and limit 300, scaled to this model's DM: 40, 48
+  const double threshold = 40, limit = 48;
+  const SearchRun plain = run_file("scenarios/22_kapoor_square_circle.json");
+  const SearchRun rule = run_file("scenarios/23_kapoor_dm_rule.json");
+  ASSERT_EQ(plain.frames.size(), rule.frames.size());
+  EXPECT_EQ(plain.max_diag("dm_rule_active"), 0);
+  size_t on = 0;
+  while (on < rule.frames.size() && rule.diag(on, "dm_rule_active") == 0) ++on;
+  ASSERT_LT(on, rule.frames.size());
+  EXPECT_GE(rule.diag(on, "current_dm"), threshold);
+  EXPECT_DOUBLE_EQ(rule.diag(on, "w_jra"), 0.8);
+  EXPECT_DOUBLE_EQ(rule.diag(on, "w_jvm"), 0.2);
+  EXPECT_DOUBLE_EQ(rule.diag(on, "w_dm"), 1.0);
+  // Fig 4: with (1, 1, 1) DM passes the limit; with the rule it turns away
+  // while JRA and JVM grow
+  EXPECT_GT(plain.max_diag("dm"), limit);
+  EXPECT_LT(rule.max_diag("dm"), limit);
+  double plain_jra = 0, rule_jra = 0, plain_jvm = 0, rule_jvm = 0;
+  for (size_t i = on; i < rule.frames.size(); ++i) {
+    plain_jra += plain.diag(i, "jra"), rule_jra += rule.diag(i, "jra");
+    plain_jvm += plain.diag(i, "jvm"), rule_jvm += rule.diag(i, "jvm");
+  }
+  EXPECT_GT(rule_jra, plain_jra);
+  EXPECT_GT(rule_jvm, plain_jvm);
+  EXPECT_LT(rule.summary.max_tracking_error, 1e-3);
+  std::printf("kapoor DM: max (1,1,1) %.1f, with the rule %.1f (on at step %zu); mean JRA after %.2f vs %.2f, "
+              "mean JVM %.2e vs %.2e\n",
+              plain.max_diag("dm"), rule.max_diag("dm"), on, plain_jra / (rule.frames.size() - on),
+              rule_jra / (rule.frames.size() - on), plain_jvm / (rule.frames.size() - on),
+              rule_jvm / (rule.frames.size() - on));
+}
+
+TEST(DirectSearch, WeightChangedMidRunActsFromTheNextStep) {
+  const Scenario scenario = load_scenario_file(test::source_path("scenarios/22_kapoor_square_circle.json"));
+  Simulator a(scenario), b(scenario);
+  const int before = 60, after = 30;
+  a.set_total_steps(before + after);
+  b.set_total_steps(before + after);
+  test::FrameLog log_a, log_b;
+  for (int i = 0; i < before; ++i) {
+    a.step(), b.step();
+    log_a.frame(a.frame()), log_b.frame(b.frame());
+  }
+  b.set_param("w_dm", 0.0);  // from the dashboard: DM no longer counts
+  b.set_param("w_jra", 0.0);
+  for (int i = 0; i < after; ++i) {
+    a.step(), b.step();
+    log_a.frame(a.frame()), log_b.frame(b.frame());
+  }
+  for (int i = 0; i < before; ++i) ASSERT_EQ(log_a.frames[i].qdot, log_b.frames[i].qdot) << i;
+  // the first step after the change already selects by JVM alone: the option
+  // with the least joint motion differs from the (1,1,1) choice
+  EXPECT_NE(log_a.frames[before].qdot, log_b.frames[before].qdot);
+  int differing = 0;
+  for (int i = before; i < before + after; ++i) differing += log_a.frames[i].qdot != log_b.frames[i].qdot;
+  EXPECT_EQ(differing, after);
+}
+
+// 3-link planar arm, xy task: n − m = 1, so one perturbed joint, 3 options.
+json planar_circle() {
+  return {{"dt", 0.01},
+          {"duration", 2.0},
+          {"robot", {{"kind", "planar"},
+                     {"links", {{{"length", 1.0}}, {{"length", 0.8}}, {{"length", 0.6}}}},
+                     {"q0", {0.3, -0.6, -1.0}},
+                     {"limits", {{"lower", {-3, -3, -3}}, {"upper", {3, 3, 3}}}}}},
+          {"task", {{"space", "xy"}, {"trajectory", {{"type", "circle"}, {"center", {1.6, 0.0}}, {"radius", 0.2}}}}},
+          {"method", {{"name", "direct_search"}, {"params", {{"delta", 0.01}}}}}};
+}
+
+TEST(DirectSearch, OptionsMeetTheEndEffectorConstraintOnAPlanarArm) {
+  Simulator sim(parse_scenario(planar_circle()));
+  const SearchRun r = run_sim(sim);
+  for (size_t i = 1; i < r.frames.size(); ++i) {
+    EXPECT_EQ(r.diag(i, "options"), 3);
+    EXPECT_EQ(r.diag(i, "feasible_options"), 3) << i;
+    EXPECT_LT(r.diag(i, "residual"), 1e-9);
+    EXPECT_LT(r.frames[i].task_error, 1e-8);
+  }
+}
+
+TEST(DirectSearch, JvmAloneChoosesTheUnperturbedOption) {
+  // with only JVM weighted, the option that moves the joints least is the
+  // one without perturbation (index 1 of −Δ, 0, +Δ) on a slow path
+  json doc = planar_circle();
+  doc["method"]["params"] = {{"delta", 0.01}, {"w_jra", 0}, {"w_dm", 0}, {"w_obstacle", 0}};
+  Simulator sim(parse_scenario(doc));
+  const SearchRun r = run_sim(sim);
+  for (size_t i = 1; i < r.frames.size(); ++i) EXPECT_EQ(r.diag(i, "chosen_option"), 1) << i;
+}
+
+TEST(DirectSearch, ObstacleClearanceCriterionPullsAway) {
+  json doc = planar_circle();
+  doc["obstacles"] = {{{"shape", "point"}, {"position", {0.9, 0.6}}}};
+  doc["method"]["params"] = {{"delta", 0.01}, {"w_jra", 0}, {"w_jvm", 0}, {"w_dm", 0}, {"w_obstacle", 1}};
+  const SearchRun away = [&] {
+    Simulator sim(parse_scenario(doc));
+    return run_sim(sim);
+  }();
+  doc["method"]["params"]["w_obstacle"] = 0;
+  doc["method"]["params"]["w_jvm"] = 1;
+  const SearchRun still = [&] {
+    Simulator sim(parse_scenario(doc));
+    return run_sim(sim);
+  }();
+  EXPECT_GT(away.frames.back().min_distance, still.frames.back().min_distance + 0.05);
+  EXPECT_LT(away.summary.final_tracking_error, 1e-8);
+}
+
+TEST(DirectSearch, ARunAfterResetRepeatsBitForBit) {
+  // the DM rule latches during a run; a reset starts it afresh
+  Simulator sim(load_scenario_file(test::source_path("scenarios/23_kapoor_dm_rule.json")));
+  sim.set_total_steps(300);
+  test::FrameLog first, second;
+  run_to_end(sim, &first);
+  sim.reset();
+  run_to_end(sim, &second);
+  ASSERT_EQ(first.frames.size(), second.frames.size());
+  for (size_t i = 0; i < first.frames.size(); ++i) {
+    ASSERT_EQ(first.frames[i].q, second.frames[i].q) << i;
+    ASSERT_EQ(first.frames[i].diagnostics, second.frames[i].diagnostics) << i;
+  }
+}
+
+TEST(DirectSearch, ParametersAreValidated) {
+  const MethodInfo* info = find_method("direct_search");
+  ASSERT_NE(info, nullptr);
+  for (const ParamSpec& spec : info->params) EXPECT_EQ(param_problem(spec, spec.def), "") << spec.name;
+  Simulator sim(parse_scenario(planar_circle()));
+  EXPECT_THROW(sim.set_param("w_dm", 2.0), ParamError);
+  EXPECT_THROW(sim.set_param("delta", -0.1), ParamError);
+  EXPECT_NO_THROW(sim.set_param("perturb_mask", 4));
+  sim.step();
+  EXPECT_TRUE(sim.frame().qdot.allFinite());
+}
+
+}  // namespace
+}  // namespace rrlab
