@@ -42,7 +42,7 @@ Simulator::Simulator(const Scenario& scenario, const std::string& method_name)
       total_steps_(scenario.steps()) {
   distances_.resize(scenario_.model.link_count(), int(scene_.obstacles.size()));
   install_method(method_name);
-  reset();
+  reset_state();
 }
 
 Simulator::~Simulator() = default;
@@ -61,6 +61,11 @@ void Simulator::install_method(const std::string& name) {
 }
 
 void Simulator::reset() {
+  renew_method();
+  reset_state();
+}
+
+void Simulator::reset_state() {
   const int n = scenario_.model.dof();
   state_.t = 0;
   state_.step = 0;
@@ -95,14 +100,19 @@ void Simulator::switch_method(const std::string& name) {
 void Simulator::scene_changed(bool reshape) {
   if (reshape && distances_.obstacles != int(scene_.obstacles.size())) {
     distances_.resize(scenario_.model.link_count(), int(scene_.obstacles.size()));
-    // Methods size their workspace by the obstacle count: make the method anew
-    // with the same parameters (its internal state starts over).
-    const Eigen::VectorXd values = method_->param_values();
-    const std::vector<ParamSpec> specs = method_->specs();
-    switch_method(method_name_);
-    for (size_t i = 0; i < specs.size(); ++i) method_->set_param(specs[i].name, values[Eigen::Index(i)]);
+    // methods size their workspace by the obstacle count
+    renew_method();
   }
   collision_.sync(scene_, reshape);
+}
+
+// A new instance of the current method with the same parameter values: its
+// internal state (warm starts, GA population, latches) starts over.
+void Simulator::renew_method() {
+  const Eigen::VectorXd values = method_->param_values();
+  const std::vector<ParamSpec> specs = method_->specs();
+  switch_method(method_name_);
+  for (size_t i = 0; i < specs.size(); ++i) method_->set_param(specs[i].name, values[Eigen::Index(i)]);
 }
 
 void Simulator::evaluate(double t) {

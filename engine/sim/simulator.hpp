@@ -41,7 +41,7 @@ class Simulator {
   void scene_changed(bool reshape);  // after obstacles moved (false) or were resized/added/removed (true)
   Task& task() { return *task_; }
   const Task& task() const { return *task_; }
-  void reset();  // back to q0 at t = 0, same method and parameters
+  void reset();  // back to q0 at t = 0: the same method and parameters, its state anew
 
   const Scenario& scenario() const { return scenario_; }
   const Model& model() const { return scenario_.model; }
@@ -59,6 +59,8 @@ class Simulator {
 
  private:
   void install_method(const std::string& name);
+  void renew_method();
+  void reset_state();
   void evaluate(double t);  // kinematics, Jacobian, distances and reference at state_.q
   void accumulate_metrics();
 

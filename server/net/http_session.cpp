@@ -2,6 +2,8 @@
 // static file or WebSocket upgrade), then read the next. Deferred API answers
 // (batch runs waited for) come back onto the connection's strand.
 #include "net/sessions.hpp"
+#include <array>
+
 #include "app/replay_player.hpp"
 #include "net/static_files.hpp"
 
@@ -40,6 +42,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
     if (ec == http::error::end_of_stream) return close();
     if (ec == http::error::body_limit) {
       keep_alive_ = false;
+      drain_after_write_ = true;
       return send_error(413, "the request body is larger than " + std::to_string(state_->limits.body_limit) +
                                  " bytes");
     }
@@ -147,8 +150,23 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
     stream_.expires_after(state_->limits.read_timeout);
     http::async_write(stream_, *response, [self = shared_from_this(), response](beast::error_code ec, std::size_t) {
       if (ec) return;
+      if (self->drain_after_write_) return self->drain();
       if (!self->keep_alive_) return self->close();
       self->read();
+    });
+  }
+
+  // After refusing a body mid-upload: stop sending, read and discard what the
+  // client still sends (briefly), so that closing does not reset the
+  // connection before the client has read the answer.
+  void drain() {
+    if (!drained_once_) {
+      drained_once_ = true;
+      close();
+      stream_.expires_after(std::chrono::seconds(2));
+    }
+    stream_.async_read_some(net::buffer(discard_), [self = shared_from_this()](beast::error_code ec, std::size_t) {
+      if (!ec) self->drain();
     });
   }
 
@@ -161,8 +179,9 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   beast::flat_buffer buffer_;
   std::shared_ptr<ServerState> state_;
   std::optional<http::request_parser<http::string_body>> parser_;
-  bool keep_alive_ = true;
+  bool keep_alive_ = true, drain_after_write_ = false, drained_once_ = false;
   unsigned version_ = 11;
+  std::array<char, 16384> discard_{};
 };
 
 }  // namespace

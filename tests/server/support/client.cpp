@@ -32,11 +32,8 @@ HttpResult http(unsigned short port, const std::string& method, const std::strin
   http_ns::response_parser<http_ns::string_body> parser;
   parser.body_limit(1ull << 30);
   beast::error_code error;
-  http_ns::async_write(stream, request, [&](beast::error_code ec, std::size_t) {
-    if (ec) {
-      error = ec;
-      return;
-    }
+  // read the answer even when the write failed: a server may refuse a body midway (413)
+  http_ns::async_write(stream, request, [&](beast::error_code, std::size_t) {
     http_ns::async_read(stream, buffer, parser, [&](beast::error_code ec2, std::size_t) { error = ec2; });
   });
   ioc.run();
