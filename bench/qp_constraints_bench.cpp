@@ -10,25 +10,10 @@
 
 #include "scenario/scenario.hpp"
 #include "sim/simulator.hpp"
+#include "step_timing.hpp"
 
 namespace rrlab {
 namespace {
-
-void timed_steps(benchmark::State& state, Simulator& sim) {
-  std::vector<double> us;
-  us.reserve(1 << 20);
-  for (auto _ : state) {
-    if (sim.done()) sim.reset();
-    const auto start = std::chrono::steady_clock::now();
-    sim.step();
-    const auto stop = std::chrono::steady_clock::now();
-    if (us.size() < us.capacity()) us.push_back(std::chrono::duration<double, std::micro>(stop - start).count());
-  }
-  if (us.empty()) return;
-  std::sort(us.begin(), us.end());
-  state.counters["p50_us"] = us[us.size() / 2];
-  state.counters["p99_us"] = us[std::min(us.size() - 1, us.size() * 99 / 100)];
-}
 
 void BM_qp_constraints_step_qiu_circle(benchmark::State& state) {
   Simulator sim(load_scenario_file(std::string(RRLAB_SOURCE_DIR) + "/scenarios/20_qiu_circle.json"));

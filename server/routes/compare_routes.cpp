@@ -68,19 +68,7 @@ ApiResponse post_compare(RouteContext& c) {
       if (lane.method.name == base.method.name && methods[i].is_string()) lane.method.params = base.method.params;
       lanes.push_back(std::move(lane));
     }
-    options.mode = body.choice("mode", {"live", "batch"}, "batch");
-    options.rate = options.mode == "batch" ? 0.0 : body.number("rate", 1.0);
-    if (!(options.rate >= 0 && options.rate <= 1000)) throw ScenarioError("rate", "must be in [0, 1000]");
-    if (body.has("paused")) options.paused = doc.at("paused").is_boolean() && doc.at("paused").get<bool>();
-    if (body.has("wait")) {
-      if (!doc.at("wait").is_boolean()) throw ScenarioError("wait", "must be true or false");
-      wait = doc.at("wait").get<bool>();
-    }
-    if (auto steps = body.optional_number("steps")) {
-      if (!(*steps >= 1 && *steps <= double(ScenarioLimits::max_steps)) || *steps != double(long(*steps)))
-        throw ScenarioError("steps", "must be an integer in [1, " + std::to_string(ScenarioLimits::max_steps) + "]");
-      options.steps = long(*steps);
-    }
+    parse_run_options(body, doc, "batch", options, wait);
   } catch (...) {
     rethrow_as_api_error("");
   }

@@ -9,6 +9,7 @@
 
 #include "app/api.hpp"
 #include "app/run_manager.hpp"
+#include "scenario/json_reader.hpp"
 #include "storage/run_store.hpp"
 
 namespace rrlab::server {
@@ -67,6 +68,11 @@ ApiResponse post_compare(RouteContext&);
 storage::RunRecord find_run(RouteContext& context, std::int64_t id);
 std::shared_ptr<RunGroup> live_group(RouteContext& context, std::int64_t id, int& lane);
 nlohmann::json run_record_json(const storage::RunRecord& run);
+// The run options shared by POST /api/runs and /api/compare: mode, rate,
+// paused, wait, steps (ScenarioError naming the field).
+void parse_run_options(JsonObject& body, const nlohmann::json& doc, const std::string& default_mode,
+                       GroupOptions& options, bool& wait);
+
 // A query parameter as an integer in [min, max] (400 naming it otherwise).
 std::int64_t query_int(const RouteContext& context, const std::string& name, std::int64_t def, std::int64_t min,
                        std::int64_t max);

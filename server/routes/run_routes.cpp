@@ -65,6 +65,28 @@ json run_record_json(const storage::RunRecord& r) {
           {"compare_group", r.compare_group ? json(*r.compare_group) : json()}};
 }
 
+void parse_run_options(JsonObject& body, const json& doc, const std::string& default_mode, GroupOptions& options,
+                       bool& wait) {
+  options.mode = body.choice("mode", {"live", "batch"}, default_mode.c_str());
+  options.rate = body.number("rate", options.mode == "batch" ? 0.0 : 1.0);
+  if (!(options.rate >= 0 && options.rate <= 1000))
+    throw ScenarioError("rate", "must be in [0, 1000] (0: as fast as possible)");
+  if (options.mode == "batch") options.rate = 0;
+  if (body.has("paused")) {
+    if (!doc.at("paused").is_boolean()) throw ScenarioError("paused", "must be true or false");
+    options.paused = doc.at("paused").get<bool>() && options.mode == "live";
+  }
+  if (body.has("wait")) {
+    if (!doc.at("wait").is_boolean()) throw ScenarioError("wait", "must be true or false");
+    wait = doc.at("wait").get<bool>();
+  }
+  if (auto steps = body.optional_number("steps")) {
+    if (!(*steps >= 1 && *steps <= double(ScenarioLimits::max_steps)) || *steps != double(long(*steps)))
+      throw ScenarioError("steps", "must be an integer in [1, " + std::to_string(ScenarioLimits::max_steps) + "]");
+    options.steps = long(*steps);
+  }
+}
+
 std::int64_t query_int(const RouteContext& c, const std::string& name, std::int64_t def, std::int64_t min,
                        std::int64_t max) {
   auto it = c.request.query.find(name);
@@ -91,25 +113,9 @@ ApiResponse post_run(RouteContext& c) {
     if (!body.has("scenario")) throw ScenarioError("scenario", "is required (a scenario name or object)");
     scenario = c.runs.resolve_scenario(doc.at("scenario"), "scenario");
     apply_method_choice(body, doc, scenario);
-    options.mode = body.choice("mode", {"live", "batch"}, "live");
-    options.rate = body.number("rate", options.mode == "batch" ? 0.0 : 1.0);
-    if (!(options.rate >= 0 && options.rate <= 1000)) throw ScenarioError("rate", "must be in [0, 1000] (0: as fast as possible)");
-    if (options.mode == "batch") options.rate = 0;
+    parse_run_options(body, doc, "live", options, wait);
     options.display_hz = body.number("display_hz", c.runs.limits().default_display_hz);
     if (!(options.display_hz >= 1 && options.display_hz <= 240)) throw ScenarioError("display_hz", "must be in [1, 240]");
-    if (body.has("paused")) {
-      if (!doc.at("paused").is_boolean()) throw ScenarioError("paused", "must be true or false");
-      options.paused = doc.at("paused").get<bool>() && options.mode == "live";
-    }
-    if (body.has("wait")) {
-      if (!doc.at("wait").is_boolean()) throw ScenarioError("wait", "must be true or false");
-      wait = doc.at("wait").get<bool>();
-    }
-    if (auto steps = body.optional_number("steps")) {
-      if (!(*steps >= 1 && *steps <= double(ScenarioLimits::max_steps)) || *steps != double(long(*steps)))
-        throw ScenarioError("steps", "must be an integer in [1, " + std::to_string(ScenarioLimits::max_steps) + "]");
-      options.steps = long(*steps);
-    }
   } catch (...) {
     rethrow_as_api_error("");
   }

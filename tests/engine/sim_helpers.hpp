@@ -1,6 +1,8 @@
 // Running scenarios in tests: inline JSON in, frames and summary out.
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <nlohmann/json.hpp>
 #include <vector>
 
@@ -39,6 +41,20 @@ inline RunResult run_scenario(nlohmann::json doc, const std::string& method,
   r.summary = run_to_end(sim, &log);
   r.frames = std::move(log.frames);
   return r;
+}
+
+// Runs to the end, resets, runs again: both runs must give the same q and
+// diagnostics bit for bit (a method's internal state starts over on reset).
+inline void expect_repeats_after_reset(Simulator& sim) {
+  FrameLog first, second;
+  run_to_end(sim, &first);
+  sim.reset();
+  run_to_end(sim, &second);
+  ASSERT_EQ(first.frames.size(), second.frames.size());
+  for (size_t i = 0; i < first.frames.size(); ++i) {
+    ASSERT_EQ(first.frames[i].q, second.frames[i].q) << i;
+    ASSERT_EQ(first.frames[i].diagnostics, second.frames[i].diagnostics) << i;
+  }
 }
 
 // Planar chain of `n` equal links; q0 in radians.

@@ -179,15 +179,7 @@ TEST(DirectSearch, ARunAfterResetRepeatsBitForBit) {
   // the DM rule latches during a run; a reset starts it afresh
   Simulator sim(load_scenario_file(test::source_path("scenarios/23_kapoor_dm_rule.json")));
   sim.set_total_steps(300);
-  test::FrameLog first, second;
-  run_to_end(sim, &first);
-  sim.reset();
-  run_to_end(sim, &second);
-  ASSERT_EQ(first.frames.size(), second.frames.size());
-  for (size_t i = 0; i < first.frames.size(); ++i) {
-    ASSERT_EQ(first.frames[i].q, second.frames[i].q) << i;
-    ASSERT_EQ(first.frames[i].diagnostics, second.frames[i].diagnostics) << i;
-  }
+  test::expect_repeats_after_reset(sim);
 }
 
 TEST(DirectSearch, ParametersAreValidated) {
