@@ -308,6 +308,8 @@ json RunGroup::control(int lane_index, const json& body) {
   if (action.empty() && !rate) throw ApiError(400, "invalid", "give an action, a rate or both", "action");
   if (rate && !(*rate >= 0 && *rate <= 1000))
     throw ApiError(400, "invalid", "must be in [0, 1000] (0: as fast as possible)", "rate");
+  if (options_.mode != "live" && action != "stop")
+    throw ApiError(409, "wrong_state", "a " + options_.mode + " run can only be stopped", "action");
   if (action == "reset") return input(lane_index, "reset", json::object(), "");
   auto lock = lock_for_input();
   Lane& lane = lanes_[size_t(lane_index)];
@@ -339,6 +341,8 @@ json RunGroup::control(int lane_index, const json& body) {
 }
 
 json RunGroup::input(int lane_index, const std::string& kind, const json& payload, const std::string& prefix) {
+  if (options_.mode != "live")
+    throw ApiError(409, "wrong_state", "a " + options_.mode + " run takes no inputs; start a live run", prefix);
   auto lock = lock_for_input();
   if (finished_ || stop_requested_)
     throw ApiError(409, "wrong_state", "the run has ended", prefix);

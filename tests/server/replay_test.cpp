@@ -1,0 +1,73 @@
+// Stored frames played back over the WebSocket at a chosen speed, with pause
+// and seek; inputs to batch runs are refused.
+#include "server_fixture.hpp"
+
+namespace rrlab::testing {
+namespace {
+
+using nlohmann::json;
+
+class Replay : public ServerTest {};
+
+TEST_F(Replay, StreamsStoredFramesWithSeek) {
+  const HttpResult batch = send("POST", "/api/runs", {{"scenario", "01_planar7_obstacles"}, {"mode", "batch"}, {"steps", 400}});
+  ASSERT_EQ(batch.status, 200);
+  const std::int64_t id = batch.json()["id"];
+  const std::string stored_q = get("/api/runs/" + std::to_string(id) + "/frames?from=100&to=100").json()["frames"][0]["q"].dump();
+
+  const HttpResult started = send("POST", "/api/runs/" + std::to_string(id) + "/replay", {{"mode", "frames"}, {"speed", 2}});
+  ASSERT_EQ(started.status, 201) << started.body;
+  const std::string rid = std::to_string(started.json()["replay"].get<long>());
+  EXPECT_EQ(started.json()["frames"], 400);
+  WsClient ws(port(), started.json()["ws"].get<std::string>());
+  const auto snapshot = ws.read_type("snapshot");
+  ASSERT_TRUE(snapshot);
+  EXPECT_EQ((*snapshot)["frames"], 400);
+  EXPECT_EQ((*snapshot)["model"]["dof"], 7);
+  std::int64_t last = -1;
+  for (int i = 0; i < 10; ++i) {
+    auto frame = ws.read_type("frame");
+    ASSERT_TRUE(frame);
+    EXPECT_GT((*frame)["seq"].get<std::int64_t>(), last);
+    last = (*frame)["seq"];
+    EXPECT_EQ((*frame)["links"].size(), 7u);
+  }
+
+  // pause, seek to frame 100: the frame shown is the stored one
+  HttpResult r = send("POST", "/api/replays/" + rid + "/control", {{"action", "pause"}});
+  EXPECT_EQ(r.json()["playing"], false);
+  r = send("POST", "/api/replays/" + rid + "/control", {{"action", "seek"}, {"seq", 100}});
+  ASSERT_EQ(r.status, 200);
+  EXPECT_EQ(r.json()["seq"], 100);
+  std::optional<json> frame;
+  for (int i = 0; i < 200; ++i) {
+    frame = ws.read_type("frame");
+    ASSERT_TRUE(frame);
+    if ((*frame)["seq"] == 100) break;
+  }
+  EXPECT_EQ((*frame)["seq"], 100);
+  // WebSocket frames carry 7 digits: compare the first joint to that precision
+  EXPECT_NEAR((*frame)["q"][0].get<double>(), json::parse(stored_q)[0].get<double>(), 1e-6);
+
+  EXPECT_EQ(error_of(send("POST", "/api/replays/" + rid + "/control", {{"action", "seek"}, {"seq", 400}}))["path"], "seq");
+  EXPECT_EQ(error_of(send("POST", "/api/replays/" + rid + "/control", {{"speed", 0}}))["path"], "speed");
+  EXPECT_EQ(get("/api/replays/9999").status, 404);
+  EXPECT_EQ(error_of(send("POST", "/api/runs/" + std::to_string(id) + "/replay", {{"mode", "rewind"}}))["path"], "mode");
+  EXPECT_EQ(error_of(send("POST", "/api/runs/" + std::to_string(id) + "/replay", {{"from", 1000}}))["path"], "from");
+}
+
+TEST_F(Replay, BatchRunsTakeNoInputs) {
+  json scenario = small_scenario("joystick", 10000);
+  const HttpResult started = send("POST", "/api/runs", {{"scenario", scenario}, {"mode", "batch"}, {"wait", false}});
+  ASSERT_EQ(started.status, 201);
+  const std::string base = "/api/runs/" + std::to_string(started.json()["id"].get<long>());
+  const HttpResult joystick = send("POST", base + "/joystick", {{"linear", {0.1, 0}}});
+  EXPECT_EQ(joystick.status, 409);
+  EXPECT_EQ(error_of(joystick)["code"], "wrong_state");
+  EXPECT_EQ(send("POST", base + "/control", {{"action", "pause"}}).status, 409);
+  EXPECT_EQ(send("POST", base + "/control", {{"action", "stop"}}).status, 200);
+  EXPECT_EQ(wait_ended(started.json()["id"])["status"], "stopped");
+}
+
+}  // namespace
+}  // namespace rrlab::testing
