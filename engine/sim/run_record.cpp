@@ -17,7 +17,10 @@ RunRecordDoc parse_run_record(const nlohmann::json& doc) {
   } catch (const ScenarioError& e) {
     throw ScenarioError("scenario" + (e.path().empty() ? "" : "." + e.path()), e.what());
   }
-  record.frames = long(root.number("frames", 0));
+  const double frames = root.number("frames", 0);
+  if (!(frames >= 0 && frames <= double(ScenarioLimits::max_steps)))
+    throw ScenarioError("frames", "must be in [0, " + std::to_string(ScenarioLimits::max_steps) + "]");
+  record.frames = long(frames);
   if (root.has("events")) {
     const nlohmann::json& events = root.array("events", 10'000'000);
     long last_seq = 0;
@@ -26,7 +29,7 @@ RunRecordDoc parse_run_record(const nlohmann::json& doc) {
       e.check_keys({"seq", "step", "kind", "payload"});
       RecordedEvent event;
       const double seq = e.number("seq");
-      if (!(seq >= 0) || seq != double(long(seq)) || long(seq) < last_seq)
+      if (!(seq >= 0 && seq <= 1e15) || seq != double(long(seq)) || long(seq) < last_seq)
         throw ScenarioError(e.child("seq"), "must be a non-negative integer, not below the previous event's");
       event.seq = last_seq = long(seq);
       event.kind = e.string("kind");

@@ -46,6 +46,9 @@ class ApiError : public std::runtime_error {
 };
 
 ApiResponse json_response(int status, const nlohmann::json& body);
+// JSON text of a document that may quote client bytes (error messages, paths):
+// invalid UTF-8 is replaced instead of throwing.
+std::string safe_dump(const nlohmann::json& body);
 ApiResponse error_response(const ApiError& error);
 // Parses a JSON body (400 "malformed_json" naming the position otherwise).
 nlohmann::json parse_body(const ApiRequest& request);

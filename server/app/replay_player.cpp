@@ -32,7 +32,13 @@ ReplayPlayer::ReplayPlayer(storage::RunStore& store, const storage::RunRecord& r
 }
 
 void ReplayPlayer::start() {
-  std::thread([self = shared_from_this()] { self->loop(); }).detach();
+  try {
+    std::thread([self = shared_from_this()] { self->loop(); }).detach();
+  } catch (...) {
+    std::lock_guard lock(mutex_);
+    exited_ = true;  // nothing to wait for
+    throw;
+  }
 }
 
 void ReplayPlayer::stop() {
@@ -41,6 +47,16 @@ void ReplayPlayer::stop() {
     stopping_ = true;
   }
   wake_.notify_all();
+}
+
+bool ReplayPlayer::exited() {
+  std::lock_guard lock(mutex_);
+  return exited_;
+}
+
+void ReplayPlayer::wait_exited() {
+  std::unique_lock lock(mutex_);
+  exited_cv_.wait(lock, [&] { return exited_; });
 }
 
 void ReplayPlayer::show_locked(std::int64_t seq) {
@@ -92,8 +108,14 @@ void ReplayPlayer::loop() {
       playhead_ = double(run_.frames - 1);
       playing_ = false;  // stop at the end
     }
-    show_locked(std::int64_t(playhead_));
+    try {
+      show_locked(std::int64_t(playhead_));
+    } catch (const std::exception&) {
+      playing_ = false;  // a frame that cannot be read ends playback, not the server
+    }
   }
+  exited_ = true;
+  exited_cv_.notify_all();
 }
 
 json ReplayPlayer::status_locked() const {
@@ -156,6 +178,8 @@ json ReplayPlayer::handle_message(const json& message) {
     return {{"type", "ack"}, {"status", control(body)}};
   } catch (const ApiError& e) {
     return {{"type", "error"}, {"error", {{"code", e.code()}, {"message", e.what()}, {"path", e.path()}}}};
+  } catch (const std::exception& e) {
+    return {{"type", "error"}, {"error", {{"code", "internal"}, {"message", e.what()}, {"path", ""}}}};
   }
 }
 

@@ -24,6 +24,8 @@ class ReplayPlayer final : public FrameSource, public std::enable_shared_from_th
                double display_hz);
   void start();
   void stop();
+  void wait_exited();  // after stop(): returns once the playback thread has ended
+  bool exited();
   void set_id(std::int64_t id) { id_ = id; }
 
   // {"action": play|pause|seek, "seq"?: n, "speed"?: x}
@@ -58,6 +60,8 @@ class ReplayPlayer final : public FrameSource, public std::enable_shared_from_th
   PublishedFrame published_;
   std::uint64_t scene_version_ = 1;
   Subscribers subscribers_;
+  bool exited_ = false;
+  std::condition_variable exited_cv_;
 };
 
 }  // namespace rrlab::server

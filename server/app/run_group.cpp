@@ -56,6 +56,8 @@ class RunGroup::LaneSource final : public FrameSource {
       return {{"type", "error"}, {"error", {{"code", e.code()}, {"message", e.what()}, {"path", e.path()}}}};
     } catch (const ScenarioError& e) {
       return {{"type", "error"}, {"error", {{"code", "invalid"}, {"message", e.what()}, {"path", e.path()}}}};
+    } catch (const std::exception& e) {
+      return {{"type", "error"}, {"error", {{"code", "internal"}, {"message", e.what()}, {"path", ""}}}};
     }
   }
 
@@ -71,14 +73,17 @@ RunGroup::RunGroup(RunServices services, const std::vector<Scenario>& scenarios,
   if (scenarios.empty()) throw ApiError(400, "invalid", "a run needs a scenario", "scenario");
   dt_ = scenarios.front().dt;
   lanes_.resize(scenarios.size());
+  // every simulator first: a lane that fails leaves no stored run behind
   for (size_t i = 0; i < scenarios.size(); ++i) {
-    Lane& lane = lanes_[i];
     try {
-      lane.sim = std::make_unique<Simulator>(scenarios[i]);
+      lanes_[i].sim = std::make_unique<Simulator>(scenarios[i]);
     } catch (...) {
       rethrow_as_api_error("", 422);
     }
-    if (options_.steps) lane.sim->set_total_steps(*options_.steps);
+    if (options_.steps) lanes_[i].sim->set_total_steps(*options_.steps);
+  }
+  for (size_t i = 0; i < scenarios.size(); ++i) {
+    Lane& lane = lanes_[i];
     storage::NewRun run;
     run.scenario_name = scenarios[i].name;
     run.scenario_json = scenarios[i].json.dump();
@@ -101,7 +106,22 @@ RunGroup::~RunGroup() = default;
 
 void RunGroup::start() {
   // the thread owns a reference: the group lives until its thread has finished
-  std::thread([self = shared_from_this()] { self->loop(); }).detach();
+  try {
+    std::thread([self = shared_from_this()] { self->loop(); }).detach();
+  } catch (const std::exception& e) {
+    for (const Lane& lane : lanes_) services_.store.finish_run(lane.run_id, "failed", "{}");
+    finished_ = true;
+    {
+      std::lock_guard lock(exit_mutex_);
+      exited_ = true;
+    }
+    throw ApiError(503, "busy", std::string("cannot start a simulation thread: ") + e.what(), "");
+  }
+}
+
+void RunGroup::wait_exited() {
+  std::unique_lock lock(exit_mutex_);
+  exited_cv_.wait(lock, [&] { return exited_; });
 }
 
 void RunGroup::request_stop() {
@@ -175,7 +195,7 @@ void RunGroup::loop() {
   std::uint64_t generation = pacing_generation_;
   const auto publish_period = std::chrono::duration<double>(1.0 / options_.display_hz);
   while (true) {
-    wake_.wait(lock, [&] { return stop_requested_ || !paused_ || step_requests_ > 0; });
+    wake_.wait(lock, [&] { return stop_requested_ || !paused_ || step_requests_ > 0 || all_done(); });
     if (stop_requested_ || all_done()) break;
     const bool single = paused_;
     if (single) --step_requests_;
@@ -207,7 +227,7 @@ void RunGroup::loop() {
     } else if (pending_inputs_ > 0) {
       // as fast as possible: let waiting REST/WebSocket inputs in between steps
       lock.unlock();
-      while (pending_inputs_ > 0) std::this_thread::yield();
+      for (int spins = 0; pending_inputs_ > 0 && spins < 10000; ++spins) std::this_thread::yield();
       lock.lock();
     }
   }
@@ -237,7 +257,17 @@ void RunGroup::finish(const std::string& status) {
     std::lock_guard lock(done_mutex_);
     callbacks.swap(on_finished_);
   }
-  for (auto& callback : callbacks) callback();
+  for (auto& callback : callbacks) {
+    try {
+      callback();
+    } catch (const std::exception&) {
+    }
+  }
+  {
+    std::lock_guard lock(exit_mutex_);
+    exited_ = true;
+  }
+  exited_cv_.notify_all();
 }
 
 void RunGroup::when_finished(std::function<void()> callback) {
@@ -306,8 +336,8 @@ json RunGroup::control(int lane_index, const json& body) {
     rethrow_as_api_error("");
   }
   if (action.empty() && !rate) throw ApiError(400, "invalid", "give an action, a rate or both", "action");
-  if (rate && !(*rate >= 0 && *rate <= 1000))
-    throw ApiError(400, "invalid", "must be in [0, 1000] (0: as fast as possible)", "rate");
+  if (rate && !(*rate == 0 || (*rate >= 1e-3 && *rate <= 1000)))
+    throw ApiError(400, "invalid", "must be 0 (as fast as possible) or in [0.001, 1000]", "rate");
   if (options_.mode != "live" && action != "stop")
     throw ApiError(409, "wrong_state", "a " + options_.mode + " run can only be stopped", "action");
   if (action == "reset") return input(lane_index, "reset", json::object(), "");
@@ -329,12 +359,9 @@ json RunGroup::control(int lane_index, const json& body) {
     const std::int64_t target = lane.seq + 1;
     ++step_requests_;
     wake_.notify_all();
-    stepped_.wait_for(lock, std::chrono::seconds(5), [&] { return finished_ || lane.seq >= target; });
+    stepped_.wait_for(lock, std::chrono::seconds(1), [&] { return finished_ || lane.seq >= target; });
   } else if (action == "stop") {
-    // answer once the run has ended and its frames are committed
-    stop_requested_ = true;
-    wake_.notify_all();
-    stepped_.wait_for(lock, std::chrono::seconds(10), [&] { return finished_.load(); });
+    stop_requested_ = true;  // the REST route answers once the run has ended (deferred)
   }
   wake_.notify_all();
   return status_locked(lane);
@@ -355,7 +382,15 @@ json RunGroup::input(int lane_index, const std::string& kind, const json& payloa
     } catch (...) {
       rethrow_as_api_error(prefix);
     }
-    services_.store.add_event(lane.run_id, {lane.seq, lane.sim->state().step, kind, payload.dump()});
+    try {
+      services_.store.add_event(lane.run_id, {lane.seq, lane.sim->state().step, kind, payload.dump()});
+    } catch (const std::exception& e) {
+      // applied but not recorded: the run could no longer be re-simulated, so it ends as failed
+      failure_ = std::string("storing an input event failed: ") + e.what();
+      stop_requested_ = true;
+      wake_.notify_all();
+      throw ApiError(500, "storage", failure_, prefix);
+    }
     if (kind != "joystick") ++lane.scene_version;
     if (paused_) publish(lane);
   }

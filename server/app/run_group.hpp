@@ -51,6 +51,7 @@ class RunGroup : public std::enable_shared_from_this<RunGroup> {
   ~RunGroup();
   void start();
   void request_stop();  // the run ends as "stopped" after the current step
+  void wait_exited();   // returns once the thread has finished everything (callbacks included)
 
   int lane_count() const { return int(lanes_.size()); }
   std::int64_t run_id(int lane) const { return lanes_[size_t(lane)].run_id; }
@@ -113,6 +114,9 @@ class RunGroup : public std::enable_shared_from_this<RunGroup> {
   std::mutex done_mutex_;
   std::vector<std::function<void()>> on_finished_;
   std::string failure_;  // an exception from a step ends the run as "failed"
+  std::mutex exit_mutex_;
+  std::condition_variable exited_cv_;
+  bool exited_ = false;
 };
 
 }  // namespace rrlab::server

@@ -40,16 +40,42 @@ RunManager::RunManager(storage::RunStore& store, storage::FrameWriter& writer, c
 
 RunManager::~RunManager() { stop_all(); }
 
+// Stops every run, replay and job and waits until their threads are done
+// with the store, the writer and the I/O context.
 void RunManager::stop_all() {
+  stopping_ = true;
   std::vector<std::shared_ptr<RunGroup>> groups;
+  std::vector<std::shared_ptr<ReplayPlayer>> players;
   {
     std::lock_guard lock(mutex_);
     groups = groups_;
-    for (auto& [id, player] : replays_) player->stop();
+    for (auto& [id, player] : replays_) players.push_back(player);
+    players.insert(players.end(), retired_.begin(), retired_.end());
   }
   for (auto& g : groups) g->request_stop();
-  for (auto& g : groups)
-    while (!g->finished()) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  for (auto& p : players) p->stop();
+  for (auto& g : groups) g->wait_exited();
+  for (auto& p : players) p->wait_exited();
+  std::unique_lock lock(mutex_);
+  jobs_done_.wait(lock, [&] { return jobs_ == 0; });
+}
+
+void RunManager::begin_job() {
+  std::lock_guard lock(mutex_);
+  int active = jobs_;
+  for (const auto& g : groups_) active += g->finished() ? 0 : g->lane_count();
+  if (stopping_ || active >= limits_.max_active_runs)
+    throw ApiError(503, "busy", "at most " + std::to_string(limits_.max_active_runs) +
+                                    " runs and re-simulations may be active at once", "");
+  ++jobs_;
+}
+
+void RunManager::end_job() {
+  {
+    std::lock_guard lock(mutex_);
+    --jobs_;
+  }
+  jobs_done_.notify_all();
 }
 
 json RunManager::scenario_list() {
@@ -133,22 +159,21 @@ void RunManager::prune_locked() {
 }
 
 std::shared_ptr<RunGroup> RunManager::start_group(const std::vector<Scenario>& lanes, const GroupOptions& options) {
+  std::lock_guard start_lock(start_mutex_);  // the limit holds under concurrent starts
   {
     std::lock_guard lock(mutex_);
     prune_locked();
-    int active = 0;
+    int active = jobs_;
     for (const auto& g : groups_) active += g->finished() ? 0 : g->lane_count();
-    if (active + int(lanes.size()) > limits_.max_active_runs)
+    if (stopping_ || active + int(lanes.size()) > limits_.max_active_runs)
       throw ApiError(503, "busy", "at most " + std::to_string(limits_.max_active_runs) +
                                       " runs may be active at once; stop or wait for some", "");
   }
   RunServices services{store_, writer_, limits_.max_stored_frames};
   auto group = std::make_shared<RunGroup>(services, lanes, options);
-  {
-    std::lock_guard lock(mutex_);
-    groups_.push_back(group);
-  }
-  group->start();
+  group->start();  // registered only once its thread runs
+  std::lock_guard lock(mutex_);
+  groups_.push_back(group);
   return group;
 }
 
@@ -164,11 +189,14 @@ std::shared_ptr<RunGroup> RunManager::group_of(std::int64_t id, int& lane) {
 std::int64_t RunManager::add_replay(std::shared_ptr<ReplayPlayer> player) {
   std::lock_guard lock(mutex_);
   // drop the oldest replays beyond the limit
+  std::erase_if(retired_, [](const auto& p) { return p->exited(); });
   while (int(replays_.size()) >= limits_.max_replays) {
     replays_.begin()->second->stop();
+    retired_.push_back(replays_.begin()->second);
     replays_.erase(replays_.begin());
   }
   const std::int64_t id = next_replay_++;
+  player->set_id(id);
   replays_[id] = std::move(player);
   return id;
 }

@@ -2,6 +2,8 @@
 // added over REST, stored in the database), the live run groups and replays.
 #pragma once
 
+#include <atomic>
+#include <condition_variable>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -51,7 +53,13 @@ class RunManager {
   // The group holding run `id` (and its lane), or null when it is not in memory.
   std::shared_ptr<RunGroup> group_of(std::int64_t id, int& lane);
 
+  // Registers a replay (its id set before anyone can see it) and returns the id.
   std::int64_t add_replay(std::shared_ptr<ReplayPlayer> player);
+  // Background jobs (re-simulations): counted against the active-run limit,
+  // told to stop and waited for by stop_all(). begin_job throws ApiError 503.
+  void begin_job();
+  void end_job();
+  bool stopping() const { return stopping_; }
   std::shared_ptr<ReplayPlayer> replay(std::int64_t id);
 
   void stop_all();
@@ -64,9 +72,13 @@ class RunManager {
   ServerLimits limits_;
   std::map<std::string, nlohmann::json> catalogue_;  // file scenarios by stem and by name
   std::vector<std::string> catalogue_names_;         // file stems, sorted
-  std::mutex mutex_;
+  std::mutex mutex_, start_mutex_;
+  std::condition_variable jobs_done_;
+  int jobs_ = 0;
+  std::atomic<bool> stopping_{false};
   std::vector<std::shared_ptr<RunGroup>> groups_;
   std::map<std::int64_t, std::shared_ptr<ReplayPlayer>> replays_;
+  std::vector<std::shared_ptr<ReplayPlayer>> retired_;  // evicted, their threads ending
   std::int64_t next_replay_ = 1;
 };
 

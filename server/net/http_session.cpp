@@ -34,8 +34,13 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
     parser_->body_limit(state_->limits.body_limit);
     parser_->header_limit(16 * 1024);
     stream_.expires_after(state_->limits.read_timeout);
-    http::async_read(stream_, buffer_, *parser_,
-                     [self = shared_from_this()](beast::error_code ec, std::size_t) { self->on_read(ec); });
+    http::async_read(stream_, buffer_, *parser_, [self = shared_from_this()](beast::error_code ec, std::size_t) {
+      try {
+        self->on_read(ec);
+      } catch (const std::exception&) {
+        self->close();  // never let a handler throw into the I/O loop
+      }
+    });
   }
 
   void on_read(beast::error_code ec) {

@@ -20,18 +20,26 @@ class Listener : public std::enable_shared_from_this<Listener> {
   void accept() {
     // each connection gets its own strand
     acceptor_.async_accept(net::make_strand(ioc_), [self = shared_from_this()](beast::error_code ec, tcp::socket socket) {
-      if (!ec) {
+      if (ec == net::error::operation_aborted) return;
+      if (ec) {
+        // e.g. out of file descriptors: back off instead of spinning
+        self->backoff_.expires_after(std::chrono::milliseconds(100));
+        self->backoff_.async_wait([self](beast::error_code) { self->accept(); });
+        return;
+      }
+      {
         // frames are small and latency matters: no Nagle delay behind unacknowledged data
         beast::error_code ignored;
         socket.set_option(tcp::no_delay(true), ignored);
         start_http_session(std::move(socket), self->state_);
       }
-      if (ec != net::error::operation_aborted) self->accept();
+      self->accept();
     });
   }
 
   net::io_context& ioc_;
   tcp::acceptor acceptor_;
+  net::steady_timer backoff_{acceptor_.get_executor()};
   std::shared_ptr<ServerState> state_;
 };
 

@@ -121,7 +121,11 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
   void read() {
     ws_.async_read(buffer_, [self = shared_from_this()](beast::error_code ec, std::size_t) {
       if (ec) return self->close();
-      self->on_message();
+      try {
+        self->on_message();
+      } catch (const std::exception&) {
+        return self->close();  // never let a handler throw into the I/O loop
+      }
       self->read();
     });
   }
@@ -150,7 +154,7 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
                  {"error", {{"code", "malformed_json"}, {"message", std::string("invalid JSON: ") + e.what()}, {"path", ""}}}};
       }
     }
-    queue(std::make_shared<const std::string>(reply.dump()));
+    queue(std::make_shared<const std::string>(safe_dump(reply)));
   }
 
   void close() {

@@ -10,7 +10,7 @@ using nlohmann::json;
 
 ApiResponse get_frames(RouteContext& c) {
   const storage::RunRecord run = find_run(c, c.id());
-  constexpr std::int64_t kMaxFrames = 100'000;  // per request: page with from/to
+  constexpr std::int64_t kMaxFrames = 20'000;  // per request (bounded memory): page with from/to
   const std::int64_t from = query_int(c, "from", 0, 0, INT64_MAX / 2);
   const std::int64_t stride = query_int(c, "stride", 1, 1, 1'000'000);
   std::int64_t to = query_int(c, "to", std::max<std::int64_t>(run.frames - 1, 0), 0, INT64_MAX / 2);

@@ -18,9 +18,11 @@ namespace {
 
 ApiResponse resimulate_run(RouteContext& c, const storage::RunRecord& run) {
   RunManager& runs = c.runs;
+  runs.begin_job();  // 503 when too many runs are active
   ApiResponse response;
   response.deferred = [&runs, run](Responder respond) {
-    std::thread([&runs, run, respond] {
+    const auto job = [&runs, run, respond] {
+      std::int64_t id = 0;
       try {
         storage::NewRun fresh;
         fresh.scenario_name = run.scenario_name;
@@ -32,10 +34,11 @@ ApiResponse resimulate_run(RouteContext& c, const storage::RunRecord& run) {
         fresh.dof = run.dof;
         fresh.diagnostic_names_json = run.diagnostic_names_json;
         fresh.source_run = run.id;
-        const std::int64_t id = runs.store().create_run(fresh);
+        id = runs.store().create_run(fresh);
         for (const storage::StoredEvent& e : runs.store().events(run.id)) runs.store().add_event(id, e);
         const ResimulationResult result =
             resimulate(runs.store(), run, [&](std::int64_t seq, const Frame& f, const std::string& packed) {
+              if (runs.stopping()) throw std::runtime_error("the server is stopping");
               storage::StoredFrame stored{seq, f.step, f.t, f.task_error, f.min_distance, f.collided, packed};
               runs.writer().push(id, std::move(stored));
             });
@@ -52,9 +55,23 @@ ApiResponse resimulate_run(RouteContext& c, const storage::RunRecord& run) {
         runs.store().finish_run(id, "completed", summary.dump());
         respond(json_response(200, verification));
       } catch (const std::exception& e) {
+        if (id != 0) {
+          try {
+            runs.writer().flush();
+            runs.store().finish_run(id, "failed", safe_dump({{"failure", e.what()}}));
+          } catch (const std::exception&) {
+          }
+        }
         respond(error_response(ApiError(500, "resimulation_failed", e.what(), "")));
       }
-    }).detach();
+      runs.end_job();
+    };
+    try {
+      std::thread(job).detach();
+    } catch (const std::exception& e) {
+      runs.end_job();
+      respond(error_response(ApiError(503, "busy", std::string("cannot start a thread: ") + e.what(), "")));
+    }
   };
   return response;
 }
@@ -73,7 +90,9 @@ ApiResponse post_replay(RouteContext& c) {
     mode = body.choice("mode", {"frames", "resimulate"}, "frames");
     speed = body.number("speed", 1.0);
     if (!(speed > 0 && speed <= 1000)) throw ScenarioError("speed", "must be in (0, 1000]");
-    from = std::int64_t(body.number("from", 0));
+    const double first = body.number("from", 0);
+    if (!(first >= 0 && first < 1e15)) throw ScenarioError("from", "must be a frame number");
+    from = std::int64_t(first);
   } catch (...) {
     rethrow_as_api_error("");
   }
@@ -83,7 +102,7 @@ ApiResponse post_replay(RouteContext& c) {
     throw ApiError(409, "wrong_state", "run " + std::to_string(run.id) + " is still running; stop it first", "id");
   if (mode == "resimulate") return resimulate_run(c, run);
   auto player = std::make_shared<ReplayPlayer>(c.runs.store(), run, speed, from, c.runs.limits().default_display_hz);
-  player->set_id(c.runs.add_replay(player));
+  c.runs.add_replay(player);
   player->start();
   return json_response(201, player->status());
 }

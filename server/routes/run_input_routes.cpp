@@ -19,7 +19,16 @@ ApiResponse post_control(RouteContext& c) {
   const json body = parse_body(c.request);
   int lane = 0;
   auto group = live_group(c, c.id(), lane);
-  return json_response(200, group->control(lane, body));
+  json status = group->control(lane, body);
+  if (body.is_object() && body.value("action", "") == "stop") {
+    // answer once the run has ended and its frames are committed
+    ApiResponse response;
+    response.deferred = [group, lane](Responder respond) {
+      group->when_finished([group, lane, respond] { respond(json_response(200, group->status_json(lane))); });
+    };
+    return response;
+  }
+  return json_response(200, status);
 }
 
 ApiResponse patch_params(RouteContext& c) { return apply(c, "params", parse_body(c.request)); }

@@ -69,8 +69,8 @@ void parse_run_options(JsonObject& body, const json& doc, const std::string& def
                        bool& wait) {
   options.mode = body.choice("mode", {"live", "batch"}, default_mode.c_str());
   options.rate = body.number("rate", options.mode == "batch" ? 0.0 : 1.0);
-  if (!(options.rate >= 0 && options.rate <= 1000))
-    throw ScenarioError("rate", "must be in [0, 1000] (0: as fast as possible)");
+  if (!(options.rate == 0 || (options.rate >= 1e-3 && options.rate <= 1000)))
+    throw ScenarioError("rate", "must be 0 (as fast as possible) or in [0.001, 1000]");
   if (options.mode == "batch") options.rate = 0;
   if (body.has("paused")) {
     if (!doc.at("paused").is_boolean()) throw ScenarioError("paused", "must be true or false");

@@ -63,6 +63,15 @@ TEST_F(Routes, MalformedAndTooLargeBodies) {
   EXPECT_EQ(too_large.status, 413);
 }
 
+TEST_F(Routes, ClientBytesThatAreNotUtf8AreAnsweredNotFatal) {
+  // error messages quote the path and the parser's "last read"; invalid UTF-8 must not crash the JSON writer
+  EXPECT_EQ(get("/api/runs/\xff\xfe").status, 404);
+  EXPECT_EQ(get("/\xff.html").status, 404);
+  EXPECT_EQ(get("/api/scenarios/\xc3\x28").status, 404);
+  EXPECT_EQ(http(port(), "POST", "/api/runs", "{\"scenario\": \"\xff").status, 400);
+  EXPECT_EQ(get("/api/health").status, 200);  // still serving
+}
+
 TEST_F(Routes, StartRunErrorsNameTheField) {
   const auto path_of = [](const HttpResult& r) { return error_of(r)["path"].get<std::string>(); };
   HttpResult r = send("POST", "/api/runs", {{"scenario", "nope"}});
