@@ -109,5 +109,34 @@ TEST(CrashSafety, KillDuringABatchRunLeavesASoundDatabase) {
   std::system(("rm -rf '" + dir + "'").c_str());
 }
 
+TEST(Shutdown, SigtermStopsEverythingAndExitsCleanly) {
+  const std::string dir = temp_dir();
+  const std::string db = dir + "/shutdown.db";
+  std::int64_t live = 0, batch = 0;
+  {
+    ServerProcess server(db);
+    const HttpResult done = http_json(server.port(), "POST", "/api/runs",
+                                      {{"scenario", "01_planar7_obstacles"}, {"mode", "batch"}, {"steps", 100}});
+    ASSERT_EQ(done.status, 200);
+    live = http_json(server.port(), "POST", "/api/runs", {{"scenario", small_scenario("joystick", 600)}}).json()["id"];
+    batch = http_json(server.port(), "POST", "/api/runs",
+                      {{"scenario", small_scenario("circle", 99999)}, {"mode", "batch"}, {"wait", false}})
+                .json()["id"];
+    const std::string stored = std::to_string(done.json()["id"].get<long>());
+    ASSERT_EQ(http_json(server.port(), "POST", "/api/runs/" + stored + "/replay", {{"mode", "frames"}}).status, 201);
+    WsClient watcher(server.port(), "/ws/runs/" + std::to_string(live));
+    ASSERT_TRUE(watcher.read_type("frame"));
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    EXPECT_EQ(server.stop(), 0);  // SIGTERM: runs stopped, frames flushed, exit 0
+  }
+  storage::RunStore store(db);
+  EXPECT_EQ(store.interrupted_at_open(), 0);
+  EXPECT_EQ(store.run(live)->status, "stopped");
+  EXPECT_EQ(store.run(batch)->status, "stopped");
+  EXPECT_GT(store.run(batch)->frames, 0);
+  EXPECT_EQ(store.integrity_check(), "ok");
+  std::system(("rm -rf '" + dir + "'").c_str());
+}
+
 }  // namespace
 }  // namespace rrlab::testing
