@@ -64,6 +64,9 @@ RunStore::RunStore(const std::string& path) : db_(std::make_unique<Database>(pat
   mark.step();
   interrupted_at_open_ = db_->changes();
   tx.commit();
+  // a second connection for reads: in WAL mode readers never wait for the writer
+  read_db_ = std::make_unique<Database>(path);
+  read_db_->exec("PRAGMA query_only=ON");
 }
 
 RunStore::~RunStore() = default;
@@ -148,16 +151,16 @@ void RunStore::replace_frame_data(std::int64_t run, std::int64_t seq, const std:
 }
 
 std::optional<RunRecord> RunStore::run(std::int64_t id) {
-  std::lock_guard lock(mutex_);
-  Statement s = db_->prepare(std::string("SELECT ") + kRunColumns + " FROM runs WHERE id = ?");
+  std::lock_guard lock(read_mutex_);
+  Statement s = read_db_->prepare(std::string("SELECT ") + kRunColumns + " FROM runs WHERE id = ?");
   s.bind(1, id);
   if (!s.step()) return std::nullopt;
   return read_run(s);
 }
 
 std::vector<RunRecord> RunStore::runs(const RunFilter& filter) {
-  std::lock_guard lock(mutex_);
-  Statement s = db_->prepare(std::string("SELECT ") + kRunColumns +
+  std::lock_guard lock(read_mutex_);
+  Statement s = read_db_->prepare(std::string("SELECT ") + kRunColumns +
                              " FROM runs WHERE (?1 IS NULL OR scenario_name = ?1) AND (?2 IS NULL OR method = ?2)"
                              " AND (?3 IS NULL OR status = ?3) ORDER BY id DESC LIMIT ?4 OFFSET ?5");
   if (filter.scenario) s.bind(1, *filter.scenario); else s.bind_null(1);
@@ -170,8 +173,8 @@ std::vector<RunRecord> RunStore::runs(const RunFilter& filter) {
 }
 
 std::vector<StoredEvent> RunStore::events(std::int64_t run) {
-  std::lock_guard lock(mutex_);
-  Statement s = db_->prepare("SELECT seq, step, kind, payload FROM events WHERE run_id = ? ORDER BY id");
+  std::lock_guard lock(read_mutex_);
+  Statement s = read_db_->prepare("SELECT seq, step, kind, payload FROM events WHERE run_id = ? ORDER BY id");
   s.bind(1, run);
   std::vector<StoredEvent> out;
   while (s.step()) out.push_back({s.column_int(0), s.column_int(1), s.column_text(2), s.column_text(3)});
@@ -180,8 +183,8 @@ std::vector<StoredEvent> RunStore::events(std::int64_t run) {
 
 void RunStore::frames(std::int64_t run, std::int64_t from, std::int64_t to, std::int64_t stride,
                       const std::function<bool(const StoredFrame&)>& visit) {
-  std::lock_guard lock(mutex_);
-  Statement s = db_->prepare(
+  std::lock_guard lock(read_mutex_);
+  Statement s = read_db_->prepare(
       "SELECT seq, step, t, task_error, min_distance, collided, data FROM frames WHERE run_id = ?1 "
       "AND seq BETWEEN ?2 AND ?3 AND (seq - ?2) % ?4 = 0 ORDER BY seq");
   s.bind(1, run).bind(2, from).bind(3, to).bind(4, stride < 1 ? 1 : stride);
@@ -206,16 +209,16 @@ bool RunStore::put_scenario(const std::string& name, const std::string& json) {
 }
 
 std::optional<std::string> RunStore::scenario(const std::string& name) {
-  std::lock_guard lock(mutex_);
-  Statement s = db_->prepare("SELECT json FROM scenarios WHERE name = ?");
+  std::lock_guard lock(read_mutex_);
+  Statement s = read_db_->prepare("SELECT json FROM scenarios WHERE name = ?");
   s.bind(1, name);
   if (!s.step()) return std::nullopt;
   return s.column_text(0);
 }
 
 std::vector<std::string> RunStore::scenario_names() {
-  std::lock_guard lock(mutex_);
-  Statement s = db_->prepare("SELECT name FROM scenarios ORDER BY name");
+  std::lock_guard lock(read_mutex_);
+  Statement s = read_db_->prepare("SELECT name FROM scenarios ORDER BY name");
   std::vector<std::string> out;
   while (s.step()) out.push_back(s.column_text(0));
   return out;

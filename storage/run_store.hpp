@@ -1,6 +1,7 @@
 // Runs, frames, events and user scenarios in one SQLite file (schema.sql).
-// Thread-safe: one connection behind a mutex (SQLite in WAL mode with
-// synchronous=NORMAL: a crash loses at most the last uncommitted batch).
+// Thread-safe: a write connection and a read connection, each behind its own
+// mutex (SQLite in WAL mode with synchronous=NORMAL: a crash loses at most the
+// last uncommitted batch, and readers never block the writer).
 #pragma once
 
 #include <cstdint>
@@ -88,8 +89,9 @@ class RunStore {
   std::string integrity_check();  // "ok" when sound
 
  private:
-  std::mutex mutex_;
-  std::unique_ptr<Database> db_;
+  std::mutex mutex_, read_mutex_;
+  std::unique_ptr<Database> db_;       // writes (and integrity checks)
+  std::unique_ptr<Database> read_db_;  // reads: exports never hold up the frame writer
   int interrupted_at_open_ = 0;
 };
 

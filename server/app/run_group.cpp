@@ -162,7 +162,7 @@ void RunGroup::step_lanes() {
       stored.min_distance = f.min_distance;
       stored.collided = f.collided;
       storage::pack_frame(f, stored.data);
-      services_.writer.push(lane.run_id, std::move(stored));
+      outbox_.emplace_back(lane.run_id, std::move(stored));  // pushed once the lock is released
     }
     ++lane.seq;
   }
@@ -209,6 +209,13 @@ void RunGroup::loop() {
     } catch (const std::exception& e) {
       failure_ = e.what();
       break;
+    }
+    if (!outbox_.empty()) {
+      // storage back-pressure (a full queue) waits here, never under the lock inputs need
+      lock.unlock();
+      for (auto& [run, frame] : outbox_) services_.writer.push(run, std::move(frame));
+      outbox_.clear();
+      lock.lock();
     }
     ++anchor_steps;
     // publish on a display-rate schedule (deadlines, so that steps of 10 ms

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "app/frame_source.hpp"
+#include "storage/run_store.hpp"
 #include "scenario/scenario.hpp"
 #include "sim/simulator.hpp"
 
@@ -114,6 +115,7 @@ class RunGroup : public std::enable_shared_from_this<RunGroup> {
   std::mutex done_mutex_;
   std::vector<std::function<void()>> on_finished_;
   std::string failure_;  // an exception from a step ends the run as "failed"
+  std::vector<std::pair<std::int64_t, storage::StoredFrame>> outbox_;  // this step's frames
   std::mutex exit_mutex_;
   std::condition_variable exited_cv_;
   bool exited_ = false;
