@@ -70,6 +70,26 @@ TEST(Cli, EveryScenarioRunsWithEveryBaseline) {
     }
 }
 
+TEST(Cli, RunStoresInADatabaseAndReplayVerifies) {
+  const auto dir = std::filesystem::temp_directory_path() / "rrlab_cli_db_test";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string db = (dir / "runs.db").string();
+  const Result r = rrlab("run " + scenario("04_planar7_joystick.json") + " --steps 120 --db " + db);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const json summary = json::parse(r.out);
+  ASSERT_TRUE(summary.contains("run"));
+  const std::string id = std::to_string(summary["run"].get<long>());
+  const Result verify = rrlab("replay " + id + " --db " + db + " --verify");
+  EXPECT_EQ(verify.code, 0) << verify.err;
+  EXPECT_EQ(json::parse(verify.out)["frames_compared"], 120);
+  EXPECT_EQ(rrlab("replay 99 --db " + db).code, 2);
+  EXPECT_EQ(rrlab("replay " + id + " --db " + (dir / "missing" / "x.db").string()).code, 2);
+  EXPECT_EQ(rrlab("replay " + id + " --db " + (dir / "absent.db").string()).code, 2);
+  EXPECT_FALSE(std::filesystem::exists(dir / "absent.db"));  // replay never creates a database
+  std::filesystem::remove_all(dir);
+}
+
 TEST(Cli, OutWritesTheCsvColumns) {
   const auto csv = std::filesystem::temp_directory_path() / "rrlab_cli_test.csv";
   const Result r = rrlab("run " + scenario("01_planar7_obstacles.json") + " --method dls --param lambda=0.1 --steps 20 --out " +
