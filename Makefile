@@ -3,7 +3,7 @@ BUILD ?= build
 JOBS ?= 2
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
 
-.PHONY: deps configure build serve demo test bench clean
+.PHONY: deps configure build serve demo test test-web bench clean
 
 deps:
 	./scripts/install-deps
@@ -24,6 +24,13 @@ demo: build
 
 test: build
 	ctest --test-dir $(BUILD) --output-on-failure --parallel $(JOBS)
+
+# Browser test of the dashboard: Debian's chromium + playwright-core from npm (opt-in).
+test-web:
+	./scripts/install-deps --web
+	cmake -S . -B $(BUILD) -G Ninja $(CMAKE_FLAGS) -DRRLAB_WEB_TESTS=ON
+	cmake --build $(BUILD) --parallel $(JOBS)
+	ctest --test-dir $(BUILD) --output-on-failure -R '^Web\.'
 
 bench: build
 	$(BUILD)/bench/rrlab_bench

@@ -238,7 +238,7 @@ TEST_F(Routes, StaticFilesWithMimeTypesAndNoTraversal) {
   const HttpResult index = get("/");
   EXPECT_EQ(index.status, 200);
   EXPECT_EQ(index.content_type, "text/html; charset=utf-8");
-  EXPECT_EQ(get("/main.js").content_type, "text/javascript; charset=utf-8");
+  EXPECT_EQ(get("/js/main.js").content_type, "text/javascript; charset=utf-8");
   EXPECT_EQ(get("/style.css").content_type, "text/css; charset=utf-8");
   EXPECT_EQ(get("/../CMakeLists.txt").status, 404);
   EXPECT_EQ(get("/%2e%2e/CMakeLists.txt").status, 404);
