@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "scenario/scenario.hpp"
+#include "methods/registry.hpp"
 #include "sim/simulator.hpp"
 
 namespace rrlab::test {
@@ -55,6 +56,30 @@ inline void expect_repeats_after_reset(Simulator& sim) {
     ASSERT_EQ(first.frames[i].q, second.frames[i].q) << i;
     ASSERT_EQ(first.frames[i].diagnostics, second.frames[i].diagnostics) << i;
   }
+}
+
+// Steps `sim` and, after each step, compares the method's q̇ with pinv's
+// minimum-norm q̇ on the same inputs: the difference (the null-space part) must
+// not move the end-effector, ‖J q̇_N‖ < 1e-9. Returns the largest ‖q̇_N‖ seen.
+inline double largest_null_space_motion(Simulator& sim, int steps, const std::string& label = "") {
+  const MethodContext ctx{sim.model(), sim.scenario().task.space, int(sim.scene().obstacles.size())};
+  auto pinv = find_method("pinv")->make(ctx);
+  StepOutput minimum_norm;
+  minimum_norm.qdot.resize(sim.model().dof());
+  minimum_norm.diag.values.resize(1);
+  double largest_null = 0;
+  for (int k = 0; k < steps; ++k) {
+    sim.step();
+    // same inputs as the step just taken: the Jacobian at q_k, the reference at t_k
+    const StepInput in{sim.model(), State{sim.frame().t, sim.frame().step, sim.frame().q, sim.frame().qdot},
+                       sim.reference(), sim.scene(), sim.scenario().dt, sim.kinematics(), sim.task_jacobian(),
+                       sim.distances(), sim.task()};
+    pinv->step(in, minimum_norm);
+    const Eigen::VectorXd null_motion = sim.frame().qdot - minimum_norm.qdot;
+    largest_null = std::max(largest_null, null_motion.norm());
+    EXPECT_LT((sim.task_jacobian() * null_motion).norm(), 1e-9) << label << " step " << k;
+  }
+  return largest_null;
 }
 
 // Planar chain of `n` equal links; q0 in radians.

@@ -82,23 +82,7 @@ TEST(Gpm, NullSpaceMotionMovesNoEndEffector) {
   for (const char* gradient : {"joint_range", "manipulability", "distance"}) {
     doc["method"] = {{"name", "gpm"}, {"params", {{"gradient", gradient}, {"gain", 5.0}}}};
     Simulator sim(parse_scenario(doc));
-    const MethodContext ctx{sim.model(), TaskSpace::xy, 1};
-    auto pinv = find_method("pinv")->make(ctx);
-    StepOutput minimum_norm;
-    minimum_norm.qdot.resize(4);
-    minimum_norm.diag.values.resize(1);
-    double largest_null = 0;
-    for (int k = 0; k < 200; ++k) {
-      sim.step();
-      // same inputs as the step just taken: the Jacobian at q_k, the reference at t_k
-      const StepInput in{sim.model(), State{sim.frame().t, sim.frame().step, sim.frame().q, sim.frame().qdot},
-                         sim.reference(), sim.scene(), 0.01, sim.kinematics(), sim.task_jacobian(),
-                         sim.distances(), sim.task()};
-      pinv->step(in, minimum_norm);
-      const Eigen::VectorXd null_motion = sim.frame().qdot - minimum_norm.qdot;
-      largest_null = std::max(largest_null, null_motion.norm());
-      EXPECT_LT((sim.task_jacobian() * null_motion).norm(), 1e-9) << gradient << " step " << k;
-    }
+    const double largest_null = test::largest_null_space_motion(sim, 200, gradient);
     EXPECT_GT(largest_null, 1e-4) << gradient << ": the criterion should move the arm";
   }
 }

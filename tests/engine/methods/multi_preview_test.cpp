@@ -186,22 +186,7 @@ json fig5_hold() {
 
 TEST(MultiPreview, NullSpacePartNeverMovesTheHand) {
   Simulator sim(parse_scenario(fig5_hold()));
-  const MethodContext ctx{sim.model(), TaskSpace::xy, 1};
-  auto pinv = find_method("pinv")->make(ctx);
-  StepOutput minimum_norm;
-  minimum_norm.qdot.resize(4);
-  minimum_norm.diag.values.resize(1);
-  double largest_null = 0;
-  for (int k = 0; k < 200; ++k) {
-    sim.step();
-    const StepInput in{sim.model(), State{sim.frame().t, sim.frame().step, sim.frame().q, sim.frame().qdot},
-                       sim.reference(), sim.scene(), 0.01, sim.kinematics(), sim.task_jacobian(),
-                       sim.distances(), sim.task()};
-    pinv->step(in, minimum_norm);
-    const Eigen::VectorXd null_motion = sim.frame().qdot - minimum_norm.qdot;
-    largest_null = std::max(largest_null, null_motion.norm());
-    EXPECT_LT((sim.task_jacobian() * null_motion).norm(), 1e-9) << "step " << k;
-  }
+  const double largest_null = test::largest_null_space_motion(sim, 200);
   EXPECT_GT(largest_null, 1e-3);
 }
 
