@@ -6,7 +6,6 @@
 
 #include "cli.hpp"
 #include "csv_recorder.hpp"
-#include "methods/registry.hpp"
 #include "scenario/scenario.hpp"
 #include "sim/run_record.hpp"
 #include "sim/simulator.hpp"
@@ -73,9 +72,7 @@ int run(const RunOptions& options) {
     if (options.method && *options.method != scenario.method.name) {
       if (!input.events.empty())
         throw ScenarioError("--method", "a run record replays its own method; --method cannot change it");
-      if (!find_method(*options.method))
-        throw ScenarioError("--method", "unknown method \"" + *options.method + "\" (known: " +
-                                            method_names() + ")");
+      require_method(*options.method, "--method");
       scenario.method.name = *options.method;
       scenario.method.params.clear();  // the scenario's parameters belong to its own method
     }

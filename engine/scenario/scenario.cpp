@@ -307,18 +307,26 @@ void parse_task(JsonObject task, const Units& units, Scenario& sc) {
 void parse_method(JsonObject method, Scenario& sc) {
   method.check_keys({"name", "params"});
   sc.method.name = method.string("name");
-  if (!find_method(sc.method.name))
-    throw ScenarioError(method.child("name"),
-                        "unknown method \"" + sc.method.name + "\" (known: " + method_names() + ")");
-  if (method.has("params")) {
-    JsonObject params = method.object("params");
-    for (auto it = method.raw("params").begin(); it != method.raw("params").end(); ++it)
-      sc.method.params.push_back(
-          resolve_method_param(sc.method.name, it.key(), it.value(), params.child(it.key())));
-  }
+  require_method(sc.method.name, method.child("name"));
+  if (method.has("params"))
+    sc.method.params = resolve_method_params(sc.method.name, method.raw("params"), method.child("params"));
 }
 
 }  // namespace
+
+void require_method(const std::string& name, const std::string& path) {
+  if (!find_method(name)) throw ScenarioError(path, "unknown method \"" + name + "\" (known: " + method_names() + ")");
+}
+
+std::vector<std::pair<std::string, double>> resolve_method_params(const std::string& method,
+                                                                  const nlohmann::json& params,
+                                                                  const std::string& path) {
+  const JsonObject object(params, path);
+  std::vector<std::pair<std::string, double>> resolved;
+  for (auto it = params.begin(); it != params.end(); ++it)
+    resolved.push_back(resolve_method_param(method, it.key(), it.value(), object.child(it.key())));
+  return resolved;
+}
 
 Obstacle parse_obstacle_json(const nlohmann::json& value, const std::string& path) {
   return parse_obstacle(value, path, 0, Units{});

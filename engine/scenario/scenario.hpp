@@ -62,6 +62,16 @@ Scenario load_scenario_file(const std::string& file);
 // One obstacle in scenario syntax, angles in radians (live edits over REST).
 Obstacle parse_obstacle_json(const nlohmann::json& value, const std::string& path);
 
+// Throws ScenarioError at `path` unless `name` is a registered method.
+void require_method(const std::string& name, const std::string& path);
+
+// Every entry of a {"NAME": value, ...} object resolved for `method` as
+// resolve_method_param does; errors name `path.NAME` (or `path` when the
+// value is not an object).
+std::vector<std::pair<std::string, double>> resolve_method_params(const std::string& method,
+                                                                  const nlohmann::json& params,
+                                                                  const std::string& path);
+
 // Resolves a method parameter given as a number or an enumeration label;
 // throws ScenarioError at `path`. Shared by scenarios, CLI and REST.
 std::pair<std::string, double> resolve_method_param(const std::string& method,

@@ -2,7 +2,6 @@
 
 #include <cmath>
 
-#include "methods/registry.hpp"
 #include "scenario/json_reader.hpp"
 #include "sim/simulator.hpp"
 
@@ -34,10 +33,8 @@ int obstacle_index(const Simulator& sim, JsonObject& obj) {
 void apply_params(Simulator& sim, const json& payload) {
   if (!payload.is_object() || payload.empty())
     throw ScenarioError("", "must be an object {\"NAME\": value, ...} with at least one parameter");
-  std::vector<std::pair<std::string, double>> resolved;
-  for (auto it = payload.begin(); it != payload.end(); ++it)
-    resolved.push_back(resolve_method_param(sim.method_name(), it.key(), it.value(), it.key()));
-  for (const auto& [name, value] : resolved) sim.set_param(name, value);
+  for (const auto& [name, value] : resolve_method_params(sim.method_name(), payload, ""))
+    sim.set_param(name, value);
 }
 
 // Edits one obstacle; "position" places its reference point (centre, point,
@@ -116,14 +113,9 @@ void apply_method(Simulator& sim, const json& payload) {
   JsonObject obj(payload, "");
   obj.check_keys({"name", "params"});
   const std::string name = obj.string("name");
-  if (!find_method(name))
-    throw ScenarioError("name", "unknown method \"" + name + "\" (known: " + method_names() + ")");
+  require_method(name, "name");
   std::vector<std::pair<std::string, double>> resolved;
-  if (obj.has("params")) {
-    JsonObject params = obj.object("params");
-    for (auto it = payload.at("params").begin(); it != payload.at("params").end(); ++it)
-      resolved.push_back(resolve_method_param(name, it.key(), it.value(), params.child(it.key())));
-  }
+  if (obj.has("params")) resolved = resolve_method_params(name, payload.at("params"), "params");
   sim.switch_method(name);
   for (const auto& [param, value] : resolved) sim.set_param(param, value);
 }

@@ -1,6 +1,5 @@
 // Several methods on one scenario in lockstep: the same steps, and the same
 // scene, joystick and reset inputs applied to every lane.
-#include "methods/registry.hpp"
 #include "routes/routes.hpp"
 #include "scenario/json_reader.hpp"
 
@@ -50,20 +49,14 @@ ApiResponse post_compare(RouteContext& c) {
       lane.method.params.clear();
       if (methods[i].is_string()) {
         lane.method.name = methods[i].get<std::string>();
-        if (!find_method(lane.method.name))
-          throw ScenarioError(path, "unknown method \"" + lane.method.name + "\" (known: " + method_names() + ")");
+        require_method(lane.method.name, path);
       } else {
         JsonObject m(methods[i], path);
         m.check_keys({"name", "params"});
         lane.method.name = m.string("name");
-        if (!find_method(lane.method.name))
-          throw ScenarioError(m.child("name"), "unknown method \"" + lane.method.name + "\" (known: " + method_names() + ")");
-        if (m.has("params")) {
-          JsonObject params = m.object("params");
-          for (auto it = methods[i]["params"].begin(); it != methods[i]["params"].end(); ++it)
-            lane.method.params.push_back(
-                resolve_method_param(lane.method.name, it.key(), it.value(), params.child(it.key())));
-        }
+        require_method(lane.method.name, m.child("name"));
+        if (m.has("params"))
+          lane.method.params = resolve_method_params(lane.method.name, methods[i]["params"], m.child("params"));
       }
       if (lane.method.name == base.method.name && methods[i].is_string()) lane.method.params = base.method.params;
       lanes.push_back(std::move(lane));

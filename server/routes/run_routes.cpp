@@ -1,4 +1,3 @@
-#include "methods/registry.hpp"
 #include "routes/routes.hpp"
 #include "scenario/json_reader.hpp"
 #include "storage/run_store.hpp"
@@ -15,19 +14,15 @@ json parse_or_null(const std::optional<std::string>& text) { return text ? json:
 void apply_method_choice(JsonObject& body, const json& doc, Scenario& scenario) {
   if (body.has("method")) {
     const std::string method = body.string("method");
-    if (!find_method(method))
-      throw ApiError(400, "invalid", "unknown method \"" + method + "\" (known: " + method_names() + ")", "method");
+    require_method(method, "method");
     if (method != scenario.method.name) {
       scenario.method.name = method;
       scenario.method.params.clear();  // the scenario's parameters belong to its own method
     }
   }
   if (body.has("params")) {
-    JsonObject params = body.object("params");
-    const json& values = doc.at("params");
-    for (auto it = values.begin(); it != values.end(); ++it)
-      scenario.method.params.push_back(
-          resolve_method_param(scenario.method.name, it.key(), it.value(), params.child(it.key())));
+    const auto params = resolve_method_params(scenario.method.name, doc.at("params"), "params");
+    scenario.method.params.insert(scenario.method.params.end(), params.begin(), params.end());
   }
 }
 
