@@ -4,6 +4,7 @@
 #include <memory>
 #include <sstream>
 
+#include "app/resimulation.hpp"
 #include "cli.hpp"
 #include "csv_recorder.hpp"
 #include "scenario/scenario.hpp"
@@ -56,13 +57,6 @@ RunRecordDoc load_input(const std::string& file) {
   return plain;
 }
 
-nlohmann::json params_of(const Simulator& sim) {
-  nlohmann::json params = nlohmann::json::object();
-  for (size_t i = 0; i < sim.method().specs().size(); ++i)
-    params[sim.method().specs()[i].name] = sim.method().param_values()[Eigen::Index(i)];
-  return params;
-}
-
 }  // namespace
 
 int run(const RunOptions& options) {
@@ -97,16 +91,7 @@ int run(const RunOptions& options) {
     if (options.db) {
       store = std::make_unique<storage::RunStore>(*options.db);
       writer = std::make_unique<storage::FrameWriter>(*store);
-      storage::NewRun record;
-      record.scenario_name = scenario.name;
-      record.scenario_json = scenario.json.dump();
-      record.method = sim.method_name();
-      record.params_json = params_of(sim).dump();
-      record.mode = "batch";
-      record.seed = scenario.seed;
-      record.dof = sim.model().dof();
-      record.diagnostic_names_json = nlohmann::json(sim.diagnostic_names()).dump();
-      run_id = store->create_run(record);
+      run_id = store->create_run(server::new_run_of(scenario, sim, "batch"));
       for (const RecordedEvent& e : input.events)
         store->add_event(run_id, {e.seq, 0, e.kind, e.payload.dump()});
     }
@@ -115,15 +100,10 @@ int run(const RunOptions& options) {
     if (csv) csv->begin(sim);
     for (long seq = 0; seq < steps && !sim.done(); ++seq) {
       events.apply_due(sim, seq);
-      const auto start = std::chrono::steady_clock::now();
-      sim.step();
-      sim.note_step_time(std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count());
+      timed_step(sim);
       if (csv) csv->frame(sim.frame());
       if (writer) {
-        const Frame& f = sim.frame();
-        storage::StoredFrame stored{seq, f.step, f.t, f.task_error, f.min_distance, f.collided, {}};
-        storage::pack_frame(f, stored.data);
-        writer->push(run_id, std::move(stored));
+        writer->push(run_id, storage::stored_frame(seq, sim.frame(), storage::pack_frame(sim.frame())));
       }
     }
     const Summary summary = sim.summary();

@@ -73,6 +73,10 @@ std::string pack_frame(const Frame& frame) {
   return out;
 }
 
+StoredFrame stored_frame(std::int64_t seq, const Frame& f, std::string packed) {
+  return {seq, f.step, f.t, f.task_error, f.min_distance, f.collided, std::move(packed)};
+}
+
 Frame unpack_frame(std::string_view in) {
   const auto n = take<std::uint32_t>(in), k = take<std::uint32_t>(in);
   if (n > 4096 || k > 4096 || in.size() != 8 + 8 * (kFixedDoubles + 2 * size_t(n) + k))

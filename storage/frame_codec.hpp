@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "sim/frame.hpp"
+#include "storage/run_store.hpp"
 
 namespace rrlab::storage {
 
@@ -19,6 +20,9 @@ namespace rrlab::storage {
 // manipulability, condition_number, diagnostics[k].
 void pack_frame(const Frame& frame, std::string& out);
 std::string pack_frame(const Frame& frame);
+
+// The row stored for the run's frame `seq`; `packed` is pack_frame(frame).
+StoredFrame stored_frame(std::int64_t seq, const Frame& frame, std::string packed);
 
 // Throws std::runtime_error on a blob that is not a packed frame.
 Frame unpack_frame(std::string_view blob);

@@ -20,4 +20,11 @@ nlohmann::json methods_json() {
   return list;
 }
 
+nlohmann::json param_values_json(const Method& method) {
+  nlohmann::json values = nlohmann::json::object();
+  for (size_t i = 0; i < method.specs().size(); ++i)
+    values[method.specs()[i].name] = method.param_values()[Eigen::Index(i)];
+  return values;
+}
+
 }  // namespace rrlab

@@ -9,5 +9,7 @@ namespace rrlab {
 
 nlohmann::json param_spec_json(const ParamSpec& spec);
 nlohmann::json methods_json();
+// A method's current parameter values, {"NAME": value, ...}.
+nlohmann::json param_values_json(const Method& method);
 
 }  // namespace rrlab

@@ -221,13 +221,17 @@ Summary Simulator::summary() {
   return s;
 }
 
+void timed_step(Simulator& sim) {
+  const auto start = std::chrono::steady_clock::now();
+  sim.step();
+  const auto stop = std::chrono::steady_clock::now();
+  sim.note_step_time(std::chrono::duration<double, std::micro>(stop - start).count());
+}
+
 Summary run_to_end(Simulator& sim, Recorder* recorder) {
   if (recorder) recorder->begin(sim);
   while (!sim.done()) {
-    const auto start = std::chrono::steady_clock::now();
-    sim.step();
-    const auto stop = std::chrono::steady_clock::now();
-    sim.note_step_time(std::chrono::duration<double, std::micro>(stop - start).count());
+    timed_step(sim);
     if (recorder) recorder->frame(sim.frame());
   }
   Summary summary = sim.summary();

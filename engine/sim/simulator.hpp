@@ -89,6 +89,9 @@ class Simulator {
   StepTimeHistogram step_times_;
 };
 
+// One step, its compute time noted (wall clock: kept apart from the deterministic frame).
+void timed_step(Simulator& sim);
+
 // Runs to the end, timing each step, feeding a recorder (may be null).
 Summary run_to_end(Simulator& sim, Recorder* recorder);
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 
+#include "methods/registry_json.hpp"
 #include "sim/run_record.hpp"
 #include "sim/simulator.hpp"
 #include "storage/frame_codec.hpp"
@@ -19,6 +20,19 @@ Scenario scenario_of_run(const storage::RunRecord& run) {
   for (auto it = params.begin(); it != params.end(); ++it)
     scenario.method.params.emplace_back(it.key(), it.value().get<double>());
   return scenario;
+}
+
+storage::NewRun new_run_of(const Scenario& scenario, const Simulator& sim, const std::string& mode) {
+  storage::NewRun run;
+  run.scenario_name = scenario.name;
+  run.scenario_json = scenario.json.dump();
+  run.method = sim.method_name();
+  run.params_json = param_values_json(sim.method()).dump();
+  run.mode = mode;
+  run.seed = scenario.seed;
+  run.dof = sim.model().dof();
+  run.diagnostic_names_json = json(sim.diagnostic_names()).dump();
+  return run;
 }
 
 namespace {
@@ -62,9 +76,7 @@ ResimulationResult resimulate(storage::RunStore& store, const storage::RunRecord
     for (size_t i = 0; i < stored.size(); ++i) {
       const std::int64_t seq = from + std::int64_t(i);
       replayer.apply_due(sim, long(seq));
-      const auto start = std::chrono::steady_clock::now();
-      sim.step();
-      sim.note_step_time(std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count());
+      timed_step(sim);
       storage::pack_frame(sim.frame(), packed);
       if (on_frame) on_frame(seq, sim.frame(), packed);
       ++result.frames_compared;

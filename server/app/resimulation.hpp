@@ -10,12 +10,16 @@
 
 #include "scenario/scenario.hpp"
 #include "sim/frame.hpp"
+#include "sim/simulator.hpp"
 #include "storage/run_store.hpp"
 
 namespace rrlab::server {
 
 // The scenario a stored run started from (its method and parameters included).
 Scenario scenario_of_run(const storage::RunRecord& run);
+// The stored-run description of a simulator about to run `scenario` (the
+// inverse of scenario_of_run: its method and parameters as they start).
+storage::NewRun new_run_of(const Scenario& scenario, const Simulator& sim, const std::string& mode);
 
 struct ResimulationResult {
   std::int64_t frames_compared = 0;

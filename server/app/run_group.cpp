@@ -1,7 +1,9 @@
 #include "app/run_group.hpp"
 
 #include "app/api.hpp"
+#include "app/resimulation.hpp"
 #include "app/stream_json.hpp"
+#include "methods/registry_json.hpp"
 #include "scenario/json_reader.hpp"
 #include "sim/run_inputs.hpp"
 #include "storage/frame_codec.hpp"
@@ -84,15 +86,7 @@ RunGroup::RunGroup(RunServices services, const std::vector<Scenario>& scenarios,
   }
   for (size_t i = 0; i < scenarios.size(); ++i) {
     Lane& lane = lanes_[i];
-    storage::NewRun run;
-    run.scenario_name = scenarios[i].name;
-    run.scenario_json = scenarios[i].json.dump();
-    run.method = lane.sim->method_name();
-    run.params_json = params_json(*lane.sim).dump();
-    run.mode = options_.mode;
-    run.seed = scenarios[i].seed;
-    run.dof = lane.sim->model().dof();
-    run.diagnostic_names_json = json(lane.sim->diagnostic_names()).dump();
+    storage::NewRun run = new_run_of(scenarios[i], *lane.sim, options_.mode);
     run.source_run = options_.source_run;
     if (options_.compare && i > 0) run.compare_group = lanes_[0].run_id;
     lane.run_id = services_.store.create_run(run);
@@ -149,21 +143,10 @@ bool RunGroup::all_done() const {
 void RunGroup::step_lanes() {
   for (Lane& lane : lanes_) {
     if (lane.sim->done()) continue;
-    const auto start = Clock::now();
-    lane.sim->step();
-    lane.sim->note_step_time(std::chrono::duration<double, std::micro>(Clock::now() - start).count());
+    timed_step(*lane.sim);
     const Frame& f = lane.sim->frame();
-    if (lane.seq < services_.max_stored_frames) {
-      storage::StoredFrame stored;
-      stored.seq = lane.seq;
-      stored.step = f.step;
-      stored.t = f.t;
-      stored.task_error = f.task_error;
-      stored.min_distance = f.min_distance;
-      stored.collided = f.collided;
-      storage::pack_frame(f, stored.data);
-      outbox_.emplace_back(lane.run_id, std::move(stored));  // pushed once the lock is released
-    }
+    if (lane.seq < services_.max_stored_frames)  // pushed once the lock is released
+      outbox_.emplace_back(lane.run_id, storage::stored_frame(lane.seq, f, storage::pack_frame(f)));
     ++lane.seq;
   }
 }
@@ -309,7 +292,7 @@ json RunGroup::status_locked(const Lane& lane) const {
           {"mode", options_.mode},
           {"status", lane_status(lane)},
           {"method", lane.sim->method_name()},
-          {"params", params_json(*lane.sim)},
+          {"params", param_values_json(lane.sim->method())},
           {"step", state.step},
           {"t", state.t},
           {"frames", lane.seq},

@@ -190,14 +190,6 @@ nlohmann::json model_json(const Model& model) {
             {"acceleration", vec(model.limits.acceleration)}}}};
 }
 
-nlohmann::json params_json(const Simulator& sim) {
-  nlohmann::json params = nlohmann::json::object();
-  const Method& method = sim.method();
-  for (size_t i = 0; i < method.specs().size(); ++i)
-    params[method.specs()[i].name] = method.param_values()[Eigen::Index(i)];
-  return params;
-}
-
 nlohmann::json snapshot_json(const FrameContext& c, const Simulator& sim, const std::string& frame_text) {
   using nlohmann::json;
   json specs = json::array();
@@ -221,7 +213,7 @@ nlohmann::json snapshot_json(const FrameContext& c, const Simulator& sim, const 
           {"method", sim.method_name()},
           {"dt", sim.scenario().dt},
           {"duration", sim.scenario().duration},
-          {"params", params_json(sim)},
+          {"params", param_values_json(sim.method())},
           {"param_specs", specs},
           {"diagnostic_names", sim.diagnostic_names()},
           {"model", model_json(sim.model())},

@@ -32,7 +32,5 @@ nlohmann::json model_json(const Model& model);
 // {"type":"snapshot", run, scenario, method, status, params, param_specs, diagnostic_names,
 //  model, task {space, path}, obstacles, scene_version, frame}
 nlohmann::json snapshot_json(const FrameContext& context, const Simulator& sim, const std::string& frame_text);
-// The current parameter values of the simulator's method, by name.
-nlohmann::json params_json(const Simulator& sim);
 
 }  // namespace rrlab::server

@@ -7,6 +7,7 @@
 #include "app/resimulation.hpp"
 #include "routes/routes.hpp"
 #include "scenario/json_reader.hpp"
+#include "storage/frame_codec.hpp"
 #include "storage/frame_writer.hpp"
 #include "storage/run_store.hpp"
 
@@ -39,8 +40,7 @@ ApiResponse resimulate_run(RouteContext& c, const storage::RunRecord& run) {
         const ResimulationResult result =
             resimulate(runs.store(), run, [&](std::int64_t seq, const Frame& f, const std::string& packed) {
               if (runs.stopping()) throw std::runtime_error("the server is stopping");
-              storage::StoredFrame stored{seq, f.step, f.t, f.task_error, f.min_distance, f.collided, packed};
-              runs.writer().push(id, std::move(stored));
+              runs.writer().push(id, storage::stored_frame(seq, f, packed));
             });
         runs.writer().flush();
         json summary = summary_to_json(result.summary);
