@@ -30,14 +30,6 @@ T take(std::string_view& in) {
   return value;
 }
 
-nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); }
-
-nlohmann::json vector_json(const Eigen::VectorXd& v) {
-  nlohmann::json a = nlohmann::json::array();
-  for (Eigen::Index i = 0; i < v.size(); ++i) a.push_back(number_or_null(v[i]));
-  return a;
-}
-
 }  // namespace
 
 void pack_frame(const Frame& f, std::string& out) {
@@ -115,24 +107,24 @@ nlohmann::json frame_to_json(const Frame& f, const std::vector<std::string>& dia
       name = diagnostic_names[size_t(i)];
     else
       name.append(std::to_string(i + 1));
-    diagnostics[name] = number_or_null(f.diagnostics[i]);
+    diagnostics[name] = finite_or_null(f.diagnostics[i]);
   }
   const Eigen::Quaterniond& r = f.ee_orientation;
   return {{"step", f.step},
           {"t", f.t},
-          {"q", vector_json(f.q)},
-          {"qdot", vector_json(f.qdot)},
-          {"ee", vector_json(f.ee_position)},
+          {"q", finite_or_null(f.q)},
+          {"qdot", finite_or_null(f.qdot)},
+          {"ee", finite_or_null(Eigen::VectorXd(f.ee_position))},
           {"ee_quat", {r.w(), r.x(), r.y(), r.z()}},
-          {"target", vector_json(f.target)},
-          {"task_error", number_or_null(f.task_error)},
-          {"orientation_error", number_or_null(f.orientation_error)},
-          {"min_distance", number_or_null(f.min_distance)},
+          {"target", finite_or_null(Eigen::VectorXd(f.target))},
+          {"task_error", finite_or_null(f.task_error)},
+          {"orientation_error", finite_or_null(f.orientation_error)},
+          {"min_distance", finite_or_null(f.min_distance)},
           {"min_distance_link", f.min_distance_link + 1},
           {"collided", f.collided},
-          {"joint_limit_margin", number_or_null(f.joint_limit_margin)},
-          {"manipulability", number_or_null(f.manipulability)},
-          {"condition_number", number_or_null(f.condition_number)},
+          {"joint_limit_margin", finite_or_null(f.joint_limit_margin)},
+          {"manipulability", finite_or_null(f.manipulability)},
+          {"condition_number", finite_or_null(f.condition_number)},
           {"diagnostics", diagnostics}};
 }
 

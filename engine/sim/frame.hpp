@@ -53,5 +53,6 @@ struct Summary {
 // DESIGN.md's summary JSON; non-finite numbers are written as null.
 nlohmann::json summary_to_json(const Summary& summary);
 nlohmann::json finite_or_null(double value);
+nlohmann::json finite_or_null(const Eigen::VectorXd& values);  // an array
 
 }  // namespace rrlab

@@ -194,7 +194,7 @@ void Simulator::note_step_time(double us) {
   step_times_.add(us);
 }
 
-Summary Simulator::summary() {
+Summary Simulator::summary() const {
   Summary s;
   s.scenario = scenario_.name;
   s.method = method_name_;
@@ -211,9 +211,11 @@ Summary Simulator::summary() {
   s.final_q = state_.q;
   s.step_us = step_times_.stats();
   // final state: error against the reference at the final time
-  forward_kinematics(scenario_.model, state_.q, kin_);
+  // its own kinematics: kin_ stays that of the last frame (the server draws frames with it)
+  KinematicsData final_kin(scenario_.model);
+  forward_kinematics(scenario_.model, state_.q, final_kin);
   TaskRef final_ref(scenario_.task.space);
-  task_->reference(state_.t, kin_.end_effector(), final_ref);
+  task_->reference(state_.t, final_kin.end_effector(), final_ref);
   s.final_tracking_error = final_ref.position_error;
   const double final_margin = joint_limit_margin(scenario_.model.limits, state_.q);
   s.joint_limit_violated = s.joint_limit_violated || final_margin < 0;

@@ -55,7 +55,7 @@ class Simulator {
   const std::vector<std::string>& diagnostic_names() const { return method_->diagnostic_names(); }
 
   // Summary of the steps so far, with the final tracking error at the current state.
-  Summary summary();
+  Summary summary() const;
 
  private:
   void install_method(const std::string& name);

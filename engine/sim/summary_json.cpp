@@ -8,6 +8,12 @@ nlohmann::json finite_or_null(double value) {
   return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
 }
 
+nlohmann::json finite_or_null(const Eigen::VectorXd& values) {
+  nlohmann::json array = nlohmann::json::array();
+  for (Eigen::Index i = 0; i < values.size(); ++i) array.push_back(finite_or_null(values[i]));
+  return array;
+}
+
 nlohmann::json summary_to_json(const Summary& s) {
   nlohmann::json j;
   j["scenario"] = s.scenario;
@@ -23,9 +29,7 @@ nlohmann::json summary_to_json(const Summary& s) {
   j["max_qddot_ratio"] = s.max_qddot_ratio ? finite_or_null(*s.max_qddot_ratio) : nullptr;
   j["max_condition_number"] = finite_or_null(s.max_condition_number);
   j["nonfinite_steps"] = s.nonfinite_steps;
-  nlohmann::json q = nlohmann::json::array();
-  for (Eigen::Index i = 0; i < s.final_q.size(); ++i) q.push_back(finite_or_null(s.final_q[i]));
-  j["final_q"] = q;
+  j["final_q"] = finite_or_null(s.final_q);
   j["step_us"] = {{"mean", s.step_us.mean}, {"p50", s.step_us.p50}, {"p99", s.step_us.p99}};
   return j;
 }

@@ -18,8 +18,26 @@ std::string safe_dump(const nlohmann::json& body) {
   return body.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
-ApiResponse error_response(const ApiError& e) {
-  return json_response(e.status(), {{"error", {{"code", e.code()}, {"message", e.what()}, {"path", e.path()}}}});
+namespace {
+nlohmann::json error_json(const ApiError& e) {
+  return {{"code", e.code()}, {"message", e.what()}, {"path", e.path()}};
+}
+}  // namespace
+
+ApiResponse error_response(const ApiError& e) { return json_response(e.status(), {{"error", error_json(e)}}); }
+
+nlohmann::json socket_error(const ApiError& e) { return {{"type", "error"}, {"error", error_json(e)}}; }
+
+nlohmann::json socket_reply(const std::function<nlohmann::json()>& handle) {
+  try {
+    try {
+      return {{"type", "ack"}, {"status", handle()}};
+    } catch (...) {
+      rethrow_as_api_error("");
+    }
+  } catch (const ApiError& e) {
+    return socket_error(e);
+  }
 }
 
 nlohmann::json parse_body(const ApiRequest& request) {
@@ -58,6 +76,16 @@ std::string join_path(const std::string& prefix, const std::string& path) {
   return prefix + "." + path;
 }
 }  // namespace
+
+std::optional<std::int64_t> parse_id(std::string_view text) {
+  if (text.empty() || text.size() > 18) return std::nullopt;
+  std::int64_t value = 0;
+  for (char c : text) {
+    if (c < '0' || c > '9') return std::nullopt;
+    value = value * 10 + (c - '0');
+  }
+  return value;
+}
 
 std::map<std::string, std::string> parse_query(const std::string& query) {
   std::map<std::string, std::string> out;

@@ -3,7 +3,10 @@
 #pragma once
 
 #include <functional>
+#include <cstdint>
 #include <map>
+#include <optional>
+#include <string_view>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
@@ -50,8 +53,16 @@ ApiResponse json_response(int status, const nlohmann::json& body);
 // invalid UTF-8 is replaced instead of throwing.
 std::string safe_dump(const nlohmann::json& body);
 ApiResponse error_response(const ApiError& error);
+// WebSocket replies: {"type": "error", "error": {code, message, path}}, and
+// {"type": "ack", "status": handle()} unless handle throws (engine errors are
+// mapped as for REST, anything else is "internal").
+nlohmann::json socket_error(const ApiError& error);
+nlohmann::json socket_reply(const std::function<nlohmann::json()>& handle);
 // Parses a JSON body (400 "malformed_json" naming the position otherwise).
 nlohmann::json parse_body(const ApiRequest& request);
+// A run or replay id from a path segment: 1 to 18 decimal digits.
+std::optional<std::int64_t> parse_id(std::string_view text);
+
 // Splits "a=1&b=x%20y" into decoded pairs.
 std::map<std::string, std::string> parse_query(const std::string& query);
 

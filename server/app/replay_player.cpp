@@ -170,17 +170,13 @@ PublishedFrame ReplayPlayer::latest() {
 }
 
 json ReplayPlayer::handle_message(const json& message) {
-  try {
+  return socket_reply([&] {
     if (!message.is_object() || message.value("type", "") != "control")
       throw ApiError(400, "invalid", "a replay takes {\"type\": \"control\", \"action\": play|pause|seek}", "type");
     json body = message;
     body.erase("type");
-    return {{"type", "ack"}, {"status", control(body)}};
-  } catch (const ApiError& e) {
-    return {{"type", "error"}, {"error", {{"code", e.code()}, {"message", e.what()}, {"path", e.path()}}}};
-  } catch (const std::exception& e) {
-    return {{"type", "error"}, {"error", {{"code", "internal"}, {"message", e.what()}, {"path", ""}}}};
-  }
+    return control(body);
+  });
 }
 
 }  // namespace rrlab::server

@@ -38,29 +38,19 @@ class RunGroup::LaneSource final : public FrameSource {
   Subscribers& subscribers() override { return *group_->lanes_[size_t(lane_)].subscribers; }
 
   json handle_message(const json& message) override {
-    try {
-      if (!message.is_object()) throw ApiError(400, "invalid", "a message must be a JSON object", "");
+    return socket_reply([&]() -> json {
       JsonObject obj(message, "");
       const std::string type = obj.choice("type", {"input", "control"});
-      json reply;
       if (type == "control") {
         obj.check_keys({"type", "action", "rate"});
         json body = message;
         body.erase("type");
-        reply = group_->control(lane_, body);
-      } else {
-        obj.check_keys({"type", "kind", "payload"});
-        const std::string kind = obj.string("kind");
-        reply = group_->input(lane_, kind, message.value("payload", json::object()), "payload");
+        return group_->control(lane_, body);
       }
-      return {{"type", "ack"}, {"status", reply}};
-    } catch (const ApiError& e) {
-      return {{"type", "error"}, {"error", {{"code", e.code()}, {"message", e.what()}, {"path", e.path()}}}};
-    } catch (const ScenarioError& e) {
-      return {{"type", "error"}, {"error", {{"code", "invalid"}, {"message", e.what()}, {"path", e.path()}}}};
-    } catch (const std::exception& e) {
-      return {{"type", "error"}, {"error", {{"code", "internal"}, {"message", e.what()}, {"path", ""}}}};
-    }
+      obj.check_keys({"type", "kind", "payload"});
+      const std::string kind = obj.string("kind");
+      return group_->input(lane_, kind, message.value("payload", json::object()), "payload");
+    });
   }
 
  private:
@@ -326,8 +316,7 @@ json RunGroup::control(int lane_index, const json& body) {
     rethrow_as_api_error("");
   }
   if (action.empty() && !rate) throw ApiError(400, "invalid", "give an action, a rate or both", "action");
-  if (rate && !(*rate == 0 || (*rate >= 1e-3 && *rate <= 1000)))
-    throw ApiError(400, "invalid", "must be 0 (as fast as possible) or in [0.001, 1000]", "rate");
+  if (rate && !valid_rate(*rate)) throw ApiError(400, "invalid", kRateRule, "rate");
   if (options_.mode != "live" && action != "stop")
     throw ApiError(409, "wrong_state", "a " + options_.mode + " run can only be stopped", "action");
   if (action == "reset") return input(lane_index, "reset", json::object(), "");

@@ -35,6 +35,10 @@ struct RunServices {
   long max_stored_frames = 1'000'000;  // per run; later steps are simulated, not stored
 };
 
+// A real-time factor: 0 (as fast as possible) or in [0.001, 1000].
+inline bool valid_rate(double rate) { return rate == 0 || (rate >= 1e-3 && rate <= 1000); }
+inline constexpr const char* kRateRule = "must be 0 (as fast as possible) or in [0.001, 1000]";
+
 struct GroupOptions {
   std::string mode = "live";   // live | batch | resimulation
   double rate = 1.0;           // real-time factor; 0: as fast as possible

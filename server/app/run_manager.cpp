@@ -60,11 +60,15 @@ void RunManager::stop_all() {
   jobs_done_.wait(lock, [&] { return jobs_ == 0; });
 }
 
-void RunManager::begin_job() {
-  std::lock_guard lock(mutex_);
+int RunManager::active_locked() const {
   int active = jobs_;
   for (const auto& g : groups_) active += g->finished() ? 0 : g->lane_count();
-  if (stopping_ || active >= limits_.max_active_runs)
+  return active;
+}
+
+void RunManager::begin_job() {
+  std::lock_guard lock(mutex_);
+  if (stopping_ || active_locked() >= limits_.max_active_runs)
     throw ApiError(503, "busy", "at most " + std::to_string(limits_.max_active_runs) +
                                     " runs and re-simulations may be active at once", "");
   ++jobs_;
@@ -80,22 +84,15 @@ void RunManager::end_job() {
 
 json RunManager::scenario_list() {
   json list = json::array();
-  for (const std::string& stem : catalogue_names_) {
-    const json& doc = catalogue_.at(stem);
-    list.push_back({{"name", stem},
-                    {"title", doc.value("name", stem)},
-                    {"description", doc.value("description", "")},
-                    {"source", doc.value("source", "")},
-                    {"builtin", true}});
-  }
-  for (const std::string& name : store_.scenario_names()) {
-    const json doc = json::parse(*store_.scenario(name));
+  const auto entry = [&](const std::string& name, const json& doc, bool builtin) {
     list.push_back({{"name", name},
                     {"title", doc.value("name", name)},
                     {"description", doc.value("description", "")},
                     {"source", doc.value("source", "")},
-                    {"builtin", false}});
-  }
+                    {"builtin", builtin}});
+  };
+  for (const std::string& stem : catalogue_names_) entry(stem, catalogue_.at(stem), true);
+  for (const std::string& name : store_.scenario_names()) entry(name, json::parse(*store_.scenario(name)), false);
   return list;
 }
 
@@ -163,9 +160,7 @@ std::shared_ptr<RunGroup> RunManager::start_group(const std::vector<Scenario>& l
   {
     std::lock_guard lock(mutex_);
     prune_locked();
-    int active = jobs_;
-    for (const auto& g : groups_) active += g->finished() ? 0 : g->lane_count();
-    if (stopping_ || active + int(lanes.size()) > limits_.max_active_runs)
+    if (stopping_ || active_locked() + int(lanes.size()) > limits_.max_active_runs)
       throw ApiError(503, "busy", "at most " + std::to_string(limits_.max_active_runs) +
                                       " runs may be active at once; stop or wait for some", "");
   }

@@ -66,6 +66,7 @@ class RunManager {
 
  private:
   void prune_locked();
+  int active_locked() const;  // unfinished runs (lanes) and jobs
 
   storage::RunStore& store_;
   storage::FrameWriter& writer_;

@@ -170,11 +170,6 @@ void encode_frame(const FrameContext& c, const Frame& f, const Model& model, con
 
 nlohmann::json model_json(const Model& model) {
   using nlohmann::json;
-  const auto vec = [](const Eigen::VectorXd& v) {
-    json a = json::array();
-    for (Eigen::Index i = 0; i < v.size(); ++i) a.push_back(std::isfinite(v[i]) ? json(v[i]) : json());
-    return a;
-  };
   json links = json::array();
   for (const Link& l : model.links) links.push_back({{"radius", l.radius}, {"last_joint", l.last_joint + 1}});
   const Eigen::Vector3d base = model.base.translation();
@@ -184,10 +179,10 @@ nlohmann::json model_json(const Model& model) {
           {"reach", model.reach()},
           {"links", links},
           {"limits",
-           {{"lower", vec(model.limits.lower)},
-            {"upper", vec(model.limits.upper)},
-            {"velocity", vec(model.limits.velocity)},
-            {"acceleration", vec(model.limits.acceleration)}}}};
+           {{"lower", finite_or_null(model.limits.lower)},
+            {"upper", finite_or_null(model.limits.upper)},
+            {"velocity", finite_or_null(model.limits.velocity)},
+            {"acceleration", finite_or_null(model.limits.acceleration)}}}};
 }
 
 nlohmann::json snapshot_json(const FrameContext& c, const Simulator& sim, const std::string& frame_text) {

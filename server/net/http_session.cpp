@@ -129,19 +129,14 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   // /ws/runs/{id} and /ws/replays/{id}
   void upgrade(http::request<http::string_body>&& request, const std::string& path) {
     std::shared_ptr<FrameSource> source;
-    const auto id_of = [&](const std::string& prefix) -> std::int64_t {
-      const std::string text = path.substr(prefix.size());
-      if (text.empty() || text.size() > 18 || text.find_first_not_of("0123456789") != std::string::npos) return -1;
-      return std::stoll(text);
+    const auto id_after = [&](std::string_view prefix) {
+      return path.rfind(prefix, 0) == 0 ? parse_id(std::string_view(path).substr(prefix.size())) : std::nullopt;
     };
-    if (path.rfind("/ws/runs/", 0) == 0) {
-      const std::int64_t id = id_of("/ws/runs/");
-      int lane = 0;
-      if (id >= 0)
-        if (auto group = state_->runs.group_of(id, lane)) source = group->source(lane);
-    } else if (path.rfind("/ws/replays/", 0) == 0) {
-      const std::int64_t id = id_of("/ws/replays/");
-      if (id >= 0) source = state_->runs.replay(id);
+    int lane = 0;
+    if (const auto run = id_after("/ws/runs/")) {
+      if (auto group = state_->runs.group_of(*run, lane)) source = group->source(lane);
+    } else if (const auto replay = id_after("/ws/replays/")) {
+      source = state_->runs.replay(*replay);
     }
     if (!source) return send_error(404, "no live run or replay at " + path);
     if (state_->websockets.load() >= state_->limits.max_websockets)

@@ -141,17 +141,14 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
     }
     nlohmann::json reply;
     if (++window_count_ > state_->limits.ws_messages_per_second) {
-      reply = {{"type", "error"},
-               {"error", {{"code", "rate_limited"},
-                          {"message", "more than " + std::to_string(state_->limits.ws_messages_per_second) +
-                                          " messages per second; this one was dropped"},
-                          {"path", ""}}}};
+      reply = socket_error(ApiError(429, "rate_limited",
+                                    "more than " + std::to_string(state_->limits.ws_messages_per_second) +
+                                        " messages per second; this one was dropped"));
     } else {
       try {
         reply = source_->handle_message(nlohmann::json::parse(text));
       } catch (const nlohmann::json::parse_error& e) {
-        reply = {{"type", "error"},
-                 {"error", {{"code", "malformed_json"}, {"message", std::string("invalid JSON: ") + e.what()}, {"path", ""}}}};
+        reply = socket_error(ApiError(400, "malformed_json", std::string("invalid JSON: ") + e.what()));
       }
     }
     queue(std::make_shared<const std::string>(safe_dump(reply)));

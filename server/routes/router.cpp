@@ -69,13 +69,9 @@ bool match(std::string_view pattern, const std::vector<std::string_view>& path, 
 
 std::int64_t RouteContext::id(size_t index) const {
   const std::string& text = captures.at(index);
-  std::int64_t value = 0;
-  if (text.empty() || text.size() > 18) throw ApiError(404, "not_found", "no such id \"" + text + "\"", "id");
-  for (char c : text) {
-    if (c < '0' || c > '9') throw ApiError(404, "not_found", "no such id \"" + text + "\"", "id");
-    value = value * 10 + (c - '0');
-  }
-  return value;
+  const auto value = parse_id(text);
+  if (!value) throw ApiError(404, "not_found", "no such id \"" + text + "\"", "id");
+  return *value;
 }
 
 ApiResponse handle_api(RunManager& runs, const ServerInfo& info, const ApiRequest& request) {

@@ -13,6 +13,15 @@ ApiResponse apply(RouteContext& c, const std::string& kind, const json& payload)
   auto group = live_group(c, c.id(), lane);
   return json_response(200, group->input(lane, kind, payload, ""));
 }
+// An input to the obstacle named in the path: an unknown one is a missing resource (404).
+ApiResponse apply_to_obstacle(RouteContext& c, const std::string& kind, const json& payload) {
+  try {
+    return apply(c, kind, payload);
+  } catch (const ApiError& e) {
+    if (e.path() == "id" && e.status() == 400) throw ApiError(404, "not_found", e.what(), "obstacle");
+    throw;
+  }
+}
 }  // namespace
 
 ApiResponse post_control(RouteContext& c) {
@@ -39,28 +48,13 @@ ApiResponse put_obstacle(RouteContext& c) {
   if (payload.contains("id") && payload["id"] != c.captures.at(1))
     throw ApiError(400, "invalid", "differs from the obstacle id in the path", "id");
   payload["id"] = c.captures.at(1);
-  int lane = 0;
-  auto group = live_group(c, c.id(), lane);
-  try {
-    return json_response(200, group->input(lane, "obstacle", payload, ""));
-  } catch (const ApiError& e) {
-    // an unknown obstacle is a missing resource
-    if (e.path() == "id" && e.status() == 400) throw ApiError(404, "not_found", e.what(), "obstacle");
-    throw;
-  }
+  return apply_to_obstacle(c, "obstacle", payload);
 }
 
 ApiResponse post_obstacle(RouteContext& c) { return apply(c, "obstacle_add", parse_body(c.request)); }
 
 ApiResponse delete_obstacle(RouteContext& c) {
-  int lane = 0;
-  auto group = live_group(c, c.id(), lane);
-  try {
-    return json_response(200, group->input(lane, "obstacle_remove", {{"id", c.captures.at(1)}}, ""));
-  } catch (const ApiError& e) {
-    if (e.path() == "id" && e.status() == 400) throw ApiError(404, "not_found", e.what(), "obstacle");
-    throw;
-  }
+  return apply_to_obstacle(c, "obstacle_remove", {{"id", c.captures.at(1)}});
 }
 
 ApiResponse post_joystick(RouteContext& c) { return apply(c, "joystick", parse_body(c.request)); }

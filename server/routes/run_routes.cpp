@@ -10,6 +10,13 @@ namespace {
 
 json parse_or_null(const std::optional<std::string>& text) { return text ? json::parse(*text) : json(); }
 
+json events_json(storage::RunStore& store, std::int64_t run) {
+  json list = json::array();
+  for (const storage::StoredEvent& e : store.events(run))
+    list.push_back({{"seq", e.seq}, {"step", e.step}, {"kind", e.kind}, {"payload", json::parse(e.payload_json)}});
+  return list;
+}
+
 // Method and parameters of a request ("method", "params") applied to a scenario.
 void apply_method_choice(JsonObject& body, const json& doc, Scenario& scenario) {
   if (body.has("method")) {
@@ -64,8 +71,7 @@ void parse_run_options(JsonObject& body, const json& doc, const std::string& def
                        bool& wait) {
   options.mode = body.choice("mode", {"live", "batch"}, default_mode.c_str());
   options.rate = body.number("rate", options.mode == "batch" ? 0.0 : 1.0);
-  if (!(options.rate == 0 || (options.rate >= 1e-3 && options.rate <= 1000)))
-    throw ScenarioError("rate", "must be 0 (as fast as possible) or in [0.001, 1000]");
+  if (!valid_rate(options.rate)) throw ScenarioError("rate", kRateRule);
   if (options.mode == "batch") options.rate = 0;
   if (body.has("paused")) {
     if (!doc.at("paused").is_boolean()) throw ScenarioError("paused", "must be true or false");
@@ -160,10 +166,7 @@ ApiResponse get_run(RouteContext& c) {
 ApiResponse get_run_events(RouteContext& c) {
   const std::int64_t id = c.id();
   find_run(c, id);
-  json list = json::array();
-  for (const storage::StoredEvent& e : c.runs.store().events(id))
-    list.push_back({{"seq", e.seq}, {"step", e.step}, {"kind", e.kind}, {"payload", json::parse(e.payload_json)}});
-  return json_response(200, list);
+  return json_response(200, events_json(c.runs.store(), id));
 }
 
 // The run as a record `rrlab run` takes back (sim/run_record.hpp).
@@ -172,14 +175,11 @@ ApiResponse get_run_record(RouteContext& c) {
   json scenario = json::parse(run.scenario_json);
   scenario["method"] = {{"name", run.method}, {"params", json::parse(run.params_json)}};
   scenario["seed"] = run.seed;
-  json events = json::array();
-  for (const storage::StoredEvent& e : c.runs.store().events(run.id))
-    events.push_back({{"seq", e.seq}, {"step", e.step}, {"kind", e.kind}, {"payload", json::parse(e.payload_json)}});
   return json_response(200, {{"rrlab_record", 1},
                              {"run", run.id},
                              {"scenario", scenario},
                              {"frames", run.frames},
-                             {"events", events}});
+                             {"events", events_json(c.runs.store(), run.id)}});
 }
 
 }  // namespace rrlab::server
