@@ -59,10 +59,7 @@ void FrameWriter::loop() {
     {
       std::lock_guard lock(mutex_);
       committed_ += batch.size();
-      if (error.empty())
-        written_ += batch.size();
-      else
-        error_ = error;
+      if (!error.empty()) error_ = error;
     }
     drained_.notify_all();
   }

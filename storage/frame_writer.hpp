@@ -27,7 +27,6 @@ class FrameWriter {
   void flush();
   // The last write error ("" if none); frames of a failed batch are lost.
   std::string last_error();
-  std::uint64_t written() const { return written_; }
 
  private:
   void loop();
@@ -38,7 +37,6 @@ class FrameWriter {
   std::condition_variable not_empty_, not_full_, drained_;
   std::deque<std::pair<std::int64_t, StoredFrame>> queue_;
   std::uint64_t pushed_ = 0, committed_ = 0;
-  std::uint64_t written_ = 0;
   bool stopping_ = false;
   std::string error_;
   std::thread thread_;

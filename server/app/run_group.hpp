@@ -61,7 +61,6 @@ class RunGroup : public std::enable_shared_from_this<RunGroup> {
   int lane_count() const { return int(lanes_.size()); }
   std::int64_t run_id(int lane) const { return lanes_[size_t(lane)].run_id; }
   int lane_of(std::int64_t run_id) const;  // -1 if not in this group
-  const std::string& mode() const { return options_.mode; }
 
   // control: {"action": start|pause|step|reset|stop, "rate"?: factor}; returns the lane's status.
   nlohmann::json control(int lane, const nlohmann::json& body);
