@@ -145,6 +145,17 @@ void RunStore::add_frames(const std::vector<std::pair<std::int64_t, StoredFrame>
   tx.commit();
 }
 
+bool RunStore::delete_run(std::int64_t id) {
+  std::lock_guard lock(mutex_);
+  Transaction tx(*db_);
+  db_->prepare("DELETE FROM frames WHERE run_id = ?").bind(1, id).step();
+  db_->prepare("DELETE FROM events WHERE run_id = ?").bind(1, id).step();
+  db_->prepare("DELETE FROM runs WHERE id = ?").bind(1, id).step();
+  const bool deleted = db_->changes() == 1;
+  tx.commit();
+  return deleted;
+}
+
 void RunStore::replace_frame_data(std::int64_t run, std::int64_t seq, const std::string& data) {
   std::lock_guard lock(mutex_);
   db_->prepare("UPDATE frames SET data = ? WHERE run_id = ? AND seq = ?").bind_blob(1, data).bind(2, run).bind(3, seq).step();

@@ -71,6 +71,11 @@ class RunStore {
   // Frames of one or more runs in one transaction; updates the runs' frame counts.
   void add_frames(const std::vector<std::pair<std::int64_t, StoredFrame>>& frames);
 
+  // Deletes a run with its frames and events in one transaction; false when
+  // there is no such run. Whether it may be deleted (not live) is the caller's
+  // business. Runs that name it (source_run, compare_group) keep the number.
+  bool delete_run(std::int64_t id);
+
   // Overwrites one stored frame's blob (tests of verification only).
   void replace_frame_data(std::int64_t run, std::int64_t seq, const std::string& data);
 

@@ -81,6 +81,11 @@ void Simulator::reset_state() {
   frame_.q = state_.q;
   frame_.qdot = state_.qdot;
   frame_.diagnostics = out_.diag.values;
+  // Before the first step the frame shows the start as it is (end-effector,
+  // target, distances), so a paused new run draws and reads right; nothing is
+  // accumulated into the summary and step() evaluates again from scratch.
+  evaluate(0.0);
+  frame_metrics();
   collided_ = limit_violated_ = false;
   min_distance_ = kInf;
   min_margin_ = kInf;
@@ -162,7 +167,7 @@ void Simulator::step() {
   task_->advance();
 }
 
-void Simulator::accumulate_metrics() {
+void Simulator::frame_metrics() {
   const Model& model = scenario_.model;
   const Eigen::Isometry3d& ee = kin_.end_effector();
   frame_.ee_position = ee.translation();
@@ -177,7 +182,11 @@ void Simulator::accumulate_metrics() {
   conditioning_.compute(jacobian_);
   frame_.manipulability = conditioning_.manipulability();
   frame_.condition_number = conditioning_.condition_number();
+}
 
+void Simulator::accumulate_metrics() {
+  const Model& model = scenario_.model;
+  frame_metrics();
   qddot_ = (frame_.qdot - qdot_prev_) / scenario_.dt;  // the arm starts at rest
   collided_ = collided_ || frame_.collided;
   limit_violated_ = limit_violated_ || frame_.joint_limit_margin < 0;

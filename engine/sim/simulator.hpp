@@ -62,7 +62,8 @@ class Simulator {
   void renew_method();
   void reset_state();
   void evaluate(double t);  // kinematics, Jacobian, distances and reference at state_.q
-  void accumulate_metrics();
+  void frame_metrics();       // this frame's metrics from the evaluated state
+  void accumulate_metrics();  // frame_metrics() and the run's extremes
 
   Scenario scenario_;
   Scene scene_;

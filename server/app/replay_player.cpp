@@ -23,6 +23,7 @@ ReplayPlayer::ReplayPlayer(storage::RunStore& store, const storage::RunRecord& r
     throw ApiError(400, "invalid", "must be in [0, " + std::to_string(run_.frames - 1) + "]", "from");
   try {
     sim_ = std::make_unique<Simulator>(scenario_of_run(run_));
+    geometry_ = std::make_unique<FrameGeometry>(sim_->model(), sim_->scene(), sim_->scenario().task.space);
   } catch (const std::exception& e) {
     throw ApiError(409, "wrong_state", std::string("the stored scenario no longer loads: ") + e.what(), "");
   }
@@ -52,6 +53,11 @@ void ReplayPlayer::stop() {
 bool ReplayPlayer::exited() {
   std::lock_guard lock(mutex_);
   return exited_;
+}
+
+bool ReplayPlayer::playing() {
+  std::lock_guard lock(mutex_);
+  return playing_ && !stopping_;
 }
 
 void ReplayPlayer::wait_exited() {
@@ -86,10 +92,8 @@ void ReplayPlayer::show_locked(std::int64_t seq) {
   if (!found) return;
   shown_ = seq;
   sim_->scene().advance_to(frame_.t);
-  KinematicsData kin(sim_->model());
-  forward_kinematics(sim_->model(), frame_.q, kin);
   const FrameContext context{run_.id, seq, scene_version_, playing_ ? "playing" : "paused"};
-  encode_frame(context, frame_, sim_->model(), kin, sim_->scene(), encoded_);
+  encode_frame(context, frame_, sim_->model(), sim_->scene(), *geometry_, encoded_);
   published_.version += 1;
   published_.scene_version = scene_version_;
   published_.text = std::make_shared<const std::string>(encoded_);

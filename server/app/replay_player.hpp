@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "app/frame_geometry.hpp"
 #include "app/frame_source.hpp"
 #include "sim/simulator.hpp"
 #include "storage/run_store.hpp"
@@ -27,6 +28,8 @@ class ReplayPlayer final : public FrameSource, public std::enable_shared_from_th
   void wait_exited();  // after stop(): returns once the playback thread has ended
   bool exited();
   void set_id(std::int64_t id) { id_ = id; }
+  std::int64_t run_id() const { return run_.id; }  // the stored run it plays
+  bool playing();
 
   // {"action": play|pause|seek, "seq"?: n, "speed"?: x}
   nlohmann::json control(const nlohmann::json& body);
@@ -46,6 +49,7 @@ class ReplayPlayer final : public FrameSource, public std::enable_shared_from_th
   storage::RunRecord run_;
   std::vector<storage::StoredEvent> events_;
   std::unique_ptr<Simulator> sim_;  // never stepped: model, scene and events
+  std::unique_ptr<FrameGeometry> geometry_;  // links, nearest obstacles, ellipsoid of the shown q
   size_t next_event_ = 0;
   std::int64_t id_ = 0;
   double display_hz_;

@@ -26,7 +26,7 @@ class RunGroup::LaneSource final : public FrameSource {
     Lane& lane = group_->lanes_[size_t(lane_)];
     const FrameContext context{lane.run_id, lane.seq, lane.scene_version, group_->lane_status(lane)};
     std::string frame;
-    encode_frame(context, lane.sim->frame(), lane.sim->model(), lane.sim->kinematics(), lane.sim->scene(), frame);
+    encode_frame(context, lane.sim->frame(), lane.sim->model(), lane.sim->scene(), *lane.geometry, frame);
     return snapshot_json(context, *lane.sim, frame).dump();
   }
 
@@ -69,6 +69,8 @@ RunGroup::RunGroup(RunServices services, const std::vector<Scenario>& scenarios,
   for (size_t i = 0; i < scenarios.size(); ++i) {
     try {
       lanes_[i].sim = std::make_unique<Simulator>(scenarios[i]);
+      lanes_[i].geometry = std::make_unique<FrameGeometry>(scenarios[i].model, scenarios[i].scene,
+                                                           scenarios[i].task.space);
     } catch (...) {
       rethrow_as_api_error("", 422);
     }
@@ -151,7 +153,7 @@ void RunGroup::publish(Lane& lane) {
   const auto wall = std::chrono::system_clock::now().time_since_epoch();
   const FrameContext context{lane.run_id, lane.seq, lane.scene_version, lane_status(lane),
                              std::chrono::duration_cast<std::chrono::microseconds>(wall).count()};
-  encode_frame(context, lane.sim->frame(), lane.sim->model(), lane.sim->kinematics(), lane.sim->scene(),
+  encode_frame(context, lane.sim->frame(), lane.sim->model(), lane.sim->scene(), *lane.geometry,
                lane.encode_buffer);
   auto text = std::make_shared<const std::string>(lane.encode_buffer);
   std::lock_guard lock(publish_mutex_);

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "app/frame_geometry.hpp"
 #include "app/frame_source.hpp"
 #include "storage/run_store.hpp"
 #include "scenario/scenario.hpp"
@@ -80,6 +81,7 @@ class RunGroup : public std::enable_shared_from_this<RunGroup> {
   struct Lane {
     std::int64_t run_id = 0;
     std::unique_ptr<Simulator> sim;
+    std::unique_ptr<FrameGeometry> geometry;  // what frames draw beyond the simulator's record
     std::int64_t seq = 0;  // steps taken in this run (over resets)
     std::uint64_t scene_version = 1;
     std::string status = "running";

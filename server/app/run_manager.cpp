@@ -66,18 +66,20 @@ int RunManager::active_locked() const {
   return active;
 }
 
-void RunManager::begin_job() {
+void RunManager::begin_job(std::int64_t source_run) {
   std::lock_guard lock(mutex_);
   if (stopping_ || active_locked() >= limits_.max_active_runs)
     throw ApiError(503, "busy", "at most " + std::to_string(limits_.max_active_runs) +
                                     " runs and re-simulations may be active at once", "");
   ++jobs_;
+  job_sources_.insert(source_run);
 }
 
-void RunManager::end_job() {
+void RunManager::end_job(std::int64_t source_run) {
   {
     std::lock_guard lock(mutex_);
     --jobs_;
+    if (auto it = job_sources_.find(source_run); it != job_sources_.end()) job_sources_.erase(it);
   }
   jobs_done_.notify_all();
 }
@@ -102,6 +104,25 @@ json RunManager::scenario_json(const std::string& name) {
   throw ApiError(404, "not_found", "no scenario \"" + name + "\"", "scenario");
 }
 
+namespace {
+
+// A scenario as a run would take it: parsed, and its simulator built (some
+// parameters are checked against the arm only there). 422 naming the path.
+Scenario checked_scenario(const json& body) {
+  try {
+    Scenario scenario = parse_scenario(body);
+    Simulator check(scenario);
+    return scenario;
+  } catch (const ParamError& e) {
+    const std::string path = e.param() == "method" ? "method.name" : "method.params." + e.param();
+    throw ApiError(422, "invalid", path + ": " + e.what(), path);
+  } catch (...) {
+    rethrow_as_api_error("", 422);
+  }
+}
+
+}  // namespace
+
 json RunManager::add_scenario(const json& body) {
   if (!body.is_object()) throw ApiError(400, "invalid", "must be a scenario object", "");
   if (!body.contains("name") || !body["name"].is_string())
@@ -110,14 +131,28 @@ json RunManager::add_scenario(const json& body) {
   static const std::regex pattern("[A-Za-z0-9_.-]{1,64}");
   if (!std::regex_match(name, pattern))
     throw ApiError(400, "invalid", "must be 1 to 64 letters, digits, '_', '-' or '.'", "name");
-  try {
-    parse_scenario(body);
-  } catch (...) {
-    rethrow_as_api_error("", 422);
-  }
+  checked_scenario(body);
+  // never replaces: a file of scenarios/ nor one added earlier (runs name their scenario)
   if (catalogue_.count(name) || !store_.put_scenario(name, body.dump()))
-    throw ApiError(409, "exists", "a scenario \"" + name + "\" exists already", "name");
+    throw ApiError(409, "exists", "a scenario \"" + name + "\" exists already; choose another name", "name");
   return {{"name", name}};
+}
+
+json RunManager::validate_scenario(const json& body) {
+  const Scenario scenario = checked_scenario(body);
+  const bool exists = catalogue_.count(scenario.name) > 0 || store_.scenario(scenario.name).has_value();
+  return {{"valid", true},
+          {"name", scenario.name},
+          {"exists", exists},
+          {"kind", to_string(scenario.model.kind)},
+          {"dof", scenario.model.dof()},
+          {"links", scenario.model.link_count()},
+          {"obstacles", scenario.scene.obstacles.size()},
+          {"task", {{"space", to_string(scenario.task.space)}, {"trajectory", to_string(scenario.task.trajectory.type)}}},
+          {"method", scenario.method.name},
+          {"dt", scenario.dt},
+          {"duration", scenario.duration},
+          {"steps", scenario.steps()}};
 }
 
 Scenario RunManager::resolve_scenario(const json& value, const std::string& path) {
@@ -179,6 +214,47 @@ std::shared_ptr<RunGroup> RunManager::group_of(std::int64_t id, int& lane) {
     if (lane >= 0) return g;
   }
   return nullptr;
+}
+
+json RunManager::delete_run(std::int64_t id) {
+  const std::string run_name = "run " + std::to_string(id);
+  {
+    std::lock_guard lock(mutex_);
+    const auto run = store_.run(id);
+    if (!run) throw ApiError(404, "not_found", "no " + run_name, "id");
+    std::shared_ptr<RunGroup> ended_group;  // dropped from memory once deleted, if it holds this run alone
+    for (const auto& group : groups_) {
+      if (group->lane_of(id) < 0) continue;
+      if (!group->finished())
+        throw ApiError(409, "wrong_state", run_name + " is live (" + run->status + "); stop it first", "id");
+      if (group->lane_count() == 1) ended_group = group;
+    }
+    if (job_sources_.count(id))
+      throw ApiError(409, "wrong_state", run_name + " is being re-simulated; delete it once that has finished", "id");
+    std::vector<std::int64_t> idle_replays;
+    for (const auto& [replay_id, player] : replays_) {
+      if (player->run_id() != id) continue;
+      if (player->playing())
+        throw ApiError(409, "wrong_state",
+                       run_name + " is being replayed (replay " + std::to_string(replay_id) + "); pause it first",
+                       "id");
+      idle_replays.push_back(replay_id);
+    }
+    if (run->status == "running" || run->status == "paused")
+      throw ApiError(409, "wrong_state",
+                     run_name + " is still being written (" + run->status +
+                         "): a re-simulation or another process; a restart marks a crashed one interrupted",
+                     "id");
+    if (ended_group) std::erase(groups_, ended_group);
+    // paused or ended replays of it close: their seeks would find no frames
+    for (const std::int64_t replay_id : idle_replays) {
+      replays_[replay_id]->stop();
+      retired_.push_back(replays_[replay_id]);
+      replays_.erase(replay_id);
+    }
+  }
+  if (!store_.delete_run(id)) throw ApiError(404, "not_found", "no " + run_name, "id");
+  return {{"deleted", id}};
 }
 
 std::int64_t RunManager::add_replay(std::shared_ptr<ReplayPlayer> player) {

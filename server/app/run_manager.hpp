@@ -8,6 +8,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <set>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -46,6 +47,8 @@ class RunManager {
   nlohmann::json scenario_list();
   nlohmann::json scenario_json(const std::string& name);      // 404 if unknown
   nlohmann::json add_scenario(const nlohmann::json& body);    // 201 body; 409 if it exists
+  // {"valid": true, name, dof, ...} for a scenario a run would accept (422 naming the path otherwise).
+  nlohmann::json validate_scenario(const nlohmann::json& body);
   Scenario resolve_scenario(const nlohmann::json& value, const std::string& path);
 
   // A new group, registered and started.
@@ -53,12 +56,19 @@ class RunManager {
   // The group holding run `id` (and its lane), or null when it is not in memory.
   std::shared_ptr<RunGroup> group_of(std::int64_t id, int& lane);
 
+  // Deletes a stored run with its frames and events: {"deleted": id}. 404 if
+  // unknown; 409 while it is live, a replay of it plays, it is re-simulated
+  // (or being written as a re-simulation or by another process). Its paused
+  // or ended replays are closed.
+  nlohmann::json delete_run(std::int64_t id);
+
   // Registers a replay (its id set before anyone can see it) and returns the id.
   std::int64_t add_replay(std::shared_ptr<ReplayPlayer> player);
-  // Background jobs (re-simulations): counted against the active-run limit,
-  // told to stop and waited for by stop_all(). begin_job throws ApiError 503.
-  void begin_job();
-  void end_job();
+  // Background jobs (re-simulations of source_run): counted against the
+  // active-run limit, told to stop and waited for by stop_all(); the source
+  // cannot be deleted meanwhile. begin_job throws ApiError 503.
+  void begin_job(std::int64_t source_run);
+  void end_job(std::int64_t source_run);
   bool stopping() const { return stopping_; }
   std::shared_ptr<ReplayPlayer> replay(std::int64_t id);
 
@@ -76,6 +86,7 @@ class RunManager {
   std::mutex mutex_, start_mutex_;
   std::condition_variable jobs_done_;
   int jobs_ = 0;
+  std::multiset<std::int64_t> job_sources_;  // runs that jobs are reading
   std::atomic<bool> stopping_{false};
   std::vector<std::shared_ptr<RunGroup>> groups_;
   std::map<std::int64_t, std::shared_ptr<ReplayPlayer>> replays_;

@@ -36,11 +36,77 @@ void key(const char* name, std::string& out) {
   out += "\":";
 }
 
-void overlays(const Overlays& o, std::string& out) {
+// [[sx,sy,sz,ex,ey,ez], ...]: each link's segment
+void link_segments(const Model& model, const KinematicsData& kin, std::string& out) {
+  out += '[';
+  for (int l = 0; l < model.link_count(); ++l) {
+    if (l) out += ',';
+    out += '[';
+    for (int i = 0; i < 3; ++i) {
+      num(kin.link_start(i, l), out);
+      out += ',';
+    }
+    for (int i = 0; i < 3; ++i) {
+      num(kin.link_end(i, l), out);
+      if (i < 2) out += ',';
+    }
+    out += ']';
+  }
+  out += ']';
+}
+
+// [[link, obstacle, distance, ax, ay, az, bx, by, bz], ...]: each link's nearest obstacle
+void nearest_obstacles(const DistanceTable& distances, std::string& out) {
+  out += '[';
+  for (int l = 0; l < distances.links; ++l) {
+    if (l) out += ',';
+    const int o = distances.nearest_obstacle(l);
+    const LinkObstacleDistance& pair = distances.at(l, o);
+    out += '[';
+    out += std::to_string(l + 1);
+    out += ',';
+    out += std::to_string(o);
+    out += ',';
+    num(pair.distance, out);
+    for (int i = 0; i < 3; ++i) {
+      out += ',';
+      num(pair.on_link[i], out);
+    }
+    for (int i = 0; i < 3; ++i) {
+      out += ',';
+      num(pair.on_obstacle[i], out);
+    }
+    out += ']';
+  }
+  out += ']';
+}
+
+// {"centre":[x,y,z],"axes":[[..],[..],[..]]}
+void ellipsoid_json(const ManipulabilityEllipsoid& e, std::string& out) {
+  out += "{\"centre\":";
+  array(e.centre, 3, out);
+  out += ",\"axes\":[";
+  for (int c = 0; c < 3; ++c) {
+    if (c) out += ',';
+    array(e.axes.col(c), 3, out);
+  }
+  out += "]}";
+}
+
+void overlays(const Overlays& o, const Model& model, FrameGeometry& geometry, std::string& out) {
   out += "{\"ghosts\":[";
   for (size_t i = 0; i < o.ghosts.size(); ++i) {
     if (i) out += ',';
     array(o.ghosts[i], o.ghosts[i].size(), out);
+  }
+  // each ghost arm's links, so that clients draw it without kinematics
+  out += "],\"ghost_links\":[";
+  for (size_t i = 0; i < o.ghosts.size(); ++i) {
+    if (i) out += ',';
+    if (o.ghosts[i].size() == model.dof() && o.ghosts[i].allFinite())
+      link_segments(model, geometry.ghost_kinematics(model, o.ghosts[i]), out);
+    else
+      out += "[]";  // not a configuration of this arm: nothing to draw
   }
   out += "],\"ellipses\":[";
   for (size_t i = 0; i < o.ellipses.size(); ++i) {
@@ -74,8 +140,10 @@ void overlays(const Overlays& o, std::string& out) {
 
 }  // namespace
 
-void encode_frame(const FrameContext& c, const Frame& f, const Model& model, const KinematicsData& kin,
-                  const Scene& scene, std::string& out) {
+void encode_frame(const FrameContext& c, const Frame& f, const Model& model, const Scene& scene,
+                  FrameGeometry& geometry, std::string& out) {
+  geometry.update(model, scene, c.scene_version, f.q);
+  const KinematicsData& kin = geometry.kinematics();
   out.clear();
   out += "{\"type\":\"frame\",\"run\":" + std::to_string(c.run_id);
   key("seq", out);
@@ -93,21 +161,7 @@ void encode_frame(const FrameContext& c, const Frame& f, const Model& model, con
   key("qdot", out);
   array(f.qdot, f.qdot.size(), out);
   key("links", out);
-  out += '[';
-  for (int l = 0; l < model.link_count(); ++l) {
-    if (l) out += ',';
-    out += '[';
-    for (int i = 0; i < 3; ++i) {
-      num(kin.link_start(i, l), out);
-      out += ',';
-    }
-    for (int i = 0; i < 3; ++i) {
-      num(kin.link_end(i, l), out);
-      if (i < 2) out += ',';
-    }
-    out += ']';
-  }
-  out += ']';
+  link_segments(model, kin, out);
   if (model.kind != ModelKind::planar) {
     key("link_quat", out);
     out += '[';
@@ -133,6 +187,12 @@ void encode_frame(const FrameContext& c, const Frame& f, const Model& model, con
     array(scene.obstacles[i].position, 3, out);
   }
   out += ']';
+  if (geometry.distances().obstacles > 0) {
+    key("nearest", out);
+    nearest_obstacles(geometry.distances(), out);
+  }
+  key("ellipsoid", out);
+  ellipsoid_json(geometry.ellipsoid(), out);
   key("scene_version", out);
   out += std::to_string(c.scene_version);
   if (c.wall_us != 0) {
@@ -163,7 +223,7 @@ void encode_frame(const FrameContext& c, const Frame& f, const Model& model, con
   array(f.diagnostics, f.diagnostics.size(), out);
   if (!f.overlays.empty()) {
     key("overlays", out);
-    overlays(f.overlays, out);
+    overlays(f.overlays, model, geometry, out);
   }
   out += '}';
 }

@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "kinematics/kinematics.hpp"
+#include "app/frame_geometry.hpp"
 #include "sim/frame.hpp"
 #include "sim/simulator.hpp"
 
@@ -23,9 +23,18 @@ struct FrameContext {
 
 // {"type":"frame","run","seq","step","t","status","q","qdot","links":[[sx,sy,sz,ex,ey,ez],..],
 //  "link_quat":[[w,x,y,z],..] (3D models),"ee","ee_quat","target","obstacles":[[x,y,z],..],
-//  "scene_version","metrics":{..},"diagnostics":[..],"overlays":{..}}
-void encode_frame(const FrameContext& context, const Frame& frame, const Model& model,
-                  const KinematicsData& kin, const Scene& scene, std::string& out);
+//  "nearest":[[link,obstacle,distance,ax,ay,az,bx,by,bz],..] (one per link, its nearest
+//    obstacle: link 1-based, obstacle a 0-based index into the snapshot's obstacles, signed
+//    distance, a on the link axis, b on the obstacle surface; omitted without obstacles),
+//  "ellipsoid":{"centre":[x,y,z],"axes":[[..],[..],[..]]} (velocity manipulability ellipsoid of
+//    the task Jacobian's position rows: semi-axes σ_i·u_i, longest first, zero when missing),
+//  "scene_version","metrics":{..},"diagnostics":[..],
+//  "overlays":{"ghosts":[q,..],"ghost_links":[[[sx,sy,sz,ex,ey,ez],..],..],"ellipses","points","segments"}
+//    (only when the method draws something; ghost_links: each ghost's links, as "links")}
+// Links, nearest and ellipsoid come from `geometry`, updated here at frame.q
+// with the scene as it is now. Non-finite numbers are written as null.
+void encode_frame(const FrameContext& context, const Frame& frame, const Model& model, const Scene& scene,
+                  FrameGeometry& geometry, std::string& out);
 
 // The model for drawing: kind, dof, link radii, joint limits, base.
 nlohmann::json model_json(const Model& model);

@@ -110,10 +110,14 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
     body.open(file->path.c_str(), beast::file_mode::scan, ec);
     if (ec) return send_error(404, "no file " + path);
     const auto size = body.size();
-    if (request.method() == http::verb::head) {
-      auto response = std::make_shared<http::response<http::empty_body>>(http::status::ok, version_);
+    const bool unchanged = request[http::field::if_none_match] == file->etag;
+    if (request.method() == http::verb::head || unchanged) {
+      auto response = std::make_shared<http::response<http::empty_body>>(
+          unchanged ? http::status::not_modified : http::status::ok, version_);
       response->set(http::field::content_type, file->mime_type);
-      response->content_length(size);
+      response->set(http::field::cache_control, kStaticCacheControl);
+      response->set(http::field::etag, file->etag);
+      if (!unchanged) response->content_length(size);
       response->keep_alive(keep_alive_);
       return write(response);
     }
@@ -121,6 +125,8 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
         std::piecewise_construct, std::make_tuple(std::move(body)), std::make_tuple(http::status::ok, version_));
     response->set(http::field::server, "rrlab/" + state_->info.version);
     response->set(http::field::content_type, file->mime_type);
+    response->set(http::field::cache_control, kStaticCacheControl);
+    response->set(http::field::etag, file->etag);
     response->content_length(size);
     response->keep_alive(keep_alive_);
     write(response);

@@ -1,5 +1,6 @@
 #include "net/static_files.hpp"
 
+#include <cstdio>
 #include <filesystem>
 
 namespace rrlab::server {
@@ -41,7 +42,14 @@ std::optional<StaticFile> resolve_static(const std::string& web_root, std::strin
   // the resolved file (after symlinks) must still be under the root
   const auto [root_end, file_it] = std::mismatch(root.begin(), root.end(), file.begin(), file.end());
   if (root_end != root.end()) return std::nullopt;
-  return StaticFile{file.string(), mime_type(file.string())};
+  const auto size = fs::file_size(file, ec);
+  if (ec) return std::nullopt;
+  const auto modified = fs::last_write_time(file, ec).time_since_epoch().count();
+  if (ec) return std::nullopt;
+  char etag[64];
+  std::snprintf(etag, sizeof etag, "\"%llx-%llx\"", static_cast<unsigned long long>(size),
+                static_cast<unsigned long long>(modified));
+  return StaticFile{file.string(), mime_type(file.string()), etag};
 }
 
 }  // namespace rrlab::server

@@ -19,7 +19,7 @@ namespace {
 
 ApiResponse resimulate_run(RouteContext& c, const storage::RunRecord& run) {
   RunManager& runs = c.runs;
-  runs.begin_job();  // 503 when too many runs are active
+  runs.begin_job(run.id);  // 503 when too many runs are active
   ApiResponse response;
   response.deferred = [&runs, run](Responder respond) {
     const auto job = [&runs, run, respond] {
@@ -64,12 +64,12 @@ ApiResponse resimulate_run(RouteContext& c, const storage::RunRecord& run) {
         }
         respond(error_response(ApiError(500, "resimulation_failed", e.what(), "")));
       }
-      runs.end_job();
+      runs.end_job(run.id);
     };
     try {
       std::thread(job).detach();
     } catch (const std::exception& e) {
-      runs.end_job();
+      runs.end_job(run.id);
       respond(error_response(ApiError(503, "busy", std::string("cannot start a thread: ") + e.what(), "")));
     }
   };

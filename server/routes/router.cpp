@@ -18,10 +18,12 @@ constexpr Route kRoutes[] = {
     {"GET", "/api/methods", get_methods},
     {"GET", "/api/scenarios", list_scenarios},
     {"POST", "/api/scenarios", post_scenario},
+    {"POST", "/api/scenarios/validate", validate_scenario},  // the literal before the {} pattern
     {"GET", "/api/scenarios/{}", get_scenario},
     {"POST", "/api/runs", post_run},
     {"GET", "/api/runs", list_runs},
     {"GET", "/api/runs/{}", get_run},
+    {"DELETE", "/api/runs/{}", delete_run},
     {"GET", "/api/runs/{}/record", get_run_record},
     {"GET", "/api/runs/{}/events", get_run_events},
     {"POST", "/api/runs/{}/control", post_control},

@@ -41,10 +41,12 @@ ApiResponse get_methods(RouteContext&);
 ApiResponse list_scenarios(RouteContext&);
 ApiResponse get_scenario(RouteContext&);
 ApiResponse post_scenario(RouteContext&);
+ApiResponse validate_scenario(RouteContext&);
 // run_routes.cpp
 ApiResponse post_run(RouteContext&);
 ApiResponse list_runs(RouteContext&);
 ApiResponse get_run(RouteContext&);
+ApiResponse delete_run(RouteContext&);
 ApiResponse get_run_record(RouteContext&);
 ApiResponse get_run_events(RouteContext&);
 // run_input_routes.cpp

@@ -163,6 +163,9 @@ ApiResponse get_run(RouteContext& c) {
   return json_response(200, body);
 }
 
+// 200 {"deleted": id}; 404 unknown; 409 while live, replayed or re-simulated (RunManager::delete_run).
+ApiResponse delete_run(RouteContext& c) { return json_response(200, c.runs.delete_run(c.id())); }
+
 ApiResponse get_run_events(RouteContext& c) {
   const std::int64_t id = c.id();
   find_run(c, id);

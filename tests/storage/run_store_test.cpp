@@ -74,6 +74,35 @@ TEST_F(RunStoreTest, FramesAndEventsRoundTrip) {
   EXPECT_EQ(store.events(id)[0].kind, "params");
 }
 
+TEST_F(RunStoreTest, DeletesARunWithItsFramesAndEventsOnly) {
+  RunStore store(path_);
+  const auto doomed = store.create_run(new_run()), kept = store.create_run(new_run());
+  std::vector<std::pair<std::int64_t, StoredFrame>> batch;
+  for (int i = 0; i < 5; ++i) {
+    batch.push_back({doomed, StoredFrame{i, i, 0.01 * i, 0, 0, false, "d"}});
+    batch.push_back({kept, StoredFrame{i, i, 0.01 * i, 0, 0, false, "k"}});
+  }
+  store.add_frames(batch);
+  store.add_event(doomed, {1, 1, "params", "{}"});
+  store.add_event(kept, {2, 2, "joystick", "{}"});
+
+  EXPECT_TRUE(store.delete_run(doomed));
+  EXPECT_FALSE(store.run(doomed).has_value());
+  EXPECT_TRUE(store.events(doomed).empty());
+  int doomed_frames = 0;
+  store.frames(doomed, 0, 100, 1, [&](const StoredFrame&) { return ++doomed_frames, true; });
+  EXPECT_EQ(doomed_frames, 0);
+  // the other run is untouched
+  EXPECT_EQ(store.run(kept)->frames, 5);
+  ASSERT_EQ(store.events(kept).size(), 1u);
+  EXPECT_EQ(store.events(kept)[0].kind, "joystick");
+  EXPECT_EQ(store.runs({}).size(), 1u);
+  // unknown (or already deleted) ids
+  EXPECT_FALSE(store.delete_run(doomed));
+  EXPECT_FALSE(store.delete_run(999));
+  EXPECT_EQ(store.integrity_check(), "ok");
+}
+
 TEST_F(RunStoreTest, UnfinishedRunsAreMarkedInterruptedOnReopen) {
   std::int64_t done = 0, open = 0;
   {

@@ -1,88 +1,260 @@
-// Drives the dashboard in headless Chromium against a real `rrlab serve`:
-// start a live run, steer the joystick with the keyboard, drag an obstacle,
-// move a parameter slider; every input must arrive as a stored event.
-// Usage: node dashboard_test.mjs [path/to/rrlab]   (exit 0 on success)
-import { spawn } from 'node:child_process';
-import { mkdtempSync, rmSync } from 'node:fs';
-import { tmpdir } from 'node:os';
-import { join } from 'node:path';
-import assert from 'node:assert/strict';
-import { chromium } from 'playwright-core';
+// The dashboard as a person uses it, against a real `rrlab serve`: deep links,
+// a live planar run, dragging an obstacle, sliders and the method switch,
+// the keyboard joystick, compare, the replay scrubber, the run list, and
+// reconnecting after the socket drops.
+// Usage: node dashboard_test.mjs   (RRLAB_BINARY, RRLAB_SCREENSHOTS, CHROMIUM)
+import { suite, until, check, pageState } from './harness.mjs';
 
-const binary = process.argv[2] || 'build/server/rrlab';
-const dir = mkdtempSync(join(tmpdir(), 'rrlab-web-'));
-const server = spawn(binary, ['serve', '--port', '0', '--db', join(dir, 'web.db')], { stdio: ['ignore', 'pipe', 'inherit'] });
-const base = await new Promise((resolve, reject) => {
-  server.stdout.on('data', (chunk) => {
-    const match = /serving (http:\/\/[^ ]+)\//.exec(String(chunk));
-    if (match) resolve(match[1]);
-  });
-  server.on('exit', (code) => reject(new Error(`rrlab serve exited with ${code}`)));
-});
-const get = async (path) => (await fetch(base + path)).json();
+const canvasPixels = (page, lane = 0) => page.evaluate((i) => window.__rrlab.session.lanes[i].view.canvas.toDataURL(), lane);
 
-const browser = await chromium.launch({
-  executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
-  args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
-    '--disable-background-networking', '--disable-component-update', '--disable-sync'],
-});
-let failed = false;
-try {
-  const page = await browser.newPage({ viewport: { width: 1500, height: 900 } });
-  const errors = [];
-  page.on('pageerror', (e) => errors.push(String(e)));
-  page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
-  await page.goto(base + '/');
-  await page.waitForSelector('#scenario option', { state: 'attached' });
-  assert.ok((await page.locator('#method option').count()) > 6, 'methods listed');
-
-  await page.selectOption('#scenario', '04_planar7_joystick');
-  await page.click('#start-live');
-  await page.waitForFunction(() => /step \d+ · running/.test(document.getElementById('status').textContent));
-  const runId = Number((await page.textContent('#run-id')).replace('#', ''));
-
-  // joystick from the keyboard
-  await page.keyboard.down('ArrowUp');
-  await page.waitForTimeout(300);
-  await page.keyboard.up('ArrowUp');
-
-  // a slider: the method's first numeric parameter
-  const slider = page.locator('.param input[type=range]').first();
-  await slider.fill('0.4');
-  await slider.dispatchEvent('change');
-
-  // drag the obstacle "box" from its screen position
-  const frame = await get(`/api/runs/${runId}/frames?from=0&to=0`);
-  assert.ok(frame.frames.length === 1);
-  const snapshot = await get('/api/scenarios/04_planar7_joystick');
-  const box = snapshot.obstacles.find((o) => o.id === 'box');
-  const centre = box.points.reduce((a, p) => [a[0] + p[0] / box.points.length, a[1] + p[1] / box.points.length], [0, 0]);
-  const screen = await page.evaluate(([x, y]) => {
-    const canvas = document.getElementById('view');
-    const rect = canvas.getBoundingClientRect();
-    // the view fits the model's reach: read its transform from a probe point
-    return window.__rrlabView ? window.__rrlabView.toScreenClient(x, y, rect) : null;
-  }, centre);
-  assert.ok(screen, 'the view exposes its transform for tests');
-  await page.mouse.move(screen.x, screen.y);
-  await page.mouse.down();
-  for (let i = 1; i <= 8; ++i) { await page.mouse.move(screen.x + 6 * i, screen.y - 6 * i); await page.waitForTimeout(70); }
-  await page.mouse.up();
-  await page.waitForTimeout(300);
-
-  const kinds = new Set((await get(`/api/runs/${runId}/events`)).map((e) => e.kind));
-  assert.ok(kinds.has('joystick'), 'joystick events stored');
-  assert.ok(kinds.has('params'), 'parameter event stored');
-  assert.ok(kinds.has('obstacle'), 'obstacle drag stored');
-  assert.deepEqual(errors, [], 'no errors in the page');
-  await page.click('[data-action=stop]');
-  console.log('dashboard test: ok');
-} catch (e) {
-  failed = true;
-  console.error('dashboard test: FAILED:', e.message);
-} finally {
-  await browser.close();
-  server.kill('SIGTERM');
-  rmSync(dir, { recursive: true, force: true });
+async function openLive(t, scenario, extra = {}) {
+  const run = await t.post('/api/runs', { scenario, mode: 'live', rate: 1, ...extra });
+  await t.page.goto(`${t.base}/?run=${run.id}`);
+  await until(() => pageState.lane(t.page), 'the first frame');
+  return run.id;
 }
-process.exit(failed ? 1 : 0);
+
+await suite('dashboard', [
+  ['a live run opens from its link and animates', async (t) => {
+    const id = await openLive(t, '01_planar7_obstacles');
+    const first = await pageState.lane(t.page);
+    const before = await canvasPixels(t.page);
+    await t.screenshot('live');
+    await until(async () => (await pageState.lane(t.page)).step > first.step + 30, 'frames to advance');
+    check((await canvasPixels(t.page)) !== before, 'the canvas changes while the run plays');
+    check(t.page.url().endsWith(`/?run=${id}`), `the address names the run: ${t.page.url()}`);
+    // the run list shows it live, with Watch, and a frame count that grows
+    const frames = async () => Number(await t.page.textContent(`#runs li[data-run="${id}"] .frames`));
+    await until(async () => (await t.page.locator(`#runs li[data-run="${id}"] button`, { hasText: 'Watch' }).count()) === 1, 'a Watch button');
+    const n = await frames();
+    await until(async () => (await frames()) > n, 'the frame count to grow');
+    // the scale bar is drawn in metres and the view fits the scene: the arm spans a good part of the canvas
+    const span = await t.page.evaluate(() => {
+      const lane = window.__rrlab.session.lanes[0], v = lane.view;
+      const xs = lane.frame.links.flatMap((l) => [l[0], l[3]]);
+      return (Math.max(...xs) - Math.min(...xs)) * v.scale / v.width;
+    });
+    check(span > 0.2, `the arm fills the view (spans ${(span * 100).toFixed(0)}% of its width)`);
+  }],
+
+  ['dragging an obstacle moves it on the server and it stays', async (t) => {
+    const id = await openLive(t, '01_planar7_obstacles', { paused: true });
+    const snapshot = await t.page.evaluate(() => window.__rrlab.session.lanes[0].snapshot);
+    const index = snapshot.obstacles.findIndex((o) => o.id === 'disc');
+    const lane = await pageState.lane(t.page);
+    const from = lane.obstacles[index];
+    const discDistance = (f) => f.nearest.filter((n) => n[1] === index).reduce((m, n) => Math.min(m, n[2]), Infinity);
+    const before = discDistance(await t.page.evaluate(() => window.__rrlab.session.lanes[0].frame));
+    // drag the disc next to the middle of link 3
+    const link = await t.page.evaluate(() => window.__rrlab.session.lanes[0].frame.links[2]);
+    // beside the middle of link 3, on the side away from the base, clear of it by 0.1 m
+    const radius = snapshot.obstacles[index].radius;
+    const mid = [(link[0] + link[3]) / 2, (link[1] + link[4]) / 2];
+    const along = [link[3] - link[0], link[4] - link[1]], length = Math.hypot(along[0], along[1]);
+    let normal = [-along[1] / length, along[0] / length];
+    if (normal[0] * mid[0] + normal[1] * mid[1] < 0) normal = [-normal[0], -normal[1]];
+    const clearance = 0.1 + radius + snapshot.model.links[2].radius;
+    const goal = [mid[0] + normal[0] * clearance, mid[1] + normal[1] * clearance];
+    const a = await pageState.toClient(t.page, from), b = await pageState.toClient(t.page, goal);
+    await t.page.mouse.move(a.x, a.y);
+    await t.page.mouse.down();
+    for (let i = 1; i <= 10; ++i) { await t.page.mouse.move(a.x + ((b.x - a.x) * i) / 10, a.y + ((b.y - a.y) * i) / 10); await t.page.waitForTimeout(60); }
+    await t.page.mouse.up();
+    await t.post(`/api/runs/${id}/control`, { action: 'step' });
+    const moved = await until(async () => {
+      const l = await pageState.lane(t.page);
+      return Math.hypot(l.obstacles[index][0] - goal[0], l.obstacles[index][1] - goal[1]) < 0.02 ? l : null;
+    }, 'the page to show the server at the dragged position');
+    // the stored events carry the drag; the step's distance reflects the new place
+    const events = await t.get(`/api/runs/${id}/events`);
+    check(events.some((e) => e.kind === 'obstacle'), 'obstacle events are stored');
+    const frame = await until(async () => {
+      const f = await t.page.evaluate(() => window.__rrlab.session.lanes[0].frame);
+      return f.metrics.min_distance <= discDistance(f) + 1e-6 ? f : null;
+    }, 'a stepped frame whose minimum distance counts the dragged disc');
+    const disc = discDistance(frame);
+    check(disc < 0.2 && disc < before - 0.05, `the disc's distance reflects the drag (${before.toFixed(3)} m before, ${disc.toFixed(3)} m after)`);
+    // it does not jump back: still there half a second later, as drawn
+    await t.page.waitForTimeout(500);
+    const drawn = await t.page.evaluate((i) => window.__rrlab.session.lanes[0].view.positionOf(i), index);
+    check(Math.hypot(drawn[0] - moved.obstacles[index][0], drawn[1] - moved.obstacles[index][1]) < 1e-6, 'the drawn obstacle stays where it was dropped');
+    await t.screenshot('dragged');
+  }],
+
+  ['a 3D scenario renders in WebGL on the page, changes while it runs, and its obstacles drag in 3D', async (t) => {
+    const id = await openLive(t, '17_chen_sim2_spatial16_window');
+    await until(() => t.page.evaluate(() => window.__rrlab.session.lanes[0].view && window.__rrlab.session.lanes[0].view.renderer), 'the three.js view');
+    check(await t.page.evaluate(() => window.__rrlab.session.lanes[0].view.renderer.getContext() instanceof WebGL2RenderingContext), 'a WebGL 2 context');
+    const cell = t.page.locator('#views .view-cell').first();
+    const first = await cell.screenshot();
+    await t.screenshot('3d');
+    await until(async () => !(await cell.screenshot()).equals(first), 'the 3D picture to change while the run plays');
+    const grab = await t.page.evaluate(() => {
+      const lane = window.__rrlab.session.lanes[0], view = lane.view;
+      const index = lane.snapshot.obstacles.findIndex((o) => o.id === 'target_block');
+      const centre = view.worldToClient(lane.frame.obstacles[index]);
+      for (let r = 0; r <= 30; r += 3) for (let a = 0; a < 8; ++a) {
+        const at = { x: centre.x + r * Math.cos(a * Math.PI / 4), y: centre.y + r * Math.sin(a * Math.PI / 4) };
+        if (view.obstacleAt(at.x, at.y) === index) return at;
+      }
+      return null;
+    });
+    check(grab, 'the cube can be grabbed near its centre');
+    await t.page.mouse.move(grab.x, grab.y);
+    await t.page.mouse.down();
+    for (let i = 1; i <= 8; ++i) { await t.page.mouse.move(grab.x + 6 * i, grab.y - 4 * i); await t.page.waitForTimeout(60); }
+    await t.page.mouse.up();
+    await until(async () => (await t.get(`/api/runs/${id}/events`)).some((e) => e.kind === 'obstacle' && e.payload.id === 'target_block'), 'the 3D drag to reach the server');
+    await t.screenshot('3d-dragged');
+  }],
+
+  ['multi_preview ghosts are drawn as arms from the server\'s link segments', async (t) => {
+    await openLive(t, '31_zhang_multi_preview');
+    const ghosts = await until(() => t.page.evaluate(() => {
+      const f = window.__rrlab.session.lanes[0].frame;
+      return f.overlays && f.overlays.ghost_links && f.overlays.ghost_links.length ? f.overlays.ghost_links : null;
+    }), 'ghost link segments in the frames');
+    check(ghosts.every((links) => links.length > 0), 'every ghost has its links');
+    check(await t.page.isChecked('input[data-overlay=ghosts]'), 'the ghosts toggle is on');
+    await t.page.waitForTimeout(300);
+    await t.screenshot('ghosts');
+    // the toggle turns them off and on: the picture changes with it
+    await t.page.click('[data-action=pause]');
+    await t.page.waitForTimeout(300);
+    const cell = t.page.locator('#views .view-cell').first();
+    const on = await cell.screenshot();
+    await t.page.uncheck('input[data-overlay=ghosts]');
+    await t.page.waitForTimeout(200);
+    check(!(await cell.screenshot()).equals(on), 'turning the ghosts off changes the picture');
+    await t.page.check('input[data-overlay=ghosts]');
+  }],
+
+  ['a slider and the method switch change the run on the server', async (t) => {
+    const id = await openLive(t, '01_planar7_obstacles');
+    const slider = t.page.locator('.param input[type=range]').first();
+    const name = (await slider.getAttribute('id')).replace('param-', '');
+    const max = Number(await slider.getAttribute('max')), min = Number(await slider.getAttribute('min'));
+    const value = min + (max - min) * 0.37;
+    await slider.fill(String(value));
+    await slider.dispatchEvent('change');
+    await until(async () => (await t.get(`/api/runs/${id}/events`)).some((e) => e.kind === 'params'), 'a params event');
+    const stored = (await t.get(`/api/runs/${id}/events`)).find((e) => e.kind === 'params');
+    check(Math.abs(stored.payload[name] - value) <= 1e-6 * Math.max(1, Math.abs(value)), `the stored ${name} is the slider's value: ${JSON.stringify(stored.payload)}`);
+    // reset to default
+    const count = (await t.get(`/api/runs/${id}/events`)).length;
+    await t.page.waitForSelector(`#param-${name} ~ *, .param button.reset:not([disabled])`);
+    const spec = await t.page.evaluate((n) => window.__rrlab.session.lanes[0].snapshot.param_specs.find((p) => p.name === n), name);
+    await t.page.locator(`button.reset[aria-label="reset ${name} to its default"]`).click();
+    await until(async () => {
+      const events = await t.get(`/api/runs/${id}/events`);
+      return events.length > count && events[events.length - 1].payload[name] === spec.default;
+    }, 'the reset to the default to be stored');
+    await t.page.selectOption('#switch-method', 'dls');
+    await t.page.click('#switch-method-go');
+    await until(async () => (await pageState.lane(t.page)).method === 'dls', 'the stream to report the new method');
+    check((await t.get(`/api/runs/${id}/events`)).some((e) => e.kind === 'method'), 'the method switch is stored');
+    check((await t.page.textContent('#params-lane')).includes('dls'), 'the parameter panel shows the new method');
+    await t.screenshot('switched');
+  }],
+
+  ['the keyboard joystick moves the target', async (t) => {
+    const id = await openLive(t, '04_planar7_joystick');
+    const before = (await pageState.lane(t.page)).target;
+    await t.page.locator('#views').click({ position: { x: 5, y: 5 } });
+    await t.page.keyboard.down('ArrowUp');
+    await t.page.waitForTimeout(600);
+    await t.page.keyboard.up('ArrowUp');
+    await until(async () => (await pageState.lane(t.page)).target[1] > before[1] + 0.01, 'the target to move up');
+    check((await t.get(`/api/runs/${id}/events`)).some((e) => e.kind === 'joystick'), 'joystick events are stored');
+  }],
+
+  ['a compare link animates both arms and a drag reaches both runs', async (t) => {
+    const group = await t.post('/api/compare', { scenario: '01_planar7_obstacles', methods: ['pinv', 'closest_point'], mode: 'live', rate: 1, paused: true });
+    const [a, b] = group.runs.map((r) => r.id);
+    await t.page.goto(`${t.base}/?compare=${a},${b}`);
+    await until(async () => (await pageState.lane(t.page, 0)) && (await pageState.lane(t.page, 1)), 'frames of both lanes');
+    await t.page.click('[data-action=start]');
+    const s0 = (await pageState.lane(t.page, 0)).step, s1 = (await pageState.lane(t.page, 1)).step;
+    await until(async () => (await pageState.lane(t.page, 0)).step > s0 + 20 && (await pageState.lane(t.page, 1)).step > s1 + 20, 'both arms to animate');
+    check(await t.page.evaluate(() => document.querySelectorAll('#views .view-cell canvas').length) === 2, 'two views side by side');
+    const lane = await pageState.lane(t.page, 1);
+    const index = 1;
+    const from = lane.obstacles[index];
+    const p = await pageState.toClient(t.page, from, 1);
+    await t.page.mouse.move(p.x, p.y);
+    await t.page.mouse.down();
+    for (let i = 1; i <= 6; ++i) { await t.page.mouse.move(p.x + 8 * i, p.y + 5 * i); await t.page.waitForTimeout(60); }
+    await t.page.mouse.up();
+    await until(async () => (await t.get(`/api/runs/${a}/events`)).some((e) => e.kind === 'obstacle') &&
+      (await t.get(`/api/runs/${b}/events`)).some((e) => e.kind === 'obstacle'), 'the drag to reach both runs');
+    check((await t.page.locator('#metrics th').count()) === 3, 'the metrics table has a column per method');
+    await t.screenshot('compare');
+    await t.post(`/api/runs/${a}/control`, { action: 'stop' });
+    await until(async () => !(await t.page.isHidden('#compare-summary')), 'the summary table at the end');
+    check((await t.page.locator('#summary-table tr').count()) > 5, 'the summary lists the metrics');
+    await t.screenshot('compare-summary');
+  }],
+
+  ['overlaid compare draws every arm on one view', async (t) => {
+    await t.page.goto(`${t.base}/?scenario=01_planar7_obstacles`);
+    await t.page.waitForSelector('#compare-rows .compare-row');
+    await t.page.click('#compare-add');
+    await t.page.locator('#compare-rows .compare-row select').nth(2).selectOption('closest_point');
+    await t.page.locator('#compare-rows .compare-row input').nth(1).fill('lambda=0.2');
+    await t.page.selectOption('#compare-layout', 'overlay');
+    await t.page.click('#start-compare');
+    await until(async () => (await pageState.lane(t.page, 2)) !== null, 'three lanes');
+    check(await t.page.evaluate(() => document.querySelectorAll('#views .view-cell').length) === 1, 'one view');
+    check(t.page.url().includes('compare='), 'the address names the group');
+    const params = await t.page.evaluate(() => window.__rrlab.session.lanes[1].snapshot.params.lambda);
+    check(Math.abs(params - 0.2) < 1e-12, `the typed parameter reached the lane: ${params}`);
+    await t.page.waitForTimeout(500);
+    await t.screenshot('overlay');
+  }],
+
+  ['a stored run replays and the scrubber shows frame k exactly', async (t) => {
+    const run = await t.post('/api/runs', { scenario: '01_planar7_obstacles', method: 'dls', mode: 'batch' });
+    await t.page.goto(`${t.base}/?run=${run.id}`);
+    await until(() => pageState.lane(t.page), 'the replay to start');
+    await t.page.waitForSelector('#replay-bar:not([hidden])');
+    const k = 137;
+    await t.page.locator('#scrubber').fill(String(k));
+    await t.page.locator('#scrubber').dispatchEvent('change');
+    const shown = await until(async () => { const l = await pageState.lane(t.page); return l.seq === k ? l : null; }, `frame ${k}`);
+    const stored = (await t.get(`/api/runs/${run.id}/frames?from=${k}&to=${k}`)).frames[0];
+    shown.q.forEach((q, i) => check(Math.abs(q - stored.q[i]) <= 1e-6 * Math.max(1, Math.abs(stored.q[i])), `q${i + 1} drawn ${q} vs stored ${stored.q[i]}`));
+    check(t.page.url().includes(`frame=${k}`), `the frame is in the address: ${t.page.url()}`);
+    // one frame forward with the keyboard
+    await t.page.locator('#views').click({ position: { x: 5, y: 5 } });
+    await t.page.keyboard.press('.');
+    await until(async () => (await pageState.lane(t.page)).seq === k + 1, 'frame k + 1');
+    await t.screenshot('replay');
+    // the link reopens that frame
+    await t.page.goto(`${t.base}/?run=${run.id}&frame=40`);
+    await until(async () => { const l = await pageState.lane(t.page); return l && l.seq === 40; }, 'the linked frame');
+  }],
+
+  ['a scenario and method are preselected from the address; runs can be filtered and deleted', async (t) => {
+    const run = await t.post('/api/runs', { scenario: '01_planar7_obstacles', method: 'pinv', mode: 'batch' });
+    await t.page.goto(`${t.base}/?scenario=04_planar7_joystick&method=dls`);
+    await t.page.waitForSelector('#scenario option', { state: 'attached' });
+    await until(async () => (await t.page.inputValue('#scenario')) === '04_planar7_joystick', 'the scenario preselected');
+    check((await t.page.inputValue('#method')) === 'dls', 'the method preselected');
+    await t.page.selectOption('#filter-status', 'completed');
+    await until(async () => (await t.page.locator(`#runs li[data-run="${run.id}"]`).count()) === 1, 'the stored run in the filtered list');
+    t.page.once('dialog', (d) => d.accept());
+    await t.page.locator(`#runs li[data-run="${run.id}"] button`, { hasText: 'Delete' }).click();
+    await until(async () => (await t.page.locator(`#runs li[data-run="${run.id}"]`).count()) === 0, 'the run to leave the list');
+    const gone = await t.request('GET', `/api/runs/${run.id}`).then(() => false, () => true);
+    check(gone, 'the run is deleted on the server');
+  }],
+
+  ['the stream reconnects after it drops and resyncs', async (t) => {
+    await openLive(t, '01_planar7_obstacles');
+    await t.page.evaluate(() => window.__rrlab.session.lanes[0].stream.socket.close());
+    await until(async () => (await t.page.textContent('#connection')) !== 'live', 'the drop to show');
+    const step = (await pageState.lane(t.page)).step;
+    await until(async () => (await t.page.textContent('#connection')) === 'live', 'the stream to reconnect');
+    await until(async () => (await pageState.lane(t.page)).step > step + 10, 'frames after reconnecting');
+  }],
+]);

@@ -1,207 +1,248 @@
-// The dashboard: pick a scenario and method, start a live run, watch it,
-// change parameters, drag obstacles, steer a joystick task, replay stored runs.
-import { api, openStream } from './api.js';
-import { View2D } from './view2d.js';
+// The dashboard: wires the panels to the central state (state.js) and the
+// session (session.js). Opens what the address asks for (?run=, ?compare=,
+// ?scenario=&method=), draws at the display rate with requestAnimationFrame.
+import { api, describeError } from './api.js';
+import { app, readUrl, writeUrl } from './state.js';
+import { Session, sessionFor } from './session.js';
+import { buildParams, setupMethodSwitch, fmt } from './params.js';
+import { showMetrics } from './metrics.js';
+import { RunList } from './runs.js';
+import { CompareSetup, showCompareSummary } from './compare.js';
+import { ReplayBar } from './replay.js';
+import { SceneTools, buildOverlayToggles } from './scene_tools.js';
+import { Plots } from './plots.js';
+import { Joystick } from './joystick.js';
+import { ScenarioEditor } from './scenario_editor.js';
 
 const $ = (id) => document.getElementById(id);
-const view = new View2D($('view'));
-window.__rrlabView = view;  // browser tests map world points to the page
-const state = { runId: null, replayId: null, socket: null, snapshot: null, frame: null, drag: null, methods: [] };
+let session = null;
+let metricsDirty = false;
 
-function fmt(v) {
-  if (v === null || v === undefined) return '—';
-  if (typeof v === 'boolean') return v ? 'yes' : 'no';
-  if (Number.isInteger(v)) return String(v);
-  return Math.abs(v) >= 1e4 || (Math.abs(v) < 1e-3 && v !== 0) ? v.toExponential(3) : v.toFixed(4);
+// ---- messages -----------------------------------------------------------
+app.signals.message.add((what, kind) => {
+  const box = $('message');
+  box.className = kind === 'info' ? 'info' : '';
+  box.querySelector('span').textContent = typeof what === 'string' ? what : describeError(what);
+  box.hidden = false;
+  clearTimeout(box.timer);
+  if (kind === 'info') box.timer = setTimeout(() => { box.hidden = true; }, 4000);
+});
+$('message').querySelector('button').onclick = () => { $('message').hidden = true; };
+const report = (e) => app.error(e);
+
+// ---- panels ---------------------------------------------------------------
+const runList = new RunList({ open: (ids) => openRuns(ids).catch(report) });
+const compareSetup = new CompareSetup({ start: (body, layout) => startCompare(body, layout) });
+const replayBar = new ReplayBar();
+const sceneTools = new SceneTools(() => session);
+const plots = new Plots($('plots'));
+plots.onSeek = (t) => replayBar.seekTime(t);
+const joystick = new Joystick($('joystick'), {
+  send: (command) => {
+    if (!session || session.kind !== 'live') return undefined;
+    return api('POST', `/api/runs/${session.controlRun}/joystick`, command);
+  },
+});
+const editor = new ScenarioEditor($('editor-host'), {
+  api,
+  onStart: async (name) => {
+    app.scenarios = await api('GET', '/api/scenarios');
+    fillScenarios(name);
+    await startLive();
+  },
+});
+setupMethodSwitch(() => session);
+buildOverlayToggles(() => { if (session) for (const lane of session.lanes) if (lane.view) lane.view.invalidate(); });
+
+// ---- catalogue -----------------------------------------------------------
+function fillScenarios(selected) {
+  $('scenario').innerHTML = app.scenarios.map((s) => `<option value="${s.name}" ${s.name === selected ? 'selected' : ''}>${s.name}</option>`).join('');
+  describeScenario();
 }
-
-function table(element, rows) {
-  element.innerHTML = '';
-  for (const [name, value, cls] of rows) {
-    const tr = element.insertRow();
-    tr.insertCell().textContent = name;
-    const td = tr.insertCell();
-    td.textContent = fmt(value);
-    if (cls) td.className = cls;
-  }
+function describeScenario() {
+  const s = app.scenarios.find((x) => x.name === $('scenario').value);
+  $('scenario-description').textContent = s ? s.description : '';
+  $('scenario-description').title = s ? s.description : '';
 }
-
-function showError(error) { $('status').textContent = `⚠ ${error.message}`; }
+$('scenario').onchange = () => { describeScenario(); if (!session) writeUrl({ scenario: $('scenario').value, method: $('method').value }); };
+$('method').onchange = () => { if (!session) writeUrl({ scenario: $('scenario').value, method: $('method').value }); };
 
 async function loadCatalogue() {
-  const [scenarios, methods] = await Promise.all([api('GET', '/api/scenarios'), api('GET', '/api/methods')]);
-  state.methods = methods;
-  $('scenario').innerHTML = scenarios.map((s) => `<option value="${s.name}" title="${s.description.replace(/"/g, '&quot;')}">${s.name}</option>`).join('');
-  $('method').innerHTML = '<option value="">(scenario\'s own)</option>' +
-    methods.map((m) => `<option value="${m.name}" title="${m.description}">${m.name}</option>`).join('');
+  [app.scenarios, app.methods] = await Promise.all([api('GET', '/api/scenarios'), api('GET', '/api/methods')]);
+  fillScenarios();
+  $('method').innerHTML = '<option value="">(the scenario\'s own)</option>' +
+    app.methods.map((m) => `<option value="${m.name}" title="${m.description.replace(/"/g, '&quot;')}">${m.name}</option>`).join('');
+  compareSetup.init();
+  runList.fillFilters();
 }
 
-async function refreshRuns() {
-  const runs = await api('GET', '/api/runs?limit=30');
-  $('runs').innerHTML = '';
-  for (const r of runs) {
-    const li = document.createElement('li');
-    li.innerHTML = `<span>#${r.id} ${r.scenario}<br><span class="muted">${r.method} · ${r.mode} · ${r.status} · ${r.frames} frames</span></span>`;
-    if (r.frames > 0 && r.status !== 'running' && r.status !== 'paused') {
-      const button = document.createElement('button');
-      button.textContent = 'Replay';
-      button.onclick = () => replay(r.id).catch(showError);
-      li.appendChild(button);
-    }
-    $('runs').appendChild(li);
+// ---- sessions ------------------------------------------------------------
+async function show(next, startFrame) {
+  if (session) session.close();
+  session = next;
+  replayBar.detach();
+  $('compare-summary').hidden = true;
+  $('controls').hidden = next.kind !== 'live';
+  // a session on screen: its controls come first, the pickers fold away
+  $('new-run').open = false;
+  $('compare-setup').open = false;
+  $('run-id').textContent = next.runIds.map((id) => `#${id}`).join(' ');
+  $('session-title').textContent = `${next.kind === 'live' ? 'live' : 'replay'} · ${next.runs[0].scenario} · ${next.runs.map((r) => r.method).join(' vs ')}`;
+  configurePlots(next, next.runs.map((r) => r.diagnostic_names || []));
+  await next.open();
+  if (next.kind === 'replay') {
+    replayBar.attach(next, startFrame);
+    loadWholeRuns(next).catch(report);
   }
+  runList.refresh();
 }
 
-function connect(path) {
-  if (state.socket) state.socket.close();
-  state.snapshot = null;
-  state.frame = null;
-  $('connection').textContent = `connecting ${path}`;
-  state.socket = openStream(path, {
-    onSnapshot: (snapshot) => {
-      const first = !state.snapshot;
-      state.snapshot = snapshot;
-      if (first) view.fit(snapshot);
-      if (snapshot.frame) state.frame = snapshot.frame;
-      buildParams(snapshot);
-      $('joystick-help').hidden = snapshot.task.trajectory !== 'joystick';
-      $('connection').textContent = `${path} · ${snapshot.scenario} · ${snapshot.method}`;
-      render();
-    },
-    onFrame: (frame) => { state.frame = frame; render(); },
-    onMessage: (message) => { if (message.type === 'error') showError(new Error(message.error.message)); },
-    onClose: () => { $('connection').textContent = 'disconnected'; refreshRuns().catch(() => {}); },
+// One series per lane; each lane's diagnostics in its method's order.
+function configurePlots(s, namesPerLane) {
+  s.plotNames = namesPerLane.map((names) => names.join('\n'));
+  plots.configure({
+    lanes: s.lanes.map((l, i) => ({ label: l.label, colour: l.colour, diagnosticNames: namesPerLane[i] })),
+    diagnosticNames: [...new Set(namesPerLane.flat())],
+    mode: s.kind,
+    windowSeconds: 10,
   });
 }
 
-function render() {
-  view.draw(state.snapshot, state.frame, state.drag ? state.drag.index : null);
-  const f = state.frame;
-  if (!f || !state.snapshot) return;
-  const m = f.metrics;
-  $('status').textContent = `t = ${f.t.toFixed(2)} s · step ${f.step} · ${f.status}`;
-  table($('metrics'), [
-    ['task error (m)', m.task_error], ['min distance (m)', m.min_distance],
-    ['nearest link', m.min_distance_link], ['collided', m.collided, m.collided ? 'collided' : ''],
-    ['joint-limit margin', m.joint_limit_margin], ['manipulability', m.manipulability],
-    ['condition number', m.condition_number], ['step (µs)', m.step_us],
-  ]);
-  table($('diagnostics'), state.snapshot.diagnostic_names.map((name, i) => [name, f.diagnostics[i]]));
+// Replays plot the whole run (exact stored values; strided beyond 20,000 frames).
+async function loadWholeRuns(s) {
+  await Promise.all(s.lanes.map(async (lane) => {
+    const frames = s.runs[lane.index].frames;
+    const stride = Math.max(1, Math.ceil(frames / 20000));
+    const data = await api('GET', `/api/runs/${lane.runId}/frames?from=0&to=${frames - 1}&stride=${stride}`);
+    if (session === s) plots.setRun(lane.index, data);
+  }));
 }
 
-// Sliders (or selects for enumerations) from the method's parameter specs.
-function buildParams(snapshot) {
-  const box = $('params');
-  box.innerHTML = '';
-  $('params-section').hidden = snapshot.param_specs.length === 0 || state.replayId !== null;
-  for (const spec of snapshot.param_specs) {
-    const div = document.createElement('div');
-    div.className = 'param';
-    const value = snapshot.params[spec.name];
-    div.title = spec.help;
-    if (spec.choices && spec.choices.length) {
-      div.innerHTML = `<label>${spec.label}<select>${spec.choices.map((c, i) => `<option value="${i}" ${i === value ? 'selected' : ''}>${c}</option>`).join('')}</select></label>`;
-      div.querySelector('select').onchange = (e) => setParam(spec.name, Number(e.target.value));
-    } else {
-      // a spec step that does not divide (max - min) from min would reject values: any value then
-      const step = spec.step && Number.isInteger((spec.max - spec.min) / spec.step) ? spec.step : 'any';
-      div.innerHTML = `${spec.label} <span class="value">${fmt(value)} ${spec.unit}</span>
-        <input type="range" min="${spec.min}" max="${spec.max}" step="${step}" value="${value}">`;
-      const input = div.querySelector('input');
-      input.oninput = () => { div.querySelector('.value').textContent = `${fmt(Number(input.value))} ${spec.unit}`; };
-      input.onchange = () => setParam(spec.name, Number(input.value));
-    }
-    box.appendChild(div);
-  }
+async function openRuns(ids, layout = 'side', frame = null) {
+  await show(await sessionFor(ids, layout), frame);
 }
 
-async function setParam(name, value) {
-  if (!state.runId) return;
-  await api('PATCH', `/api/runs/${state.runId}/params`, { [name]: value }).catch(showError);
-}
-
-async function startRun(mode) {
-  const body = { scenario: $('scenario').value, mode, rate: Number($('rate').value) };
+async function startLive() {
+  const body = { scenario: $('scenario').value, mode: 'live', rate: Number($('rate').value) };
   if ($('method').value) body.method = $('method').value;
-  if (mode === 'batch') {
-    $('status').textContent = 'running…';
-    const result = await api('POST', '/api/runs', body);
-    $('status').textContent = `batch run #${result.id}: ${result.summary.steps} steps, max tracking error ${fmt(result.summary.max_tracking_error)} m, ${result.summary.collided ? 'collided' : 'no collision'}`;
-    await refreshRuns();
-    return;
-  }
   const run = await api('POST', '/api/runs', body);
-  state.runId = run.id;
-  state.replayId = null;
-  $('run-id').textContent = `#${run.id}`;
-  $('controls').hidden = false;
-  connect(run.ws);
-  refreshRuns().catch(() => {});
+  await openRuns([run.id]);
 }
 
-async function replay(id) {
-  const player = await api('POST', `/api/runs/${id}/replay`, { mode: 'frames', speed: 1 });
-  state.runId = null;
-  state.replayId = player.replay;
-  $('controls').hidden = true;
-  connect(player.ws);
+async function startBatch() {
+  const body = { scenario: $('scenario').value, mode: 'batch' };
+  if ($('method').value) body.method = $('method').value;
+  $('status').textContent = 'running to the end…';
+  const result = await api('POST', '/api/runs', body);
+  const s = result.summary;
+  app.info(`batch run #${result.id}: ${s.steps} steps, max tracking error ${fmt(s.max_tracking_error)} m, min distance ${fmt(s.min_distance)} m, ${s.collided ? 'collided' : 'no collision'}`);
+  $('status').textContent = '';
+  await openRuns([result.id]);
 }
 
-async function control(action) {
-  if (!state.runId) return;
-  await api('POST', `/api/runs/${state.runId}/control`, { action }).catch(showError);
+async function startCompare(body, layout) {
+  const group = await api('POST', '/api/compare', body);
+  await openRuns(group.runs.map((r) => r.id), layout);
 }
 
-// Dragging an obstacle moves it live (PUT, at most 20 times a second).
-function pointer(event) {
-  const rect = view.canvas.getBoundingClientRect();
-  return [(event.clientX - rect.left) * (view.canvas.width / rect.width), (event.clientY - rect.top) * (view.canvas.height / rect.height)];
+$('start-live').onclick = () => startLive().catch(report);
+$('start-batch').onclick = () => startBatch().catch(report);
+for (const button of document.querySelectorAll('[data-action]')) {
+  button.onclick = () => {
+    if (!session || session.kind !== 'live') return;
+    api('POST', `/api/runs/${session.controlRun}/control`, { action: button.dataset.action }).catch(report);
+  };
 }
-view.canvas.addEventListener('pointerdown', (event) => {
-  if (!state.runId) return;
-  const [x, y] = pointer(event);
-  const index = view.hit(state.snapshot, state.frame, x, y);
-  if (index === null) return;
-  state.drag = { index, start: view.toWorld(x, y), from: state.frame.obstacles[index].slice(), last: 0 };
-  view.canvas.setPointerCapture(event.pointerId);
+
+// ---- stream events -------------------------------------------------------
+app.signals.viewCreated.add((lane) => {
+  if (session && session.kind === 'live') sceneTools.bind(lane);
+  else lane.view.onSelect = null;
+  $('empty-hint')?.remove();
 });
-view.canvas.addEventListener('pointermove', (event) => {
-  const drag = state.drag;
-  if (!drag) return;
-  const [x, y] = pointer(event);
-  const [wx, wy] = view.toWorld(x, y);
-  const position = [drag.from[0] + wx - drag.start[0], drag.from[1] + wy - drag.start[1], drag.from[2]];
-  state.frame.obstacles[drag.index] = position;
-  render();
-  const now = performance.now();
-  if (now - drag.last < 50) return;
-  drag.last = now;
-  const id = state.snapshot.obstacles[drag.index].id;
-  api('PUT', `/api/runs/${state.runId}/obstacles/${encodeURIComponent(id)}`, { position }).catch(showError);
-});
-view.canvas.addEventListener('pointerup', () => { state.drag = null; });
 
-// Keyboard joystick: held keys set a velocity; releasing all stops it.
-const held = new Set();
-const keys = { ArrowUp: [0, 1], ArrowDown: [0, -1], ArrowLeft: [-1, 0], ArrowRight: [1, 0], w: [0, 1], s: [0, -1], a: [-1, 0], d: [1, 0] };
-function joystick() {
-  if (!state.runId || !state.snapshot || state.snapshot.task.trajectory !== 'joystick') return;
-  const speed = 0.2 * Math.max(0.25, state.snapshot.model.reach / 3);
-  let vx = 0, vy = 0;
-  for (const k of held) { vx += keys[k][0]; vy += keys[k][1]; }
-  api('POST', `/api/runs/${state.runId}/joystick`, { linear: [vx * speed, vy * speed] }).catch(showError);
+app.signals.snapshot.add((lane) => {
+  if (!session || !session.lanes.includes(lane)) return;
+  if (lane.index === session.focus) buildParams(session);
+  // a method switch changes the diagnostics: the plots start again with the new names
+  if (session.kind === 'live' && session.plotNames && session.plotNames[lane.index] !== lane.snapshot.diagnostic_names.join('\n')) {
+    lane.label = lane.snapshot.method;
+    configurePlots(session, session.lanes.map((l, i) => (l.snapshot ? l.snapshot.diagnostic_names : session.runs[i].diagnostic_names || [])));
+  }
+  if (lane.index === 0) {
+    const s = lane.snapshot;
+    sceneTools.configure(s);
+    const joystickTask = s.task.trajectory === 'joystick' && session.kind === 'live';
+    $('joystick-section').hidden = !joystickTask;
+    joystick.configure({ enabled: joystickTask, space: s.task.space, reach: s.model.reach });
+    if (lane.label !== s.method) lane.label = s.method;
+  }
+  metricsDirty = true;
+});
+
+app.signals.frame.add((lane) => {
+  if (!session || !session.lanes.includes(lane)) return;
+  metricsDirty = true;
+  const f = lane.frame;
+  if (session.kind === 'live') plots.push(lane.index, f);
+  if (lane.index === 0) {
+    if (session.kind === 'replay') { replayBar.onFrame(f); plots.setCursor(f.t); }
+    $('status').textContent = `t = ${f.t.toFixed(2)} s · step ${f.step} · ${f.status}`;
+  }
+  if (session.kind === 'live' && session.ended && !session.summaryShown) {
+    session.summaryShown = true;
+    if (session.compare) showCompareSummary(session).catch(report);
+    runList.refresh();
+  }
+});
+
+app.signals.connection.add((s) => {
+  if (s !== session) return;
+  const states = s.lanes.map((l) => l.streamState);
+  const el = $('connection');
+  const open = states.every((x) => x === 'open');
+  el.textContent = open ? (s.kind === 'live' ? 'live' : 'replay') : states.find((x) => x !== 'open') || '';
+  el.className = `pill ${open ? 'ok' : 'warn'}`;
+});
+
+// ---- drawing loop --------------------------------------------------------
+const fps = { frames: 0, since: performance.now(), value: 0, renderMs: 0 };
+function tick(now) {
+  const t0 = performance.now();
+  if (session) session.render();
+  plots.render();
+  if (metricsDirty) { metricsDirty = false; showMetrics(session); }
+  fps.renderMs = 0.9 * fps.renderMs + 0.1 * (performance.now() - t0);
+  fps.frames++;
+  if (now - fps.since >= 1000) { fps.value = (fps.frames * 1000) / (now - fps.since); fps.frames = 0; fps.since = now; }
+  requestAnimationFrame(tick);
 }
-window.addEventListener('keydown', (e) => {
-  if (!(e.key in keys) || held.has(e.key) || e.target.tagName === 'SELECT') return;
-  held.add(e.key);
-  e.preventDefault();
-  joystick();
-});
-window.addEventListener('keyup', (e) => { if (held.delete(e.key)) joystick(); });
+requestAnimationFrame(tick);
 
-$('start-live').onclick = () => startRun('live').catch(showError);
-$('start-batch').onclick = () => startRun('batch').catch(showError);
-for (const button of document.querySelectorAll('[data-action]')) button.onclick = () => control(button.dataset.action);
+// ---- header --------------------------------------------------------------
+$('copy-link').onclick = async () => {
+  try { await navigator.clipboard.writeText(location.href); app.info('link copied'); } catch { app.info(location.href); }
+};
+$('open-editor').onclick = async () => {
+  try {
+    let scenario;
+    if (session) scenario = (await api('GET', `/api/runs/${session.runIds[0]}/record`)).scenario;
+    else scenario = await api('GET', `/api/scenarios/${encodeURIComponent($('scenario').value)}`);
+    editor.open(scenario);
+  } catch (e) { report(e); }
+};
 
-loadCatalogue().then(refreshRuns).catch(showError);
-view.draw(null, null);
+// For browser tests and for measuring: the state, the session and the frame rate.
+window.__rrlab = { app, fps, get session() { return session; }, plots, Session };
+
+// ---- start: what the address asks for --------------------------------------
+async function start() {
+  await loadCatalogue();
+  const url = readUrl();
+  if (url.scenario && app.scenarios.some((s) => s.name === url.scenario)) fillScenarios(url.scenario);
+  if (url.method && app.methods.some((m) => m.name === url.method)) $('method').value = url.method;
+  if (url.compare.length > 1) await openRuns(url.compare, 'side', url.frame);
+  else if (url.run) await openRuns([url.run], 'side', url.frame);
+  else runList.refresh();
+}
+start().catch(report);

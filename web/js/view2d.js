@@ -1,70 +1,301 @@
-// Canvas 2D drawing of the arm in the x-y plane (3D models: their top view),
-// from what the server sends: link segments, obstacles, target, path, overlays.
+// Canvas 2D view of planar models in the x-y plane, drawn only from what the
+// server sends (link segments, obstacles, target, path, overlays). Fits the
+// scene on open; drag empty space to pan, wheel or pinch to zoom, double-click
+// to fit again; drag an obstacle to move it. Same interface as View3D.
+import { drawOverlays2D, drawArm2D, ellipseScale } from './view2d_overlays.js';
+import { drawObstacle2D, obstacleAt, hitObstacle2D } from './view2d_obstacles.js';
+
+const TRACE_POINTS = 4000;
+
 export class View2D {
-  constructor(canvas) {
-    this.canvas = canvas;
-    this.context = canvas.getContext('2d');
+  constructor(container) {
+    this.container = container;
+    this.canvas = document.createElement('canvas');
+    this.canvas.className = 'view-canvas';
+    this.canvas.tabIndex = 0;
+    this.canvas.setAttribute('aria-label', 'arm view: drag empty space to pan, wheel to zoom, double-click to fit, drag an obstacle to move it');
+    container.appendChild(this.canvas);
+    this.context = this.canvas.getContext('2d');
+    this.snapshot = null;
+    this.frame = null;
+    this.lanes = [];
+    this.colour = '#37474f';
+    this.label = '';
+    this.overlays = {};
+    this.placing = null;
+    this.selected = null;
+    this.onPlace = null;
+    this.onObstacleDrag = null;
+    this.onSelect = null;
     this.scale = 100;
-    this.origin = { x: canvas.width / 2, y: canvas.height / 2 };
+    this.origin = { x: 0, y: 0 };
+    this.userMoved = false;
+    this.dirty = true;
+    this.pointers = new Map();
+    this.gesture = null;
+    this.pending = null;  // a dragged obstacle's position until frames confirm it
+    this.trace = new Float64Array(2 * TRACE_POINTS);
+    this.traceCount = 0;
+    this.traceStart = 0;
+    this.lastStep = -1;
+    this.ellipseScale = null;
+    this.resizeObserver = new ResizeObserver(() => this.resize());
+    this.resizeObserver.observe(container);
+    this.listen();
+    this.resize();
   }
 
-  // Fits the view to the model's reach around its base and the obstacles.
-  fit(snapshot) {
-    const base = snapshot.model.base;
-    let minX = base[0] - snapshot.model.reach, maxX = base[0] + snapshot.model.reach;
-    let minY = base[1] - snapshot.model.reach, maxY = base[1] + snapshot.model.reach;
-    for (const p of snapshot.task.path) {
-      minX = Math.min(minX, p[0]); maxX = Math.max(maxX, p[0]);
-      minY = Math.min(minY, p[1]); maxY = Math.max(maxY, p[1]);
-    }
-    const margin = 0.1 * Math.max(maxX - minX, maxY - minY);
-    minX -= margin; maxX += margin; minY -= margin; maxY += margin;
-    this.scale = Math.min(this.canvas.width / (maxX - minX), this.canvas.height / (maxY - minY));
-    this.origin = {
-      x: this.canvas.width / 2 - this.scale * (minX + maxX) / 2,
-      y: this.canvas.height / 2 + this.scale * (minY + maxY) / 2,
-    };
+  setSnapshot(snapshot) {
+    const first = !this.snapshot;
+    this.snapshot = snapshot;
+    if (snapshot.frame) this.setFrame(snapshot.frame);
+    if (first) this.fit();
+    this.dirty = true;
+  }
+
+  setFrame(frame) {
+    if (frame.step < this.lastStep) this.resetTrace();
+    if (frame.step !== this.lastStep) this.appendTrace(frame.ee);
+    this.lastStep = frame.step;
+    this.frame = frame;
+    if (this.ellipseScale === null && frame.ellipsoid && this.snapshot) this.ellipseScale = ellipseScale(frame.ellipsoid, this.snapshot.model.reach);
+    if (this.pending && (performance.now() > this.pending.until || near(frame.obstacles[this.pending.index], this.pending.position))) this.pending = null;
+    this.dirty = true;
+  }
+
+  setLanes(lanes) { this.lanes = lanes; this.dirty = true; }
+  invalidate() { this.dirty = true; }
+
+  resetTrace() { this.traceCount = 0; this.traceStart = 0; this.lastStep = -1; this.dirty = true; }
+  appendTrace(p) {
+    if (!p) return;
+    const i = (this.traceStart + this.traceCount) % TRACE_POINTS;
+    this.trace[2 * i] = p[0];
+    this.trace[2 * i + 1] = p[1];
+    if (this.traceCount < TRACE_POINTS) this.traceCount++;
+    else this.traceStart = (this.traceStart + 1) % TRACE_POINTS;
+  }
+
+  resize() {
+    const rect = this.container.getBoundingClientRect();
+    const ratio = window.devicePixelRatio || 1;
+    this.width = Math.max(1, rect.width);
+    this.height = Math.max(1, rect.height);
+    this.canvas.width = Math.round(this.width * ratio);
+    this.canvas.height = Math.round(this.height * ratio);
+    this.canvas.style.width = `${this.width}px`;
+    this.canvas.style.height = `${this.height}px`;
+    this.context.setTransform(ratio, 0, 0, ratio, 0, 0);
+    if (this.snapshot && !this.userMoved) this.fit();
+    this.dirty = true;
+  }
+
+  // The scene as it is: the arm, every bounded obstacle, the path and the
+  // target (the whole reach would leave the arm small in an empty grid).
+  fit() {
+    if (!this.snapshot) return;
+    const s = this.snapshot, base = s.model.base;
+    const box = { minX: base[0], maxX: base[0], minY: base[1], maxY: base[1] };
+    const add = (x, y) => { box.minX = Math.min(box.minX, x); box.maxX = Math.max(box.maxX, x); box.minY = Math.min(box.minY, y); box.maxY = Math.max(box.maxY, y); };
+    for (const p of s.task.path) add(p[0], p[1]);
+    if (this.frame) {
+      for (const l of this.frame.links) { add(l[0], l[1]); add(l[3], l[4]); }
+      add(this.frame.target[0], this.frame.target[1]);
+    } else add(base[0] + s.model.reach, base[1]);
+    s.obstacles.forEach((o, i) => {
+      if (o.shape === 'wall') return;
+      const at = obstacleAt(o, this.frame ? this.frame.obstacles[i] : null);
+      const r = o.shape === 'sphere' ? o.radius : o.shape === 'box' ? Math.hypot(o.size[0], o.size[1]) / 2 : 0;
+      if (o.shape === 'polygon') for (const p of o.points) add(p[0] + at[0], p[1] + at[1]);
+      else { add(at[0] - r, at[1] - r); add(at[0] + r, at[1] + r); }
+    });
+    const size = Math.max(box.maxX - box.minX, box.maxY - box.minY, 0.1 * s.model.reach);
+    const margin = 0.12 * size;
+    const minimum = 0.1 * s.model.reach;
+    const w = Math.max(box.maxX - box.minX, minimum) + 2 * margin, h = Math.max(box.maxY - box.minY, minimum) + 2 * margin;
+    this.scale = Math.min(this.width / w, this.height / h);
+    this.origin = { x: this.width / 2 - this.scale * (box.minX + box.maxX) / 2, y: this.height / 2 + this.scale * (box.minY + box.maxY) / 2 };
+    this.userMoved = false;
+    this.dirty = true;
   }
 
   toScreen(p) { return { x: this.origin.x + this.scale * p[0], y: this.origin.y - this.scale * p[1] }; }
-  // Page coordinates of a world point (canvas pixels scaled to its CSS box): for browser tests.
-  toScreenClient(x, y, rect) {
-    const s = this.toScreen([x, y]);
-    return { x: rect.left + s.x * (rect.width / this.canvas.width), y: rect.top + s.y * (rect.height / this.canvas.height) };
-  }
   toWorld(x, y) { return [(x - this.origin.x) / this.scale, (this.origin.y - y) / this.scale]; }
-
-  draw(snapshot, frame, highlight) {
-    const c = this.context;
-    c.clearRect(0, 0, this.canvas.width, this.canvas.height);
-    this.grid();
-    if (!snapshot) return;
-    this.path(snapshot.task.path);
-    snapshot.obstacles.forEach((o, i) => this.obstacle(o, frame ? frame.obstacles[i] : null, i === highlight));
-    if (!frame) return;
-    if (frame.overlays) this.overlays(frame.overlays);
-    this.arm(snapshot, frame);
-    this.cross(frame.target, '#2e7d32');
+  worldToClient(p) {
+    const rect = this.canvas.getBoundingClientRect(), s = this.toScreen(p);
+    return { x: rect.left + s.x, y: rect.top + s.y };
   }
 
-  grid() {
+  zoomAt(x, y, factor) {
+    const [wx, wy] = this.toWorld(x, y);
+    this.scale = Math.min(1e5, Math.max(1, this.scale * factor));
+    this.origin = { x: x - wx * this.scale, y: y + wy * this.scale };
+    this.userMoved = true;
+    this.dirty = true;
+  }
+
+  local(event) {
+    const rect = this.canvas.getBoundingClientRect();
+    return [event.clientX - rect.left, event.clientY - rect.top];
+  }
+
+  listen() {
+    const c = this.canvas;
+    c.addEventListener('pointerdown', (event) => {
+      const [x, y] = this.local(event);
+      this.pointers.set(event.pointerId, { x, y });
+      c.setPointerCapture(event.pointerId);
+      if (this.pointers.size === 2) { this.gesture = { kind: 'pinch', distance: this.pinchDistance() }; return; }
+      if (this.placing && this.onPlace) {
+        const [wx, wy] = this.toWorld(x, y);
+        this.onPlace([wx, wy, 0]);
+        return;
+      }
+      const index = this.snapshot && this.frame ? hitObstacle2D(this, x, y) : null;
+      if (index !== null) {
+        this.select(index);
+        if (this.onObstacleDrag) {
+          const from = this.positionOf(index).slice();
+          this.gesture = { kind: 'drag', index, start: this.toWorld(x, y), from };
+        }
+        return;
+      }
+      this.select(null);
+      this.gesture = { kind: 'pan', x, y, origin: { ...this.origin } };
+    });
+    c.addEventListener('pointermove', (event) => {
+      if (!this.pointers.has(event.pointerId)) return;
+      const [x, y] = this.local(event);
+      this.pointers.set(event.pointerId, { x, y });
+      const g = this.gesture;
+      if (!g) return;
+      if (g.kind === 'pinch' && this.pointers.size === 2) {
+        const d = this.pinchDistance(), m = this.pinchMiddle();
+        if (g.distance > 0) this.zoomAt(m.x, m.y, d / g.distance);
+        g.distance = d;
+      } else if (g.kind === 'pan') {
+        this.origin = { x: g.origin.x + x - g.x, y: g.origin.y + y - g.y };
+        this.userMoved = true;
+        this.dirty = true;
+      } else if (g.kind === 'drag') {
+        const [wx, wy] = this.toWorld(x, y);
+        const position = [g.from[0] + wx - g.start[0], g.from[1] + wy - g.start[1], g.from[2] || 0];
+        this.pending = { index: g.index, position, until: Infinity };
+        this.dirty = true;
+        this.onObstacleDrag(g.index, position, 'move');
+      }
+    });
+    const end = (event) => {
+      this.pointers.delete(event.pointerId);
+      const g = this.gesture;
+      if (g && g.kind === 'drag' && this.pending) {
+        this.pending.until = performance.now() + 1500;
+        this.onObstacleDrag(g.index, this.pending.position, 'end');
+      }
+      this.gesture = null;
+    };
+    c.addEventListener('pointerup', end);
+    c.addEventListener('pointercancel', end);
+    c.addEventListener('wheel', (event) => {
+      event.preventDefault();
+      const [x, y] = this.local(event);
+      this.zoomAt(x, y, Math.exp(-event.deltaY * 0.0015));
+    }, { passive: false });
+    c.addEventListener('dblclick', () => this.fit());
+  }
+
+  pinchDistance() { const [a, b] = [...this.pointers.values()]; return Math.hypot(a.x - b.x, a.y - b.y); }
+  pinchMiddle() { const [a, b] = [...this.pointers.values()]; return { x: (a.x + b.x) / 2, y: (a.y + b.y) / 2 }; }
+
+  select(index) {
+    if (this.selected === index) return;
+    this.selected = index;
+    this.dirty = true;
+    if (this.onSelect) this.onSelect(index);
+  }
+
+  // Where obstacle i is drawn: a drag in progress wins over the frames.
+  positionOf(i) {
+    if (this.pending && this.pending.index === i) return this.pending.position;
+    return obstacleAt(this.snapshot.obstacles[i], this.frame ? this.frame.obstacles[i] : null);
+  }
+
+  render() {
+    if (!this.dirty) return;
+    this.dirty = false;
     const c = this.context;
-    c.strokeStyle = '#eeeeee';
+    c.clearRect(0, 0, this.width, this.height);
+    this.grid();
+    if (!this.snapshot) return;
+    this.path(this.snapshot.task.path);
+    this.snapshot.obstacles.forEach((o, i) => drawObstacle2D(this, o, this.positionOf(i), i === this.selected));
+    if (this.overlays.trace) this.drawTrace();
+    if (!this.frame) return;
+    drawOverlays2D(this, this.snapshot, this.frame, this.colour);
+    for (const lane of this.lanes) if (lane.frame && lane.snapshot) drawArm2D(this, lane.snapshot, lane.frame, lane.colour, 0.75);
+    drawArm2D(this, this.snapshot, this.frame, this.colour, 1);
+    this.cross(this.frame.target, '#2e7d32');
+    this.scaleBar();
+    if (this.label) this.caption(this.label, this.colour);
+    if (this.lanes.length) this.legend();
+  }
+
+  // A grid whose spacing is a 1-2-5 step about 60 px wide; the axes darker.
+  grid() {
+    const c = this.context, step = niceStep(60 / this.scale);
+    const [x0, y1] = this.toWorld(0, 0), [x1, y0] = this.toWorld(this.width, this.height);
     c.lineWidth = 1;
-    const [x0, y1] = this.toWorld(0, 0), [x1, y0] = this.toWorld(this.canvas.width, this.canvas.height);
-    for (let x = Math.ceil(x0 * 2) / 2; x <= x1; x += 0.5) this.line([x, y0], [x, y1]);
-    for (let y = Math.ceil(y0 * 2) / 2; y <= y1; y += 0.5) this.line([x0, y], [x1, y]);
+    c.strokeStyle = '#eef1f3';
+    c.beginPath();
+    for (let x = Math.ceil(x0 / step) * step; x <= x1; x += step) { const s = this.toScreen([x, 0]); c.moveTo(s.x, 0); c.lineTo(s.x, this.height); }
+    for (let y = Math.ceil(y0 / step) * step; y <= y1; y += step) { const s = this.toScreen([0, y]); c.moveTo(0, s.y); c.lineTo(this.width, s.y); }
+    c.stroke();
     c.strokeStyle = '#cfd8dc';
-    this.line([x0, 0], [x1, 0]);
-    this.line([0, y0], [0, y1]);
+    const o = this.toScreen([0, 0]);
+    c.beginPath();
+    c.moveTo(o.x, 0); c.lineTo(o.x, this.height);
+    c.moveTo(0, o.y); c.lineTo(this.width, o.y);
+    c.stroke();
+  }
+
+  scaleBar() {
+    const c = this.context, metres = niceStep(120 / this.scale), px = metres * this.scale;
+    const x = 16, y = this.height - 16;
+    c.strokeStyle = '#37474f';
+    c.lineWidth = 2;
+    c.beginPath();
+    c.moveTo(x, y - 5); c.lineTo(x, y); c.lineTo(x + px, y); c.lineTo(x + px, y - 5);
+    c.stroke();
+    c.fillStyle = '#37474f';
+    c.font = '12px system-ui, sans-serif';
+    c.fillText(metres >= 1 ? `${metres} m` : `${Math.round(metres * 1000)} mm`, x + px + 6, y);
+  }
+
+  caption(text, colour) {
+    const c = this.context;
+    c.font = '600 13px system-ui, sans-serif';
+    c.fillStyle = colour;
+    c.fillText(text, 12, 20);
+  }
+
+  // Overlaid compare: which colour is which method.
+  legend() {
+    const c = this.context;
+    c.font = '600 12px system-ui, sans-serif';
+    const entries = [[this.label || (this.snapshot && this.snapshot.method), this.colour], ...this.lanes.map((l) => [l.label, l.colour])];
+    entries.forEach(([text, colour], i) => {
+      c.fillStyle = colour;
+      c.fillRect(12, 12 + 18 * i, 10, 10);
+      c.fillText(text || '', 28, 21 + 18 * i);
+    });
   }
 
   line(a, b) {
-    const p = this.toScreen(a), q = this.toScreen(b);
-    this.context.beginPath();
-    this.context.moveTo(p.x, p.y);
-    this.context.lineTo(q.x, q.y);
-    this.context.stroke();
+    const p = this.toScreen(a), q = this.toScreen(b), c = this.context;
+    c.beginPath();
+    c.moveTo(p.x, p.y);
+    c.lineTo(q.x, q.y);
+    c.stroke();
   }
 
   path(points) {
@@ -79,67 +310,18 @@ export class View2D {
     c.setLineDash([]);
   }
 
-  // o: the obstacle as in the snapshot (scenario syntax); position: its current [x, y, z].
-  obstacle(o, position, highlighted) {
+  drawTrace() {
+    if (this.traceCount < 2) return;
     const c = this.context;
-    const at = position || o.center || o.position || o.point || [0, 0, 0];
-    c.fillStyle = highlighted ? '#ffcc80' : '#b0bec5';
-    c.strokeStyle = '#607d8b';
+    c.strokeStyle = 'rgba(30, 136, 229, 0.55)';
     c.lineWidth = 1.5;
     c.beginPath();
-    if (o.shape === 'polygon') {
-      o.points.forEach((p, i) => {
-        const s = this.toScreen([p[0] + at[0], p[1] + at[1]]);
-        i ? c.lineTo(s.x, s.y) : c.moveTo(s.x, s.y);
-      });
-      c.closePath();
-    } else if (o.shape === 'box') {
-      const yaw = o.rpy ? o.rpy[2] : 0, hx = o.size[0] / 2, hy = o.size[1] / 2;
-      [[-hx, -hy], [hx, -hy], [hx, hy], [-hx, hy]].forEach(([x, y], i) => {
-        const w = [at[0] + x * Math.cos(yaw) - y * Math.sin(yaw), at[1] + x * Math.sin(yaw) + y * Math.cos(yaw)];
-        const s = this.toScreen(w);
-        i ? c.lineTo(s.x, s.y) : c.moveTo(s.x, s.y);
-      });
-      c.closePath();
-    } else if (o.shape === 'sphere') {
-      const s = this.toScreen(at);
-      c.arc(s.x, s.y, o.radius * this.scale, 0, 2 * Math.PI);
-    } else if (o.shape === 'point') {
-      const s = this.toScreen(at);
-      c.arc(s.x, s.y, 5, 0, 2 * Math.PI);
-    } else if (o.shape === 'wall') {
-      // the blocked half-plane behind the line through `point`, normal into free space
-      const n = o.normal, t = [-n[1], n[0]], far = 100;
-      const corners = [[at[0] + t[0] * far, at[1] + t[1] * far], [at[0] - t[0] * far, at[1] - t[1] * far],
-        [at[0] - t[0] * far - n[0] * far, at[1] - t[1] * far - n[1] * far],
-        [at[0] + t[0] * far - n[0] * far, at[1] + t[1] * far - n[1] * far]];
-      corners.forEach((w, i) => { const s = this.toScreen(w); i ? c.lineTo(s.x, s.y) : c.moveTo(s.x, s.y); });
-      c.closePath();
+    for (let k = 0; k < this.traceCount; ++k) {
+      const i = (this.traceStart + k) % TRACE_POINTS;
+      const s = this.toScreen([this.trace[2 * i], this.trace[2 * i + 1]]);
+      k ? c.lineTo(s.x, s.y) : c.moveTo(s.x, s.y);
     }
-    c.fill();
     c.stroke();
-  }
-
-  arm(snapshot, frame) {
-    const c = this.context;
-    const closest = frame.metrics.min_distance_link - 1;
-    frame.links.forEach((l, i) => {
-      const radius = snapshot.model.links[i].radius;
-      c.strokeStyle = frame.metrics.collided && i === closest ? '#c62828' : i === closest ? '#ef6c00' : '#37474f';
-      c.lineWidth = Math.max(3, 2 * radius * this.scale);
-      c.lineCap = 'round';
-      this.line([l[0], l[1]], [l[3], l[4]]);
-    });
-    c.fillStyle = '#fff';
-    c.strokeStyle = '#263238';
-    c.lineWidth = 1.5;
-    for (const l of frame.links) {
-      const s = this.toScreen([l[0], l[1]]);
-      c.beginPath();
-      c.arc(s.x, s.y, 4, 0, 2 * Math.PI);
-      c.fill();
-      c.stroke();
-    }
   }
 
   cross(p, colour) {
@@ -152,47 +334,17 @@ export class View2D {
     c.stroke();
   }
 
-  overlays(o) {
-    const c = this.context;
-    c.strokeStyle = '#8e24aa';
-    c.fillStyle = '#8e24aa';
-    c.lineWidth = 1;
-    for (const [a, b] of o.segments || []) this.line(a, b);
-    for (const p of o.points || []) {
-      const s = this.toScreen(p);
-      c.beginPath();
-      c.arc(s.x, s.y, 3, 0, 2 * Math.PI);
-      c.fill();
-    }
-    for (const e of o.ellipses || []) {
-      // semi-axes as columns: draw the x-y projection as a polyline
-      c.beginPath();
-      for (let k = 0; k <= 48; ++k) {
-        const a = (2 * Math.PI * k) / 48, u = Math.cos(a), v = Math.sin(a);
-        const w = [e.centre[0] + u * e.axes[0][0] + v * e.axes[1][0], e.centre[1] + u * e.axes[0][1] + v * e.axes[1][1]];
-        const s = this.toScreen(w);
-        k ? c.lineTo(s.x, s.y) : c.moveTo(s.x, s.y);
-      }
-      c.stroke();
-    }
-  }
-
-  // Index of the obstacle under a screen point (null if none).
-  hit(snapshot, frame, x, y) {
-    if (!snapshot || !frame) return null;
-    const [wx, wy] = this.toWorld(x, y);
-    let best = null, bestDistance = 12 / this.scale;
-    snapshot.obstacles.forEach((o, i) => {
-      const at = frame.obstacles[i];
-      let d = Math.hypot(wx - at[0], wy - at[1]);
-      if (o.shape === 'sphere') d = Math.max(0, d - o.radius);
-      if (o.shape === 'box') d = Math.max(0, Math.abs(wx - at[0]) - o.size[0] / 2, Math.abs(wy - at[1]) - o.size[1] / 2);
-      if (o.shape === 'polygon') {
-        const xs = o.points.map((p) => p[0] + at[0]), ys = o.points.map((p) => p[1] + at[1]);
-        d = Math.max(0, Math.min(...xs) - wx, wx - Math.max(...xs), Math.min(...ys) - wy, wy - Math.max(...ys));
-      }
-      if (o.shape !== 'wall' && d < bestDistance) { best = i; bestDistance = d; }
-    });
-    return best;
+  destroy() {
+    this.resizeObserver.disconnect();
+    this.canvas.remove();
   }
 }
+
+// 1, 2 or 5 times a power of ten, at least `value`.
+export function niceStep(value) {
+  const power = 10 ** Math.floor(Math.log10(value));
+  for (const m of [1, 2, 5, 10]) if (m * power >= value) return m * power;
+  return 10 * power;
+}
+
+function near(a, b) { return a && b && Math.abs(a[0] - b[0]) < 1e-6 && Math.abs(a[1] - b[1]) < 1e-6; }

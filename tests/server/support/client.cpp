@@ -4,6 +4,7 @@
 #include <boost/beast/core.hpp>
 #include <boost/beast/http.hpp>
 #include <boost/beast/websocket.hpp>
+#include <cctype>
 #include <stdexcept>
 
 namespace rrlab::testing {
@@ -15,7 +16,7 @@ namespace net = boost::asio;
 using tcp = net::ip::tcp;
 
 HttpResult http(unsigned short port, const std::string& method, const std::string& target, const std::string& body,
-                const std::string& accept) {
+                const std::string& accept, const std::map<std::string, std::string>& request_headers) {
   net::io_context ioc;
   beast::tcp_stream stream(ioc);
   stream.expires_after(std::chrono::seconds(120));
@@ -24,6 +25,7 @@ HttpResult http(unsigned short port, const std::string& method, const std::strin
   request.set(http_ns::field::host, "127.0.0.1");
   if (!body.empty()) request.set(http_ns::field::content_type, "application/json");
   if (!accept.empty()) request.set(http_ns::field::accept, accept);
+  for (const auto& [name, value] : request_headers) request.set(name, value);
   request.body() = body;
   request.prepare_payload();
   request.keep_alive(false);
@@ -31,6 +33,7 @@ HttpResult http(unsigned short port, const std::string& method, const std::strin
   beast::flat_buffer buffer;
   http_ns::response_parser<http_ns::string_body> parser;
   parser.body_limit(1ull << 30);
+  if (method == "HEAD") parser.skip(true);  // a HEAD answer has a Content-Length but no body
   beast::error_code error;
   // read the answer even when the write failed: a server may refuse a body midway (413)
   http_ns::async_write(stream, request, [&](beast::error_code, std::size_t) {
@@ -43,6 +46,11 @@ HttpResult http(unsigned short port, const std::string& method, const std::strin
   result.status = int(response.result_int());
   result.body = response.body();
   result.content_type = std::string(response[http_ns::field::content_type]);
+  for (const auto& field : response) {
+    std::string name(field.name_string());
+    for (char& ch : name) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+    result.headers[name] = std::string(field.value());
+  }
   return result;
 }
 

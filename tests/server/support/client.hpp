@@ -3,6 +3,7 @@
 #pragma once
 
 #include <chrono>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -13,11 +14,13 @@ namespace rrlab::testing {
 struct HttpResult {
   int status = 0;
   std::string body, content_type;
+  std::map<std::string, std::string> headers;  // every response header, names in lower case
   nlohmann::json json() const { return nlohmann::json::parse(body); }
 };
 
 HttpResult http(unsigned short port, const std::string& method, const std::string& target,
-                const std::string& body = "", const std::string& accept = "");
+                const std::string& body = "", const std::string& accept = "",
+                const std::map<std::string, std::string>& request_headers = {});
 inline HttpResult http_json(unsigned short port, const std::string& method, const std::string& target,
                             const nlohmann::json& body) {
   return http(port, method, target, body.dump());

@@ -1,0 +1,135 @@
+// Shared harness of the browser tests: starts a real `rrlab serve --port 0`
+// on a temporary database, drives Debian's chromium with playwright-core,
+// fails a test on any console error, page error, failed request or 5xx
+// answer, and saves screenshots under $RRLAB_SCREENSHOTS.
+// Usage in a test file:
+//   import { suite } from './harness.mjs';
+//   await suite('dashboard', [['opens a live run', async (t) => { … }], …]);
+import { spawn } from 'node:child_process';
+import { mkdirSync, mkdtempSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { dirname, join, resolve } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { chromium } from 'playwright-core';
+
+const here = dirname(fileURLToPath(import.meta.url));
+export const sourceDir = resolve(here, '../..');
+const binary = process.env.RRLAB_BINARY || join(sourceDir, 'build/server/rrlab');
+export const screenshotDir = process.env.RRLAB_SCREENSHOTS || '/tmp/rrlab-screens';
+
+export async function startServer() {
+  const dir = mkdtempSync(join(tmpdir(), 'rrlab-web-'));
+  const server = spawn(binary, ['serve', '--port', '0', '--db', join(dir, 'web.db'), '--web', join(sourceDir, 'web')],
+    { stdio: ['ignore', 'pipe', 'inherit'] });
+  const base = await new Promise((ok, fail) => {
+    const timer = setTimeout(() => fail(new Error('rrlab serve did not start in 20 s')), 20000);
+    server.stdout.on('data', (chunk) => {
+      const match = /serving (http:\/\/[^ ]+?)\/?\s/.exec(String(chunk));
+      if (match) { clearTimeout(timer); ok(match[1]); }
+    });
+    server.on('exit', (code) => fail(new Error(`rrlab serve exited with ${code}`)));
+  });
+  const request = async (method, path, body) => {
+    const r = await fetch(base + path, { method, headers: body ? { 'Content-Type': 'application/json' } : {}, body: body ? JSON.stringify(body) : undefined });
+    const text = await r.text();
+    let data;
+    try { data = JSON.parse(text); } catch { data = text; }
+    if (!r.ok) throw new Error(`${method} ${path}: ${r.status} ${text}`);
+    return data;
+  };
+  return {
+    base,
+    get: (path) => request('GET', path),
+    post: (path, body) => request('POST', path, body),
+    request,
+    stop: () => { server.kill('SIGTERM'); rmSync(dir, { recursive: true, force: true }); },
+  };
+}
+
+export async function launchBrowser() {
+  return chromium.launch({
+    executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
+    args: ['--headless', '--no-sandbox', '--disable-gpu-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader',
+      '--no-first-run', '--disable-background-networking', '--disable-component-update', '--disable-sync',
+      '--disable-quic', '--disable-background-timer-throttling', '--disable-renderer-backgrounding'],
+  });
+}
+
+// Polls fn until it returns a truthy value (or throws after `timeout` ms).
+export async function until(fn, what, timeout = 15000) {
+  const end = Date.now() + timeout;
+  let last;
+  while (Date.now() < end) {
+    try { last = await fn(); if (last) return last; } catch (e) { last = e; }
+    await new Promise((r) => setTimeout(r, 100));
+  }
+  throw new Error(`timed out waiting for ${what}${last instanceof Error ? `: ${last.message}` : ''}`);
+}
+
+export function check(condition, message) {
+  if (!condition) throw new Error(message);
+}
+
+// Runs the named tests, each in its own page on one server and browser.
+// Prints one line per test and the closing `N passed, M failed`; exits 1 on failure.
+export async function suite(name, tests) {
+  mkdirSync(screenshotDir, { recursive: true });
+  const server = await startServer();
+  const browser = await launchBrowser();
+  const only = process.env.RRLAB_WEB_ONLY;
+  let passed = 0, failed = 0;
+  try {
+    for (const [title, body] of tests) {
+      if (only && !title.includes(only)) continue;
+      const page = await browser.newPage({ viewport: { width: 1400, height: 900 } });
+      const errors = [];
+      page.on('pageerror', (e) => errors.push(`page error: ${e.message}`));
+      page.on('console', (m) => { if (m.type() === 'error') errors.push(`console error: ${m.text()}`); });
+      page.on('requestfailed', (r) => {
+        const failure = r.failure() ? r.failure().errorText : '';
+        if (!page.isClosed() && failure !== 'net::ERR_ABORTED') errors.push(`request failed: ${r.url()} ${failure}`);
+      });
+      page.on('response', (r) => { if (r.status() >= 500) errors.push(`server error ${r.status()}: ${r.url()}`); });
+      const slug = `${name}-${title}`.replace(/[^a-z0-9]+/gi, '-').toLowerCase();
+      let shots = 0;
+      const t = {
+        page, ...server, errors,
+        screenshot: async (label) => {
+          const file = join(screenshotDir, `${slug}-${++shots}${label ? `-${label}` : ''}.png`);
+          await page.screenshot({ path: file });
+          return file;
+        },
+      };
+      const started = Date.now();
+      try {
+        await body(t);
+        await page.waitForTimeout(200);
+        if (errors.length) throw new Error(`errors in the page:\n  ${errors.join('\n  ')}`);
+        passed++;
+        console.log(`ok   ${name}: ${title} (${((Date.now() - started) / 1000).toFixed(1)} s)`);
+      } catch (e) {
+        failed++;
+        console.log(`FAIL ${name}: ${title}: ${e.message}`);
+        await t.screenshot('failure').catch(() => {});
+      } finally {
+        await page.close().catch(() => {});
+      }
+    }
+  } finally {
+    await browser.close();
+    server.stop();
+  }
+  console.log(`${passed} passed, ${failed} failed`);
+  process.exit(failed ? 1 : 0);
+}
+
+// Helpers that read the page's state (window.__rrlab, see web/js/main.js).
+export const pageState = {
+  lane: (page, i = 0) => page.evaluate((index) => {
+    const s = window.__rrlab.session;
+    const lane = s && s.lanes[index];
+    return lane && lane.frame ? { runId: lane.runId, step: lane.frame.step, seq: lane.frame.seq, q: lane.frame.q, target: lane.frame.target, obstacles: lane.frame.obstacles, method: lane.snapshot && lane.snapshot.method, status: lane.frame.status } : null;
+  }, i),
+  // Client coordinates of a world point in lane i's view.
+  toClient: (page, point, i = 0) => page.evaluate(([p, index]) => window.__rrlab.session.lanes[index].view.worldToClient(p), [point, i]),
+};

@@ -1,0 +1,94 @@
+// The right-hand measurements: metrics (a column per lane in a compare),
+// joint-limit bars of the focused lane, and its method's diagnostics.
+import { fmt } from './params.js';
+
+const $ = (id) => document.getElementById(id);
+
+const ROWS = [
+  ['task error (m)', (m) => m.task_error],
+  ['orientation error (rad)', (m) => m.orientation_error],
+  ['min distance (m)', (m) => m.min_distance],
+  ['nearest link', (m) => m.min_distance_link],
+  ['collided', (m) => m.collided],
+  ['joint-limit margin', (m) => m.joint_limit_margin],
+  ['manipulability', (m) => m.manipulability],
+  ['condition number', (m) => m.condition_number],
+  ['step (µs)', (m) => m.step_us],
+];
+
+function cell(row, value, colour) {
+  const td = row.insertCell();
+  td.textContent = fmt(value);
+  if (value === true) td.className = 'collided';
+  if (colour) td.style.color = colour;
+  return td;
+}
+
+export function showMetrics(session) {
+  const table = $('metrics');
+  table.replaceChildren();
+  if (!session) return;
+  const lanes = session.lanes.filter((l) => l.frame);
+  if (!lanes.length) return;
+  if (session.compare) {
+    const head = table.createTHead().insertRow();
+    head.appendChild(document.createElement('th'));
+    for (const lane of lanes) {
+      const th = document.createElement('th');
+      th.textContent = lane.label;
+      th.style.color = lane.colour;
+      head.appendChild(th);
+    }
+  }
+  const body = table.createTBody();
+  const time = body.insertRow();
+  time.insertCell().textContent = 't (s) · step';
+  for (const lane of lanes) time.insertCell().textContent = `${lane.frame.t.toFixed(2)} · ${lane.frame.step}`;
+  for (const [name, get] of ROWS) {
+    const row = body.insertRow();
+    row.insertCell().textContent = name;
+    for (const lane of lanes) cell(row, get(lane.frame.metrics));
+  }
+  showLimits(session.focusLane);
+  showDiagnostics(session.focusLane);
+}
+
+// One bar per joint with finite limits: the marker is q between lower and upper.
+function showLimits(lane) {
+  const box = $('limit-bars');
+  if (!lane || !lane.snapshot || !lane.frame) { box.replaceChildren(); return; }
+  const { lower, upper } = lane.snapshot.model.limits;
+  const q = lane.frame.q;
+  if (box.childElementCount !== q.length) {
+    box.replaceChildren();
+    for (let i = 0; i < q.length; ++i) {
+      const row = document.createElement('div');
+      row.className = 'limit-bar';
+      row.innerHTML = `<span>q${i + 1}</span><span class="track"><span class="mark"></span></span><span class="mono"></span>`;
+      box.appendChild(row);
+    }
+  }
+  q.forEach((value, i) => {
+    const row = box.children[i];
+    const lo = lower ? lower[i] : null, hi = upper ? upper[i] : null;
+    const bounded = lo !== null && hi !== null && hi > lo;
+    const f = bounded ? (value - lo) / (hi - lo) : 0.5;
+    row.querySelector('.mark').style.left = `calc(${Math.min(1, Math.max(0, f)) * 100}% - 1px)`;
+    row.querySelector('.mark').style.display = bounded ? '' : 'none';
+    row.querySelector('.mono').textContent = `${((value * 180) / Math.PI).toFixed(1)}°`;
+    row.title = bounded ? `q${i + 1} = ${value.toFixed(4)} rad in [${lo.toFixed(3)}, ${hi.toFixed(3)}]` : `q${i + 1}: unbounded`;
+    row.classList.toggle('out', bounded && (f < 0 || f > 1));
+    row.classList.toggle('near', bounded && f >= 0 && f <= 1 && Math.min(f, 1 - f) < 0.05);
+  });
+}
+
+function showDiagnostics(lane) {
+  const table = $('diagnostics');
+  table.replaceChildren();
+  if (!lane || !lane.snapshot || !lane.frame) return;
+  lane.snapshot.diagnostic_names.forEach((name, i) => {
+    const row = table.insertRow();
+    row.insertCell().textContent = name;
+    cell(row, lane.frame.diagnostics[i]);
+  });
+}

@@ -1,0 +1,297 @@
+// The dashboard's time series: stacked uPlot charts with synced cursors
+// (task error, minimum distance, manipulability and condition number, step
+// time, and one chart per ticked diagnostic), one series per lane.
+// Live: frames are pushed as they arrive and render() redraws at most 30
+// times a second. Replay: a whole stored run per lane, a cursor line that
+// follows the page's scrubber, and a click on a chart seeks.
+import uPlot from 'uplot';
+import { LaneSeries } from './plots_store.js';
+import { chartSpecs, chartOptions, CHART_HEIGHT } from './plots_charts.js';
+
+const MIN_REDRAW_MS = 1000 / 30;
+
+// Index of the last value ≤ t in the sorted xs (−1 when t is before them all).
+function lastAtOrBefore(xs, t) {
+  let lo = 0, hi = xs.length - 1, found = -1;
+  while (lo <= hi) {
+    const mid = (lo + hi) >> 1;
+    if (xs[mid] <= t) { found = mid; lo = mid + 1; } else hi = mid - 1;
+  }
+  return found;
+}
+
+let instances = 0;  // each Plots syncs its own charts only
+
+export class Plots {
+  constructor(container) {
+    this.container = container;
+    this.syncKey = `rrlab-plots-${++instances}`;
+    this.onSeek = null;
+    this.lanes = [];
+    this.names = [];         // diagnostic names offered for ticking
+    this.series = [];        // LaneSeries per lane
+    this.ticked = new Set(); // diagnostic names with a chart
+    this.charts = new Map(); // spec id → { spec, u, box, cursorLine }
+    this.mode = 'live';
+    this.windowSeconds = 10;
+    this.cursorT = null;
+    this.dirty = false;
+    this.lastRender = -Infinity;
+
+    container.classList.add('plots');
+    this.tickList = document.createElement('div');
+    this.tickList.className = 'plots-diagnostics';
+    this.chartList = document.createElement('div');
+    this.chartList.className = 'plots-charts';
+    this.note = document.createElement('p');
+    this.note.className = 'plots-note';
+    container.append(this.tickList, this.chartList, this.note);
+
+    this.width = this.measure();
+    this.resizer = new ResizeObserver(() => this.resize());
+    this.resizer.observe(container);
+  }
+
+  // lanes: [{label, colour, diagnosticNames?}] (a lane's own diagnostic
+  // order; default: diagnosticNames). diagnosticNames: the names offered for
+  // ticking, for compare the union of the lanes'. Clears all data.
+  configure({ lanes, diagnosticNames = [], mode = 'live', windowSeconds = 10 }) {
+    this.names = [...diagnosticNames];
+    this.lanes = lanes.map((l) => ({
+      label: l.label, colour: l.colour,
+      diagnosticNames: [...(l.diagnosticNames || diagnosticNames)],
+    }));
+    this.series = this.lanes.map((l) => new LaneSeries(l.diagnosticNames));
+    this.mode = mode === 'replay' ? 'replay' : 'live';
+    this.windowSeconds = windowSeconds > 0 ? windowSeconds : 10;
+    this.cursorT = null;
+    this.joined = null;
+    for (const name of [...this.ticked]) if (!this.names.includes(name)) this.ticked.delete(name);
+    this.container.classList.toggle('plots-replay', this.mode === 'replay');
+    this.buildTickList();
+    this.dirty = true;
+    this.layout();
+  }
+
+  // Live: one WebSocket frame for a lane. Drawn at the next render().
+  push(lane, frame) {
+    const s = this.series[lane];
+    if (!s || !frame) return;
+    if (s.appendLive(frame, this.windowSeconds)) this.dirty = true;
+  }
+
+  // Replay: a lane's whole stored run, the body of GET /api/runs/{id}/frames
+  // ({run, diagnostic_names, frames: [...]}) or just its frames array; pages
+  // of one run may be concatenated into one array first.
+  setRun(lane, frames) {
+    const s = this.series[lane];
+    if (!s) return;
+    const list = Array.isArray(frames) ? frames : (frames && Array.isArray(frames.frames) ? frames.frames : []);
+    s.setStored(list);
+    this.dirty = true;
+  }
+
+  // Replay: a vertical line at time t on every chart (null hides it).
+  setCursor(t) {
+    this.cursorT = Number.isFinite(t) ? t : null;
+    for (const chart of this.charts.values()) {
+      this.placeCursorLine(chart);
+      this.showLegendValues(chart);
+    }
+  }
+
+  // Redraws charts with new data, at most 30 times a second.
+  render(now = performance.now()) {
+    if (!this.dirty || now - this.lastRender < MIN_REDRAW_MS) return;
+    this.lastRender = now;
+    this.dirty = false;
+    this.joinLanes();
+    // the charts themselves may change: orientation error seen, step times present
+    const created = this.layout();
+    for (const chart of this.charts.values()) {
+      if (!created.has(chart)) chart.u.setData(this.chartData(chart.spec));
+      this.showLegendValues(chart);
+    }
+  }
+
+  destroy() {
+    this.resizer.disconnect();
+    for (const chart of this.charts.values()) chart.u.destroy();
+    this.charts.clear();
+    this.container.replaceChildren();
+    this.container.classList.remove('plots', 'plots-replay');
+  }
+
+  // Points per chart (x values held), for tests.
+  pointCounts() {
+    const counts = {};
+    for (const [id, chart] of this.charts) counts[id] = chart.u.data[0].length;
+    return counts;
+  }
+
+  // -- charts ---------------------------------------------------------------
+
+  // Creates, rebuilds, removes and orders the charts to match the specs;
+  // returns the charts it created (already holding the current data).
+  layout() {
+    const specs = chartSpecs({
+      lanes: this.lanes,
+      orientation: this.series.some((s) => s.orientationSeen),
+      stepTimes: this.mode === 'live' || this.series.some((s) => s.column('step_us').some((v) => v !== null)),
+      ticked: this.names.filter((n) => this.ticked.has(n)),
+    });
+    const wanted = new Set(specs.map((s) => s.id));
+    for (const [id, chart] of this.charts) {
+      if (!wanted.has(id)) { chart.u.destroy(); chart.box.remove(); this.charts.delete(id); }
+    }
+    const created = new Set();
+    for (const spec of specs) {
+      const old = this.charts.get(spec.id);
+      if (old && old.spec.signature === spec.signature) continue;
+      if (old) { old.u.destroy(); old.box.remove(); }
+      const chart = this.createChart(spec);
+      this.charts.set(spec.id, chart);
+      created.add(chart);
+    }
+    specs.forEach((spec) => this.chartList.appendChild(this.charts.get(spec.id).box));  // moves into order
+    this.note.textContent = this.mode === 'replay' && !specs.some((s) => s.id === 'step')
+      ? 'Step compute time is not stored with a run: it is plotted live only.' : '';
+    return created;
+  }
+
+  createChart(spec) {
+    const box = document.createElement('div');
+    box.className = 'plots-chart';
+    box.dataset.chart = spec.id;
+    const title = document.createElement('div');
+    title.className = 'plots-title';
+    title.textContent = spec.title;
+    box.appendChild(title);
+    const chart = { spec, box, u: null, cursorLine: null };
+    chart.u = new uPlot(chartOptions(spec, {
+      width: this.width, syncKey: this.syncKey,
+      xRange: (min, max) => this.xRange(min, max),
+      onDraw: () => this.placeCursorLine(chart),
+      onCursor: (u) => { if (u.cursor.left < 0) queueMicrotask(() => this.showLegendValues(chart)); },
+    }), this.chartData(spec), box);
+    chart.cursorLine = document.createElement('div');
+    chart.cursorLine.className = 'plots-cursor';
+    chart.u.over.appendChild(chart.cursorLine);
+    chart.u.over.addEventListener('click', (e) => this.clicked(chart.u, e));
+    this.placeCursorLine(chart);
+    return chart;
+  }
+
+  // Live: the last windowSeconds (from 0 until the window fills). Replay: the run.
+  xRange(min, max) {
+    if (min === null || max === null) return [0, this.mode === 'live' ? this.windowSeconds : 1];
+    if (this.mode === 'live') {
+      const hi = Math.max(max, min + this.windowSeconds);
+      return [hi - this.windowSeconds, hi];
+    }
+    return max > min ? [min, max] : [min, min + 1];
+  }
+
+  // All lanes on one time axis: uPlot.join aligns them (a lane without a
+  // point at some t gets undefined there, which uPlot spans; null stays a gap).
+  joinLanes() {
+    const tables = this.series.map((s) => [s.t, ...s.columns]);
+    this.offsets = [];
+    let offset = 1;
+    for (const s of this.series) { this.offsets.push(offset); offset += s.columns.length; }
+    if (tables.length === 0) this.joined = [[]];
+    else if (tables.length === 1) this.joined = this.mode === 'live' ? tables[0].map((c) => c.slice()) : tables[0];
+    else this.joined = uPlot.join(tables);
+  }
+
+  chartData(spec) {
+    if (!this.joined) this.joinLanes();
+    const x = this.joined[0];
+    return [x, ...spec.series.map((s) => {
+      const i = this.series[s.lane].index.get(s.key);
+      return i === undefined ? new Array(x.length).fill(null) : this.joined[this.offsets[s.lane] + i];
+    })];
+  }
+
+  placeCursorLine(chart) {
+    const line = chart.cursorLine;
+    if (!line) return;
+    const t = this.cursorT;
+    const x = t === null || this.mode !== 'replay' ? null : chart.u.valToPos(t, 'x');
+    if (x === null || !Number.isFinite(x) || x < 0 || x > chart.u.over.clientWidth) {
+      line.style.display = 'none';
+      return;
+    }
+    line.style.display = 'block';
+    line.style.transform = `translateX(${Math.round(x)}px)`;
+  }
+
+  // With no pointer over the charts the legends read the newest values
+  // (live) or those at the replay cursor, so they always say something.
+  showLegendValues(chart) {
+    const u = chart.u;
+    if (!u || u.cursor.left >= 0) return;  // hovered here or on a synced chart
+    const xs = u.data[0];
+    if (!xs.length) return;
+    let idx = xs.length - 1;
+    if (this.mode === 'replay') {
+      if (this.cursorT === null) return;
+      idx = lastAtOrBefore(xs, this.cursorT);
+      if (idx < 0) return;
+    }
+    // joined lanes may lack a point at this time: take the lane's latest before it
+    const idxs = u.data.map((column, s) => {
+      let i = idx;
+      while (s > 0 && i > 0 && idx - i < 16 && column[i] === undefined) --i;
+      return i;
+    });
+    u.setLegend({ idxs }, false);
+  }
+
+  clicked(u, event) {
+    if (this.mode !== 'replay' || !this.onSeek) return;
+    const x = event.clientX - u.over.getBoundingClientRect().left;
+    const t = u.posToVal(x, 'x');
+    const xs = u.data[0];
+    if (!xs.length || !Number.isFinite(t)) return;
+    this.onSeek(Math.min(Math.max(t, xs[0]), xs[xs.length - 1]));
+  }
+
+  // -- diagnostic check boxes ----------------------------------------------
+
+  buildTickList() {
+    this.tickList.replaceChildren();
+    if (!this.names.length) return;
+    const heading = document.createElement('span');
+    heading.className = 'plots-diagnostics-heading';
+    heading.textContent = 'Diagnostics:';
+    this.tickList.appendChild(heading);
+    for (const name of this.names) {
+      const label = document.createElement('label');
+      const box = document.createElement('input');
+      box.type = 'checkbox';
+      box.value = name;
+      box.checked = this.ticked.has(name);
+      box.addEventListener('change', () => {
+        if (box.checked) this.ticked.add(name); else this.ticked.delete(name);
+        this.layout();  // the new chart comes filled with the data already kept
+      });
+      label.append(box, ` ${name}`);
+      this.tickList.appendChild(label);
+    }
+  }
+
+  // -- size -------------------------------------------------------------------
+
+  measure() {
+    return Math.max(200, Math.floor(this.container.clientWidth || 600));
+  }
+
+  resize() {
+    if (!this.container.clientWidth) return;  // hidden: keep the last size
+    const width = this.measure();
+    if (width === this.width) return;
+    this.width = width;
+    for (const chart of this.charts.values()) chart.u.setSize({ width, height: CHART_HEIGHT });
+  }
+}

@@ -1,0 +1,97 @@
+// One lane's time series, column by column: t, the step metrics and every
+// diagnostic of the lane's method (kept even when its chart is not shown, so
+// ticking a diagnostic fills its chart at once). Live lanes keep a rolling
+// window with a hard cap; replay lanes hold a whole stored run.
+
+export const METRIC_KEYS = ['task_error', 'orientation_error', 'min_distance',
+  'manipulability', 'condition_number', 'step_us'];
+
+export const diagnosticKey = (name) => `diag:${name}`;
+
+// A hard cap per live lane whatever the window: 100 steps/s over 20 s.
+const LIVE_CAP = 2000;
+
+// null for anything a chart cannot place (null, NaN, ±Infinity, strings).
+function finite(v) {
+  return typeof v === 'number' && Number.isFinite(v) ? v : null;
+}
+
+// The condition number goes on a log axis: only positive values fit there.
+function positive(v) {
+  const x = finite(v);
+  return x !== null && x > 0 ? x : null;
+}
+
+export class LaneSeries {
+  constructor(diagnosticNames) {
+    this.diagnosticNames = diagnosticNames.slice();
+    this.keys = [...METRIC_KEYS, ...this.diagnosticNames.map(diagnosticKey)];
+    this.index = new Map(this.keys.map((k, i) => [k, i]));
+    this.clear();
+  }
+
+  clear() {
+    this.t = [];
+    this.columns = this.keys.map(() => []);
+    this.orientationSeen = false;  // any non-zero orientation error (pose tasks)
+  }
+
+  column(key) {
+    const i = this.index.get(key);
+    return i === undefined ? null : this.columns[i];
+  }
+
+  get length() { return this.t.length; }
+
+  // One WebSocket frame. A repeated t is skipped (the display timer may
+  // resend the newest frame); an earlier t means the run was reset: start over.
+  // Returns whether the lane changed.
+  appendLive(frame, windowSeconds) {
+    const t = finite(frame.t);
+    if (t === null) return false;
+    const last = this.t.length ? this.t[this.t.length - 1] : null;
+    if (last !== null && t === last) return false;
+    if (last !== null && t < last) this.clear();
+    const m = frame.metrics || {};
+    this.appendRow(t, m, (name, i) => (Array.isArray(frame.diagnostics) ? frame.diagnostics[i] : null));
+    this.dropBefore(t - windowSeconds);
+    return true;
+  }
+
+  // Stored frames from GET /api/runs/{id}/frames: metrics are top-level fields
+  // and diagnostics an object keyed by name; step_us is not stored.
+  setStored(frames) {
+    this.clear();
+    for (const f of frames) {
+      const t = finite(f.t);
+      if (t === null) continue;
+      const d = f.diagnostics && typeof f.diagnostics === 'object' ? f.diagnostics : {};
+      this.appendRow(t, f, (name, i) => (Array.isArray(d) ? d[i] : d[name]));
+    }
+  }
+
+  appendRow(t, metrics, diagnostic) {
+    this.t.push(t);
+    const c = this.columns;
+    c[0].push(finite(metrics.task_error));
+    const orientation = finite(metrics.orientation_error);
+    if (orientation !== null && orientation !== 0) this.orientationSeen = true;
+    c[1].push(orientation);
+    c[2].push(finite(metrics.min_distance));
+    c[3].push(finite(metrics.manipulability));
+    c[4].push(positive(metrics.condition_number));
+    c[5].push(finite(metrics.step_us));
+    const n = METRIC_KEYS.length;
+    this.diagnosticNames.forEach((name, i) => c[n + i].push(finite(diagnostic(name, i))));
+  }
+
+  // Keeps one point older than the window so the line reaches the left edge.
+  dropBefore(tMin) {
+    let cut = 0;
+    while (cut + 1 < this.t.length && this.t[cut + 1] < tMin) ++cut;
+    cut = Math.max(cut, this.t.length - LIVE_CAP);
+    if (cut <= 0) return;
+    this.t.splice(0, cut);
+    for (const col of this.columns) col.splice(0, cut);
+  }
+}

@@ -1,0 +1,115 @@
+// Editing the scene of a live run from the views: drag an obstacle (PUT at
+// most 20 times a second, and once more at release), add one by choosing a
+// shape and clicking where it goes, delete the selected one. In a compare
+// group the server applies scene edits to every lane.
+import { api } from './api.js';
+import { app, OVERLAYS } from './state.js';
+
+const $ = (id) => document.getElementById(id);
+
+export class SceneTools {
+  constructor(getSession) {
+    this.getSession = getSession;
+    this.placing = null;
+    this.selected = null;
+    this.lastPut = 0;
+    this.added = 0;
+    $('add-obstacle').onclick = () => this.setPlacing(this.placing ? null : $('add-shape').value);
+    $('delete-obstacle').onclick = () => this.deleteSelected();
+    window.addEventListener('keydown', (e) => {
+      if (/INPUT|TEXTAREA|SELECT/.test(e.target.tagName)) return;
+      if (e.key === 'Escape') this.setPlacing(null);
+      if (e.key === 'Delete' && this.selected !== null) this.deleteSelected();
+    });
+  }
+
+  // Shapes that make sense for the model: planar arms get prisms (squares) and discs.
+  configure(snapshot) {
+    const planar = snapshot.model.kind === 'planar';
+    const shapes = planar ? [['sphere', 'disc (sphere)'], ['polygon', 'square (polygon)'], ['point', 'point']]
+      : [['sphere', 'sphere'], ['box', 'box'], ['point', 'point']];
+    const current = $('add-shape').value;
+    $('add-shape').innerHTML = shapes.map(([v, l]) => `<option value="${v}" ${v === current ? 'selected' : ''}>${l}</option>`).join('');
+  }
+
+  // Hooks a lane's view to the run's scene.
+  bind(lane) {
+    const view = lane.view;
+    view.onObstacleDrag = (index, position, phase) => this.drag(lane, index, position, phase);
+    view.onPlace = (point) => this.place(lane, point).catch((e) => app.error(e));
+    view.onSelect = (index) => this.select(lane, index);
+    view.placing = this.placing;
+  }
+
+  live() { const s = this.getSession(); return s && s.kind === 'live' && !s.ended ? s : null; }
+
+  drag(lane, index, position, phase) {
+    const session = this.live();
+    if (!session) return;
+    const now = performance.now();
+    if (phase === 'move' && now - this.lastPut < 50) return;
+    this.lastPut = now;
+    const id = lane.snapshot.obstacles[index].id;
+    api('PUT', `/api/runs/${session.controlRun}/obstacles/${encodeURIComponent(id)}`, { position }).catch((e) => app.error(e));
+  }
+
+  setPlacing(shape) {
+    this.placing = shape;
+    $('add-obstacle').setAttribute('aria-pressed', String(Boolean(shape)));
+    $('add-obstacle').textContent = shape ? 'Click in the view… (Esc)' : 'Place';
+    const session = this.getSession();
+    if (!session) return;
+    for (const lane of session.lanes) {
+      if (lane.view) lane.view.placing = shape;
+      if (lane.cell) lane.cell.classList.toggle('placing', Boolean(shape));
+    }
+  }
+
+  async place(lane, point) {
+    const session = this.live();
+    const shape = this.placing;
+    this.setPlacing(null);
+    if (!session || !shape) return;
+    const size = Math.max(0.02, 0.06 * lane.snapshot.model.reach);
+    const ids = new Set(lane.snapshot.obstacles.map((o) => o.id));
+    let id;
+    do id = `added${++this.added}`; while (ids.has(id));
+    const body = { id, shape };
+    if (shape === 'sphere') Object.assign(body, { center: point, radius: size });
+    else if (shape === 'box') Object.assign(body, { center: point, size: [2 * size, 2 * size, 2 * size] });
+    else if (shape === 'point') Object.assign(body, { position: point });
+    else if (shape === 'polygon') Object.assign(body, { points: [[-size, -size], [size, -size], [size, size], [-size, size]].map(([x, y]) => [point[0] + x, point[1] + y]) });
+    await api('POST', `/api/runs/${session.controlRun}/obstacles`, body);
+  }
+
+  select(lane, index) {
+    this.selected = index === null ? null : { lane, index };
+    const o = index === null ? null : lane.snapshot.obstacles[index];
+    $('selected-obstacle').textContent = o ? `selected: ${o.id} (${o.shape})` : 'no obstacle selected';
+    $('delete-obstacle').disabled = !o || !this.live();
+  }
+
+  async deleteSelected() {
+    const session = this.live();
+    if (!session || !this.selected) return;
+    const { lane, index } = this.selected;
+    const id = lane.snapshot.obstacles[index].id;
+    this.select(lane, null);
+    if (lane.view) lane.view.selected = null;
+    await api('DELETE', `/api/runs/${session.controlRun}/obstacles/${encodeURIComponent(id)}`).catch((e) => app.error(e));
+  }
+}
+
+// One check box per overlay; the views read app.overlays at each render.
+export function buildOverlayToggles(onChange) {
+  const box = $('overlay-toggles');
+  box.replaceChildren();
+  for (const o of OVERLAYS) {
+    const label = document.createElement('label');
+    label.className = 'overlay-toggle';
+    label.title = o.help;
+    label.innerHTML = `<input type="checkbox" data-overlay="${o.key}" ${app.overlays[o.key] ? 'checked' : ''}> ${o.label}`;
+    label.querySelector('input').onchange = (e) => { app.overlays[o.key] = e.target.checked; onChange(); };
+    box.appendChild(label);
+  }
+}

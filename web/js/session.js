@@ -1,0 +1,163 @@
+// What the page shows: one run or a compare group, live or replayed. A
+// session has one lane per run (its stream, snapshot, latest frame and view);
+// views are made when the first snapshot says what the model is (Canvas 2D
+// for planar arms, three.js for every other kind).
+import { api, Stream, describeError } from './api.js';
+import { app, LANE_COLOURS, writeUrl } from './state.js';
+import { View2D } from './view2d.js';
+
+const TERMINAL = new Set(['completed', 'stopped', 'failed', 'interrupted']);
+export const isLive = (status) => status === 'running' || status === 'paused';
+
+class Lane {
+  constructor(index, run, colour) {
+    this.index = index;
+    this.runId = run.id;
+    this.label = run.method;
+    this.colour = colour;
+    this.replayId = null;
+    this.snapshot = null;
+    this.frame = null;
+    this.view = null;
+    this.cell = null;
+    this.stream = null;
+    this.status = run.status;
+  }
+}
+
+export class Session {
+  // kind: 'live' | 'replay'; runs: stored run records (GET /api/runs/{id})
+  constructor(kind, runs, layout) {
+    this.kind = kind;
+    this.runs = runs;
+    this.layout = runs.length > 1 ? layout : 'side';
+    this.lanes = runs.map((run, i) => new Lane(i, run, runs.length > 1 ? LANE_COLOURS[i] : '#37474f'));
+    this.focus = 0;
+    this.frameCount = Math.max(0, ...runs.map((r) => r.frames));
+    this.closed = false;
+  }
+
+  get runIds() { return this.runs.map((r) => r.id); }
+  get compare() { return this.runs.length > 1; }
+  // Scene, joystick and reset inputs go to the group through its first run.
+  get controlRun() { return this.runs[0].id; }
+  get focusLane() { return this.lanes[this.focus]; }
+
+  async open() {
+    this.buildCells();
+    for (const lane of this.lanes) {
+      let path = `/ws/runs/${lane.runId}`;
+      if (this.kind === 'replay') {
+        const player = await api('POST', `/api/runs/${lane.runId}/replay`, { mode: 'frames', speed: 1 });
+        lane.replayId = player.replay;
+        path = player.ws;
+      }
+      lane.stream = new Stream(path, {
+        onSnapshot: (snapshot) => this.snapshot(lane, snapshot),
+        onFrame: (frame) => this.frame(lane, frame),
+        onMessage: (message) => { if (message.type === 'error') app.error(new Error(describeError(message.error))); },
+        onState: (state) => this.streamState(lane, state),
+        probe: () => this.probe(lane),
+      });
+    }
+    this.updateUrl();
+  }
+
+  // Reconnect only to something that still exists and still runs.
+  async probe(lane) {
+    if (this.closed) return false;
+    if (this.kind === 'replay') return api('GET', `/api/replays/${lane.replayId}`).then(() => true, (e) => e.status !== 404);
+    return api('GET', `/api/runs/${lane.runId}`).then((run) => { lane.status = run.status; return isLive(run.status); }, (e) => e.status !== 404);
+  }
+
+  buildCells() {
+    const views = document.getElementById('views');
+    views.replaceChildren();
+    const cells = this.layout === 'overlay' ? 1 : this.lanes.length;
+    views.className = `layout-${cells}`;
+    for (let i = 0; i < cells; ++i) {
+      const cell = document.createElement('div');
+      cell.className = 'view-cell';
+      cell.dataset.lane = String(i);
+      views.appendChild(cell);
+      this.lanes[i].cell = cell;
+    }
+  }
+
+  async snapshot(lane, snapshot) {
+    lane.snapshot = snapshot;
+    lane.status = snapshot.status;
+    if (!lane.view && lane.cell) await this.makeView(lane, snapshot);
+    if (this.closed) return;
+    if (lane.view) lane.view.setSnapshot(snapshot);
+    if (snapshot.frame) lane.frame = snapshot.frame;
+    this.refreshOverlayLanes();
+    app.signals.snapshot.dispatch(lane);
+  }
+
+  async makeView(lane, snapshot) {
+    if (lane.viewPromise) return lane.viewPromise;
+    lane.viewPromise = (async () => {
+      let view;
+      if (snapshot.model.kind === 'planar') view = new View2D(lane.cell);
+      else {
+        const { View3D } = await import('./view3d.js');
+        if (this.closed) return;
+        view = new View3D(lane.cell);
+      }
+      view.colour = lane.colour;
+      if (this.compare && this.layout === 'side') view.label = lane.label;
+      view.overlays = app.overlays;
+      lane.view = view;
+      app.signals.viewCreated.dispatch(lane);
+    })();
+    return lane.viewPromise;
+  }
+
+  // Overlaid compare: lane 0's view draws the other lanes' arms too.
+  refreshOverlayLanes() {
+    if (this.layout !== 'overlay' || !this.lanes[0].view) return;
+    this.lanes[0].view.setLanes(this.lanes.slice(1));
+  }
+
+  frame(lane, frame) {
+    lane.frame = frame;
+    lane.status = frame.status;
+    if (lane.view) lane.view.setFrame(frame);
+    if (this.layout === 'overlay' && lane.index > 0 && this.lanes[0].view) this.lanes[0].view.invalidate();
+    app.signals.frame.dispatch(lane);
+  }
+
+  streamState(lane, state) {
+    lane.streamState = state;
+    app.signals.connection.dispatch(this);
+  }
+
+  get ended() { return this.kind === 'live' && this.lanes.every((l) => TERMINAL.has(l.status)); }
+
+  updateUrl(frame) {
+    const ids = this.runIds.join(',');
+    writeUrl({ run: this.compare ? null : ids, compare: this.compare ? ids : null, frame: this.kind === 'replay' ? frame : null });
+  }
+
+  render() {
+    for (const lane of this.lanes) if (lane.view) lane.view.render();
+  }
+
+  close() {
+    this.closed = true;
+    for (const lane of this.lanes) {
+      if (lane.stream) lane.stream.close();
+      if (lane.view) lane.view.destroy();
+      if (lane.replayId) api('POST', `/api/replays/${lane.replayId}/control`, { action: 'pause' }).catch(() => {});
+    }
+    document.getElementById('views').replaceChildren();
+  }
+}
+
+// Opens runs by id: live ones attach to their streams, ended ones replay.
+export async function sessionFor(ids, layout) {
+  const runs = await Promise.all(ids.map((id) => api('GET', `/api/runs/${id}`)));
+  const live = runs.some((r) => isLive(r.status));
+  return new Session(live ? 'live' : 'replay', runs, layout);
+}

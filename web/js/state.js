@@ -1,0 +1,60 @@
+// The page's one central object: what is shown (the session and its lanes),
+// the overlay toggles, and signals the panels listen to. The address bar
+// follows the session, so a copied link reopens what is shown.
+
+export class Signal {
+  constructor() { this.listeners = []; }
+  add(listener) { this.listeners.push(listener); }
+  dispatch(...args) { for (const listener of this.listeners) listener(...args); }
+}
+
+export const LANE_COLOURS = ['#1e88e5', '#ef6c00', '#2e7d32', '#8e24aa'];
+
+export const OVERLAYS = [
+  { key: 'nearest', label: 'Nearest obstacle', help: 'segment from each link to its nearest obstacle, with the distance' },
+  { key: 'manipulability', label: 'Manipulability', help: 'velocity manipulability ellipse (ellipsoid in 3D) at the end-effector, scaled to the arm at the first frame' },
+  { key: 'method', label: 'Method overlays', help: "the method's own ellipses, points and segments" },
+  { key: 'ghosts', label: 'Ghosts', help: 'imaginary arms a method plans with (multi_preview)' },
+  { key: 'trace', label: 'End-effector trace', help: 'where the end-effector has been' },
+];
+
+export const app = {
+  session: null,      // {kind: 'live'|'replay', runIds: [..], lanes: [Lane..], layout: 'side'|'overlay'}
+  overlays: Object.fromEntries(OVERLAYS.map((o) => [o.key, true])),
+  methods: [],        // GET /api/methods
+  scenarios: [],      // GET /api/scenarios
+  signals: {
+    sessionChanged: new Signal(),  // (session) lanes opened or closed
+    snapshot: new Signal(),        // (lane) a lane got a new snapshot
+    frame: new Signal(),           // (lane) a lane got a new frame
+    viewCreated: new Signal(),     // (lane) a lane's view exists (2D or 3D)
+    connection: new Signal(),      // (session) a stream's state changed
+    overlaysChanged: new Signal(),
+    message: new Signal(),         // (text, kind 'error'|'info')
+  },
+  error(e) { this.signals.message.dispatch(e, 'error'); },
+  info(text) { this.signals.message.dispatch(text, 'info'); },
+};
+
+// ?run=ID[&frame=K] | ?compare=ID,ID[,..][&frame=K] | ?scenario=NAME[&method=M]
+export function readUrl() {
+  const q = new URLSearchParams(location.search);
+  const ids = (name) => (q.get(name) || '').split(',').map((s) => Number(s)).filter((n) => Number.isInteger(n) && n > 0);
+  const frame = q.has('frame') ? Number(q.get('frame')) : null;
+  return {
+    run: ids('run')[0] || null,
+    compare: ids('compare'),
+    scenario: q.get('scenario'),
+    method: q.get('method'),
+    frame: Number.isInteger(frame) && frame >= 0 ? frame : null,
+  };
+}
+
+// Replaces the address (no history entry per frame): null values are dropped.
+export function writeUrl(params) {
+  const q = new URLSearchParams();
+  for (const [k, v] of Object.entries(params)) if (v !== null && v !== undefined && v !== '') q.set(k, String(v));
+  const search = q.toString();
+  const url = `${location.pathname}${search ? `?${search}` : ''}`;
+  if (url !== location.pathname + location.search) history.replaceState(null, '', url);
+}
