@@ -19,6 +19,8 @@ struct Frame {
   Eigen::Vector3d ee_position = Eigen::Vector3d::Zero();
   Eigen::Quaterniond ee_orientation = Eigen::Quaterniond::Identity();
   Eigen::Vector3d target = Eigen::Vector3d::Zero();
+  // pose tasks: the desired orientation at t (for drawing; not stored with frames)
+  std::optional<Eigen::Quaterniond> target_orientation;
   double task_error = 0;         // position error norm, m
   double orientation_error = 0;  // rad (pose tasks)
   double min_distance = 0;       // +inf without obstacles

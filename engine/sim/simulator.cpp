@@ -173,6 +173,7 @@ void Simulator::frame_metrics() {
   frame_.ee_position = ee.translation();
   frame_.ee_orientation = Eigen::Quaterniond(ee.linear());
   frame_.target = ref_.position;
+  if (scenario_.task.space == TaskSpace::pose) frame_.target_orientation = Eigen::Quaterniond(ref_.orientation);
   frame_.task_error = ref_.position_error;
   frame_.orientation_error = ref_.orientation_error;
   frame_.min_distance = distances_.min_distance;

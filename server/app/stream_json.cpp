@@ -180,6 +180,12 @@ void encode_frame(const FrameContext& c, const Frame& f, const Model& model, con
   array(eq, 4, out);
   key("target", out);
   array(f.target, 3, out);
+  if (f.target_orientation) {
+    key("target_quat", out);
+    const Eigen::Quaterniond& t = *f.target_orientation;
+    const double tq[4] = {t.w(), t.x(), t.y(), t.z()};
+    array(tq, 4, out);
+  }
   key("obstacles", out);
   out += '[';
   for (size_t i = 0; i < scene.obstacles.size(); ++i) {

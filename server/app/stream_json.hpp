@@ -22,7 +22,7 @@ struct FrameContext {
 };
 
 // {"type":"frame","run","seq","step","t","status","q","qdot","links":[[sx,sy,sz,ex,ey,ez],..],
-//  "link_quat":[[w,x,y,z],..] (3D models),"ee","ee_quat","target","obstacles":[[x,y,z],..],
+//  "link_quat":[[w,x,y,z],..] (3D models),"ee","ee_quat","target","target_quat" (pose tasks, live only),"obstacles":[[x,y,z],..],
 //  "nearest":[[link,obstacle,distance,ax,ay,az,bx,by,bz],..] (one per link, its nearest
 //    obstacle: link 1-based, obstacle a 0-based index into the snapshot's obstacles, signed
 //    distance, a on the link axis, b on the obstacle surface; omitted without obstacles),

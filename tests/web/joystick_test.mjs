@@ -128,4 +128,29 @@ await suite('joystick', [
     await t.page.evaluate(() => window.__posePreview.destroy());
     await t.post(`/api/runs/${id}/control`, { action: 'stop' });
   }],
+  ['a pose task gets z and rotation: E raises the target, Shift turns its orientation', async (t) => {
+    const id = await openLive(t, '05_dh7_pose_joystick');
+    await t.page.waitForSelector('#joystick-section:not([hidden]) .joystick:not(.js-off)');
+    const lane = () => t.page.evaluate(() => window.__rrlab.session.lanes[0].frame);
+    const before = await lane();
+    check(Array.isArray(before.target_quat), 'pose frames carry the target orientation');
+    await t.page.locator('#views').click({ position: { x: 5, y: 5 } });
+    await t.page.keyboard.down('e');
+    await t.page.waitForTimeout(500);
+    await t.page.keyboard.up('e');
+    await until(async () => (await lane()).target[2] > before.target[2] + 0.02, 'the target to rise in z');
+    await t.page.keyboard.down('Shift');
+    await t.page.keyboard.down('ArrowRight');
+    await t.page.waitForTimeout(500);
+    await t.page.keyboard.up('ArrowRight');
+    await t.page.keyboard.up('Shift');
+    await until(async () => {
+      const q = (await lane()).target_quat, p = before.target_quat;
+      return Math.abs(q[0] * p[0] + q[1] * p[1] + q[2] * p[2] + q[3] * p[3]) < 0.9999;
+    }, 'the target orientation to turn');
+    const events = await joystickEvents(t, id);
+    check(events.some((e) => e.payload.linear.length === 3 && e.payload.linear[2] > 0), 'a command with +z was sent');
+    check(events.some((e) => e.payload.angular && e.payload.angular.some((w) => w !== 0)), 'a command with an angular rate was sent');
+    await t.screenshot('pose');
+  }],
 ]);

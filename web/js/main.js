@@ -207,11 +207,13 @@ app.signals.connection.add((s) => {
 
 // ---- drawing loop --------------------------------------------------------
 const fps = { frames: 0, since: performance.now(), value: 0, renderMs: 0 };
+let lastMetrics = 0;
 function tick(now) {
   const t0 = performance.now();
   if (session) session.render();
   plots.render();
-  if (metricsDirty) { metricsDirty = false; showMetrics(session); }
+  // tables are text for people: 10 updates a second are plenty and spare the layout work
+  if (metricsDirty && now - lastMetrics >= 100) { metricsDirty = false; lastMetrics = now; showMetrics(session); }
   fps.renderMs = 0.9 * fps.renderMs + 0.1 * (performance.now() - t0);
   fps.frames++;
   if (now - fps.since >= 1000) { fps.value = (fps.frames * 1000) / (now - fps.since); fps.frames = 0; fps.since = now; }
