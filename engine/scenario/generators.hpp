@@ -1,0 +1,29 @@
+// Seeded families of generated scenarios for sweeps. A call returns a
+// scenario JSON document (what a scenario file holds, with a name such as
+// "planar_clutter-17"), so a generated case is stored with its run and
+// reproduces from its record without the generator.
+// Guarantees, for every family and every index: the start is collision-free
+// and inside the joint limits, and the path is reachable by construction
+// (its waypoints are end-effector positions of sampled joint configurations).
+#pragma once
+
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace rrlab {
+
+// The families: planar_clutter, planar_limits, narrow_passage,
+// spatial_clutter, moving_obstacles.
+const std::vector<std::string>& generator_families();
+
+// Case `index` of `family` under `seed` with the family's options (DOF range,
+// obstacle count, path length, speed, ...; missing keys take the documented
+// defaults). The same (family, options, seed, index) always gives the same
+// document. Throws ScenarioError naming the option (path "options.<key>" or
+// "generator" for an unknown family).
+nlohmann::json generate_scenario(const std::string& family, const nlohmann::json& options, std::uint64_t seed,
+                                 int index);
+
+}  // namespace rrlab
