@@ -4,6 +4,7 @@
 import { api, ApiError } from './api.js';
 import { app, LANE_COLOURS } from './state.js';
 import { fmt } from './params.js';
+import { escapeHtml } from './dom.js';
 
 const $ = (id) => document.getElementById(id);
 const MAX_LANES = 4;
@@ -29,7 +30,7 @@ export class CompareSetup {
     const row = document.createElement('div');
     row.className = 'compare-row';
     row.innerHTML = `<span class="swatch" style="background:${LANE_COLOURS[i]}"></span>
-      <span class="fields"><select aria-label="method ${i + 1}">${app.methods.map((m) => `<option ${m.name === method ? 'selected' : ''}>${m.name}</option>`).join('')}</select>
+      <span class="fields"><select aria-label="method ${i + 1}">${app.methods.map((m) => `<option ${m.name === method ? 'selected' : ''}>${escapeHtml(m.name)}</option>`).join('')}</select>
       <input type="text" aria-label="parameters of method ${i + 1}" placeholder="name=value, …" title="parameters, e.g. lambda=0.05, gain=8 (defaults otherwise)">
       <button type="button" aria-label="remove method ${i + 1}">×</button></span>`;
     row.querySelector('button').onclick = () => { if (rows.childElementCount > 2) { row.remove(); this.recolour(); } };
@@ -78,7 +79,7 @@ export async function showCompareSummary(session) {
   const box = $('compare-summary');
   const runs = await Promise.all(session.runIds.map((id) => api('GET', `/api/runs/${id}`)));
   if (runs.some((r) => !r.summary)) return;
-  const head = `<tr><th></th>${session.lanes.map((l) => `<th style="color:${l.colour}">${l.label}</th>`).join('')}</tr>`;
+  const head = `<tr><th></th>${session.lanes.map((l) => `<th style="color:${l.colour}">${escapeHtml(l.label)}</th>`).join('')}</tr>`;
   const rows = SUMMARY.map(([name, get]) => `<tr><td>${name}</td>${runs.map((r) => `<td class="${get(r.summary) === true ? 'collided' : ''}">${fmt(get(r.summary))}</td>`).join('')}</tr>`);
   box.innerHTML = `<h2>Summary of the compare group</h2><table id="summary-table">${head}${rows.join('')}</table>`;
   box.hidden = false;

@@ -1,6 +1,7 @@
 // End-effector joystick for joystick tasks: keyboard, an on-screen pad, and a
 // gamepad all add into one velocity command, sent only when it changes (at most
 // 20 times a second) and as a zero command once everything is released.
+import { element, isTyping } from './dom.js';
 
 const SEND_INTERVAL_MS = 50;          // at most 20 commands a second
 const GAMEPAD_DEAD_ZONE = 0.15;
@@ -35,19 +36,7 @@ function stickDeadZone(x, y, zone = GAMEPAD_DEAD_ZONE) {
 
 const clamp1 = (v) => Math.max(-1, Math.min(1, v));
 const quantize = (v) => Math.round(clamp1(v) / QUANTUM) * QUANTUM || 0;
-// Keys typed into a field, or pressed inside a dialog, are not joystick keys.
-const isTyping = (target) => target instanceof HTMLElement &&
-  (target.isContentEditable || ['INPUT', 'TEXTAREA', 'SELECT'].includes(target.tagName) || target.closest('dialog') !== null);
 
-function element(tag, attributes = {}, children = []) {
-  const node = document.createElement(tag);
-  for (const [name, value] of Object.entries(attributes)) {
-    if (name === 'text') node.textContent = value;
-    else node.setAttribute(name, value);
-  }
-  for (const child of children) node.append(child);
-  return node;
-}
 
 // A control dragged with the pointer (mouse, pen, touch) that springs back to
 // centre on release: a round pad (two axes) or a bar (one axis).

@@ -13,6 +13,7 @@ import { SceneTools, buildOverlayToggles } from './scene_tools.js';
 import { Plots } from './plots.js';
 import { Joystick } from './joystick.js';
 import { ScenarioEditor } from './scenario_editor.js';
+import { escapeHtml } from './dom.js';
 
 const $ = (id) => document.getElementById(id);
 let session = null;
@@ -56,7 +57,7 @@ buildOverlayToggles(() => { if (session) for (const lane of session.lanes) if (l
 
 // ---- catalogue -----------------------------------------------------------
 function fillScenarios(selected) {
-  $('scenario').innerHTML = app.scenarios.map((s) => `<option value="${s.name}" ${s.name === selected ? 'selected' : ''}>${s.name}</option>`).join('');
+  $('scenario').innerHTML = app.scenarios.map((s) => `<option value="${escapeHtml(s.name)}" ${s.name === selected ? 'selected' : ''}>${escapeHtml(s.name)}</option>`).join('');
   describeScenario();
 }
 function describeScenario() {
@@ -71,7 +72,7 @@ async function loadCatalogue() {
   [app.scenarios, app.methods] = await Promise.all([api('GET', '/api/scenarios'), api('GET', '/api/methods')]);
   fillScenarios();
   $('method').innerHTML = '<option value="">(the scenario\'s own)</option>' +
-    app.methods.map((m) => `<option value="${m.name}" title="${m.description.replace(/"/g, '&quot;')}">${m.name}</option>`).join('');
+    app.methods.map((m) => `<option value="${escapeHtml(m.name)}" title="${escapeHtml(m.description)}">${escapeHtml(m.name)}</option>`).join('');
   compareSetup.init();
   runList.fillFilters();
 }

@@ -3,6 +3,7 @@
 // default, and the method switch. Changes go to the lane's own run.
 import { api } from './api.js';
 import { app } from './state.js';
+import { escapeHtml as escape } from './dom.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -14,9 +15,6 @@ export function fmt(v) {
   return Math.abs(v) >= 1e4 || (Math.abs(v) < 1e-3 && v !== 0) ? v.toExponential(3) : v.toFixed(4);
 }
 
-function escape(text) {
-  return String(text).replace(/[&<>"]/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;' })[c]);
-}
 
 // A slider's step must divide (max - min) from min, or the browser rejects
 // values in between: then any value.
@@ -73,7 +71,7 @@ export function buildParams(session) {
   // the switch shows the lane's method when it changes, not on every snapshot
   // (a snapshot after a parameter change must not undo what the user is choosing)
   const select = $('switch-method');
-  if (select.options.length !== app.methods.length) select.innerHTML = app.methods.map((m) => `<option value="${m.name}" title="${escape(m.description)}">${m.name}</option>`).join('');
+  if (select.options.length !== app.methods.length) select.innerHTML = app.methods.map((m) => `<option value="${escape(m.name)}" title="${escape(m.description)}">${escape(m.name)}</option>`).join('');
   const shown = `${lane.runId}:${snapshot.method}`;
   if (select.dataset.shown !== shown) { select.value = snapshot.method; select.dataset.shown = shown; }
 }

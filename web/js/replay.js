@@ -2,6 +2,7 @@
 // of a replayed session at once. The frame number follows in the address.
 import { api } from './api.js';
 import { app } from './state.js';
+import { isTyping } from './dom.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -23,7 +24,7 @@ export class ReplayBar {
     };
     scrubber.onchange = () => { this.scrubbing = false; this.seek(Number(scrubber.value)); };
     window.addEventListener('keydown', (e) => {
-      if (!this.session || /INPUT|TEXTAREA|SELECT/.test(e.target.tagName)) return;
+      if (!this.session || isTyping(e.target)) return;
       if (e.key === ',') this.step(-1);
       else if (e.key === '.') this.step(1);
       else if (e.key === ' ') { e.preventDefault(); this.setPlaying(!this.playing); }

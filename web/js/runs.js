@@ -4,6 +4,7 @@
 import { api } from './api.js';
 import { app } from './state.js';
 import { isLive } from './session.js';
+import { escapeHtml } from './dom.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -17,7 +18,7 @@ export class RunList {
   fillFilters() {
     const fill = (id, names) => {
       const select = $(id), first = select.options[0].outerHTML;
-      select.innerHTML = first + names.map((n) => `<option>${n}</option>`).join('');
+      select.innerHTML = first + names.map((n) => `<option>${escapeHtml(n)}</option>`).join('');
     };
     fill('filter-scenario', app.scenarios.map((s) => s.name));
     fill('filter-method', app.methods.map((m) => m.name));
@@ -39,8 +40,8 @@ export class RunList {
     li.dataset.run = String(r.id);
     const live = isLive(r.status);
     if (live) li.className = 'live';
-    li.innerHTML = `<div class="title">#${r.id} ${r.scenario}</div>
-      <div class="muted small">${r.method} · ${r.mode} · ${r.status} · <span class="frames">${r.frames}</span> frames</div>
+    li.innerHTML = `<div class="title">#${r.id} ${escapeHtml(r.scenario)}</div>
+      <div class="muted small">${escapeHtml(r.method)} · ${escapeHtml(r.mode)} · ${escapeHtml(r.status)} · <span class="frames">${r.frames}</span> frames</div>
       <div class="actions"></div>`;
     const actions = li.querySelector('.actions');
     const button = (text, title, onclick) => {

@@ -2,6 +2,7 @@
 // scenario. Errors are shown in words and at the field their JSON path names
 // (the server's `robot.links[3].length`), located in the text by a small
 // tokenizer, since JSON.parse forgets where values were.
+import { element } from './dom.js';
 
 const MAX_UPLOAD_BYTES = 1024 * 1024;
 const NAME_PATTERN = /^[A-Za-z0-9_.-]{1,64}$/;  // the server's rule for stored names
@@ -162,15 +163,6 @@ export function lineColumn(text, offset) {
 
 // ---- the editor -------------------------------------------------------------
 
-function element(tag, attributes = {}, children = []) {
-  const node = document.createElement(tag);
-  for (const [name, value] of Object.entries(attributes)) {
-    if (name === 'text') node.textContent = value;
-    else node.setAttribute(name, value);
-  }
-  for (const child of children) node.append(child);
-  return node;
-}
 
 function kilobytes(bytes) { return bytes < 1024 ? `${bytes} B` : `${(bytes / 1024).toFixed(1)} kB`; }
 

@@ -4,6 +4,7 @@
 // group the server applies scene edits to every lane.
 import { api } from './api.js';
 import { app, OVERLAYS } from './state.js';
+import { isTyping } from './dom.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -17,7 +18,7 @@ export class SceneTools {
     $('add-obstacle').onclick = () => this.setPlacing(this.placing ? null : $('add-shape').value);
     $('delete-obstacle').onclick = () => this.deleteSelected();
     window.addEventListener('keydown', (e) => {
-      if (/INPUT|TEXTAREA|SELECT/.test(e.target.tagName)) return;
+      if (isTyping(e.target)) return;
       if (e.key === 'Escape') this.setPlacing(null);
       if (e.key === 'Delete' && this.selected !== null) this.deleteSelected();
     });
