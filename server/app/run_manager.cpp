@@ -71,6 +71,8 @@ void RunManager::begin_job(std::int64_t source_run) {
   if (stopping_ || active_locked() >= limits_.max_active_runs)
     throw ApiError(503, "busy", "at most " + std::to_string(limits_.max_active_runs) +
                                     " runs and re-simulations may be active at once", "");
+  if (deleting_.count(source_run))
+    throw ApiError(409, "wrong_state", "run " + std::to_string(source_run) + " is being deleted", "");
   ++jobs_;
   job_sources_.insert(source_run);
 }
@@ -245,6 +247,7 @@ json RunManager::delete_run(std::int64_t id) {
                      run_name + " is still being written (" + run->status +
                          "): a re-simulation or another process; a restart marks a crashed one interrupted",
                      "id");
+    if (deleting_.count(id)) throw ApiError(409, "wrong_state", run_name + " is being deleted already", "id");
     if (ended_group) std::erase(groups_, ended_group);
     // paused or ended replays of it close: their seeks would find no frames
     for (const std::int64_t replay_id : idle_replays) {
@@ -252,13 +255,29 @@ json RunManager::delete_run(std::int64_t id) {
       retired_.push_back(replays_[replay_id]);
       replays_.erase(replay_id);
     }
+    // from here until the rows are gone, replays and re-simulations of it are refused
+    deleting_.insert(id);
   }
-  if (!store_.delete_run(id)) throw ApiError(404, "not_found", "no " + run_name, "id");
+  bool deleted = false;
+  try {
+    deleted = store_.delete_run(id);
+  } catch (...) {
+    std::lock_guard lock(mutex_);
+    deleting_.erase(id);
+    throw;
+  }
+  {
+    std::lock_guard lock(mutex_);
+    deleting_.erase(id);
+  }
+  if (!deleted) throw ApiError(404, "not_found", "no " + run_name, "id");
   return {{"deleted", id}};
 }
 
 std::int64_t RunManager::add_replay(std::shared_ptr<ReplayPlayer> player) {
   std::lock_guard lock(mutex_);
+  if (deleting_.count(player->run_id()))
+    throw ApiError(409, "wrong_state", "run " + std::to_string(player->run_id()) + " is being deleted", "");
   // drop the oldest replays beyond the limit
   std::erase_if(retired_, [](const auto& p) { return p->exited(); });
   while (int(replays_.size()) >= limits_.max_replays) {

@@ -87,6 +87,7 @@ class RunManager {
   std::condition_variable jobs_done_;
   int jobs_ = 0;
   std::multiset<std::int64_t> job_sources_;  // runs that jobs are reading
+  std::set<std::int64_t> deleting_;          // runs whose rows are being deleted (outside the lock)
   std::atomic<bool> stopping_{false};
   std::vector<std::shared_ptr<RunGroup>> groups_;
   std::map<std::int64_t, std::shared_ptr<ReplayPlayer>> replays_;

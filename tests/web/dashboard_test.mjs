@@ -212,6 +212,35 @@ await suite('dashboard', [
     await t.screenshot('overlay');
   }],
 
+  ['a 3D compare overlaid draws every lane; overlay toggles redraw', async (t) => {
+    await t.page.goto(`${t.base}/?scenario=02_spatial_xz_reach`);
+    await t.page.waitForSelector('#compare-rows .compare-row');
+    await t.page.selectOption('#compare-layout', 'overlay');
+    await t.page.click('#start-compare');
+    await until(async () => (await pageState.lane(t.page, 1)) !== null, 'both lanes');
+    check(await t.page.evaluate(() => document.querySelectorAll('#views .view-cell').length) === 1, 'one 3D view');
+    for (const key of ['nearest', 'manipulability', 'trace']) { await t.page.uncheck(`input[data-overlay=${key}]`); await t.page.check(`input[data-overlay=${key}]`); }
+    const points = async () => (await t.page.evaluate(() => window.__rrlab.plots.pointCounts()));
+    await t.page.waitForTimeout(1000);
+    const counts = await points();
+    check(Object.values(counts).every((n) => n > 0), `plots gain points for both lanes: ${JSON.stringify(counts)}`);
+    await t.screenshot('3d-overlay');
+  }],
+
+  ['an ended run takes no more inputs; a run with no frames says so', async (t) => {
+    const id = await openLive(t, '04_planar7_joystick');
+    await t.post(`/api/runs/${id}/control`, { action: 'stop' });
+    await until(async () => (await t.page.textContent('#connection')).startsWith('ended'), 'the page to show the run ended');
+    check(await t.page.isHidden('#joystick-section'), 'the joystick is hidden');
+    check(await t.page.isDisabled('[data-action=start]'), 'the controls are disabled');
+    await t.page.keyboard.press('ArrowUp');  // nothing may be sent: a 409 would be a console error
+    const empty = await t.post('/api/runs', { scenario: '01_planar7_obstacles', mode: 'live', paused: true });
+    await t.post(`/api/runs/${empty.id}/control`, { action: 'stop' });
+    await t.page.goto(`${t.base}/?run=${empty.id}`);
+    await t.page.waitForSelector('.empty-lane');
+    check(await t.page.isHidden('#replay-bar'), 'no scrubber for a run without frames');
+  }],
+
   ['a stored run replays and the scrubber shows frame k exactly', async (t) => {
     const run = await t.post('/api/runs', { scenario: '01_planar7_obstacles', method: 'dls', mode: 'batch' });
     await t.page.goto(`${t.base}/?run=${run.id}`);

@@ -32,7 +32,11 @@ $('message').querySelector('button').onclick = () => { $('message').hidden = tru
 const report = (e) => app.error(e);
 
 // ---- panels ---------------------------------------------------------------
-const runList = new RunList({ open: (ids) => openRuns(ids).catch(report) });
+const runList = new RunList({
+  open: (ids) => openRuns(ids).catch(report),
+  // the run on screen was deleted: nothing left to show
+  deleted: (id) => { if (session && session.runIds.includes(id)) closeSession(`run #${id} was deleted`); },
+});
 const compareSetup = new CompareSetup({ start: (body, layout) => startCompare(body, layout) });
 const replayBar = new ReplayBar();
 const sceneTools = new SceneTools(() => session);
@@ -78,12 +82,29 @@ async function loadCatalogue() {
 }
 
 // ---- sessions ------------------------------------------------------------
+function closeSession(why) {
+  if (session) session.close();
+  session = null;
+  replayBar.detach();
+  sceneTools.reset();
+  joystick.configure({ enabled: false, space: 'xy', reach: 1 });
+  for (const id of ['controls', 'params-section', 'joystick-section', 'compare-summary']) $(id).hidden = true;
+  $('session-title').textContent = '';
+  $('status').textContent = '';
+  $('connection').textContent = 'not connected';
+  $('connection').className = 'pill muted';
+  writeUrl({});
+  if (why) app.info(why);
+}
+
 async function show(next, startFrame) {
   if (session) session.close();
   session = next;
   replayBar.detach();
+  sceneTools.reset();
   $('compare-summary').hidden = true;
   $('controls').hidden = next.kind !== 'live';
+  for (const el of document.querySelectorAll('#controls button:not(#delete-obstacle), #controls select')) el.disabled = false;
   // a session on screen: its controls come first, the pickers fold away
   $('new-run').open = false;
   $('compare-setup').open = false;
@@ -91,7 +112,8 @@ async function show(next, startFrame) {
   $('session-title').textContent = `${next.kind === 'live' ? 'live' : 'replay'} · ${next.runs[0].scenario} · ${next.runs.map((r) => r.method).join(' vs ')}`;
   configurePlots(next, next.runs.map((r) => r.diagnostic_names || []));
   await next.open();
-  if (next.kind === 'replay') {
+  if (session !== next) return;  // another session was opened meanwhile
+  if (next.kind === 'replay' && !next.empty) {
     replayBar.attach(next, startFrame);
     loadWholeRuns(next).catch(report);
   }
@@ -109,12 +131,17 @@ function configurePlots(s, namesPerLane) {
   });
 }
 
-// Replays plot the whole run (exact stored values; strided beyond 20,000 frames).
+// Replays plot the whole run (exact stored values; strided beyond 20,000
+// frames) against run time, seq·dt: a run that was reset goes on to the right
+// instead of folding back, and a click on a plot names one frame.
 async function loadWholeRuns(s) {
   await Promise.all(s.lanes.map(async (lane) => {
     const frames = s.runs[lane.index].frames;
+    if (frames === 0) return;
+    const { dt } = await lane.ready;
     const stride = Math.max(1, Math.ceil(frames / 20000));
     const data = await api('GET', `/api/runs/${lane.runId}/frames?from=0&to=${frames - 1}&stride=${stride}`);
+    for (const f of data.frames) f.t = f.seq * dt;
     if (session === s) plots.setRun(lane.index, data);
   }));
 }
@@ -164,6 +191,12 @@ app.signals.viewCreated.add((lane) => {
 
 app.signals.snapshot.add((lane) => {
   if (!session || !session.lanes.includes(lane)) return;
+  // after a method switch the lane's name is its new method: tabs, captions, legends
+  if (lane.label !== lane.snapshot.method) {
+    lane.label = lane.snapshot.method;
+    if (lane.view && session.compare && session.layout === 'side') { lane.view.label = lane.label; lane.view.invalidate(); }
+    if (session.layout === 'overlay') session.refreshOverlayLanes();
+  }
   if (lane.index === session.focus) buildParams(session);
   // a method switch changes the diagnostics: the plots start again with the new names
   if (session.kind === 'live' && session.plotNames && session.plotNames[lane.index] !== lane.snapshot.diagnostic_names.join('\n')) {
@@ -173,10 +206,9 @@ app.signals.snapshot.add((lane) => {
   if (lane.index === 0) {
     const s = lane.snapshot;
     sceneTools.configure(s);
-    const joystickTask = s.task.trajectory === 'joystick' && session.kind === 'live';
+    const joystickTask = s.task.trajectory === 'joystick' && session.kind === 'live' && !session.ended;
     $('joystick-section').hidden = !joystickTask;
     joystick.configure({ enabled: joystickTask, space: s.task.space, reach: s.model.reach });
-    if (lane.label !== s.method) lane.label = s.method;
   }
   metricsDirty = true;
 });
@@ -187,11 +219,17 @@ app.signals.frame.add((lane) => {
   const f = lane.frame;
   if (session.kind === 'live') plots.push(lane.index, f);
   if (lane.index === 0) {
-    if (session.kind === 'replay') { replayBar.onFrame(f); plots.setCursor(f.t); }
+    if (session.kind === 'replay') { replayBar.onFrame(f); plots.setCursor(f.seq * lane.snapshot.dt); }
     $('status').textContent = `t = ${f.t.toFixed(2)} s · step ${f.step} · ${f.status}`;
   }
   if (session.kind === 'live' && session.ended && !session.summaryShown) {
     session.summaryShown = true;
+    // an ended run takes no more inputs: its controls and joystick go quiet
+    joystick.configure({ enabled: false, space: lane.snapshot ? lane.snapshot.task.space : 'xy', reach: 1 });
+    $('joystick-section').hidden = true;
+    for (const el of document.querySelectorAll('#controls button, #controls select')) el.disabled = true;
+    sceneTools.reset();
+    app.signals.connection.dispatch(session);
     if (session.compare) showCompareSummary(session).catch(report);
     runList.refresh();
   }
@@ -202,6 +240,7 @@ app.signals.connection.add((s) => {
   const states = s.lanes.map((l) => l.streamState);
   const el = $('connection');
   const open = states.every((x) => x === 'open');
+  if (s.ended) { el.textContent = `ended (${s.lanes[0].status})`; el.className = 'pill muted'; return; }
   el.textContent = open ? (s.kind === 'live' ? 'live' : 'replay') : states.find((x) => x !== 'open') || '';
   el.className = `pill ${open ? 'ok' : 'warn'}`;
 });

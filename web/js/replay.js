@@ -82,7 +82,7 @@ export class ReplayBar {
 
   step(delta) { this.seek(this.seq + delta); }
 
-  // Seeks to the frame nearest time t (a click on a plot).
+  // Seeks to the frame at run time t = seq·dt (a click on a plot).
   seekTime(t) {
     const lane = this.session && this.session.lanes[0];
     if (!lane || !lane.snapshot) return;

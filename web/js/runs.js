@@ -9,8 +9,9 @@ import { escapeHtml } from './dom.js';
 const $ = (id) => document.getElementById(id);
 
 export class RunList {
-  constructor({ open }) {
+  constructor({ open, deleted }) {
     this.open = open;  // (ids) opens runs: live ones attach, ended ones replay
+    this.deleted = deleted;  // (id) after a run was deleted
     for (const id of ['filter-scenario', 'filter-method', 'filter-status']) $(id).onchange = () => this.refresh();
     this.timer = setInterval(() => { if (!document.hidden) this.refresh(); }, 2000);
   }
@@ -70,7 +71,7 @@ export class RunList {
     }
     const del = button('Delete', 'delete the run, its frames and events', async () => {
       if (!confirm(`Delete run #${r.id} and its frames?`)) return;
-      await api('DELETE', `/api/runs/${r.id}`).then(() => this.refresh(), (e) => app.error(e));
+      await api('DELETE', `/api/runs/${r.id}`).then(() => { this.deleted(r.id); this.refresh(); }, (e) => app.error(e));
     });
     del.disabled = live;
     if (live) del.title = 'a live run cannot be deleted: stop it first';

@@ -50,7 +50,9 @@ export class SceneTools {
     const now = performance.now();
     if (phase === 'move' && now - this.lastPut < 50) return;
     this.lastPut = now;
-    const id = lane.snapshot.obstacles[index].id;
+    const obstacle = lane.snapshot.obstacles[index];
+    if (!obstacle) return;
+    const id = obstacle.id;
     api('PUT', `/api/runs/${session.controlRun}/obstacles/${encodeURIComponent(id)}`, { position }).catch((e) => app.error(e));
   }
 
@@ -81,6 +83,14 @@ export class SceneTools {
     else if (shape === 'point') Object.assign(body, { position: point });
     else if (shape === 'polygon') Object.assign(body, { points: [[-size, -size], [size, -size], [size, size], [-size, size]].map(([x, y]) => [point[0] + x, point[1] + y]) });
     await api('POST', `/api/runs/${session.controlRun}/obstacles`, body);
+  }
+
+  // A new session starts with nothing selected and nothing being placed.
+  reset() {
+    this.setPlacing(null);
+    this.selected = null;
+    $('selected-obstacle').textContent = 'no obstacle selected';
+    $('delete-obstacle').disabled = true;
   }
 
   select(lane, index) {

@@ -22,6 +22,7 @@ class Lane {
     this.cell = null;
     this.stream = null;
     this.status = run.status;
+    this.ready = new Promise((resolve) => { this.resolveReady = resolve; });  // the first snapshot
   }
 }
 
@@ -43,13 +44,21 @@ export class Session {
   get controlRun() { return this.runs[0].id; }
   get focusLane() { return this.lanes[this.focus]; }
 
+  // Opens every lane's stream. A session closed meanwhile (the user opened
+  // another) stops here and pauses any player it had asked for.
   async open() {
     this.buildCells();
     for (const lane of this.lanes) {
       let path = `/ws/runs/${lane.runId}`;
+      if (this.kind === 'replay' && this.runs[lane.index].frames === 0) {
+        // stopped before its first step: nothing to play
+        lane.cell.innerHTML = '<p class="empty-lane muted">This run stored no frames: it was stopped before its first step.</p>';
+        continue;
+      }
       if (this.kind === 'replay') {
         const player = await api('POST', `/api/runs/${lane.runId}/replay`, { mode: 'frames', speed: 1 });
         lane.replayId = player.replay;
+        if (this.closed) { api('POST', `/api/replays/${player.replay}/control`, { action: 'pause' }).catch(() => {}); return; }
         path = player.ws;
       }
       lane.stream = new Stream(path, {
@@ -85,8 +94,10 @@ export class Session {
   }
 
   async snapshot(lane, snapshot) {
+    if (this.closed) return;
     lane.snapshot = snapshot;
     lane.status = snapshot.status;
+    lane.resolveReady(snapshot);
     if (!lane.view && lane.cell) await this.makeView(lane, snapshot);
     if (this.closed) return;
     if (lane.view) lane.view.setSnapshot(snapshot);
@@ -121,6 +132,7 @@ export class Session {
   }
 
   frame(lane, frame) {
+    if (this.closed) return;
     lane.frame = frame;
     lane.status = frame.status;
     if (lane.view) lane.view.setFrame(frame);
@@ -134,6 +146,7 @@ export class Session {
   }
 
   get ended() { return this.kind === 'live' && this.lanes.every((l) => TERMINAL.has(l.status)); }
+  get empty() { return this.kind === 'replay' && this.frameCount === 0; }
 
   updateUrl(frame) {
     const ids = this.runIds.join(',');

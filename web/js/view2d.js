@@ -47,7 +47,9 @@ export class View2D {
 
   setSnapshot(snapshot) {
     const first = !this.snapshot;
+    const previous = this.snapshot;
     this.snapshot = snapshot;
+    if (previous) this.followObstacles(previous, snapshot);
     if (snapshot.frame) this.setFrame(snapshot.frame);
     if (first) this.fit();
     this.dirty = true;
@@ -61,6 +63,25 @@ export class View2D {
     if (this.ellipseScale === null && frame.ellipsoid && this.snapshot) this.ellipseScale = ellipseScale(frame.ellipsoid, this.snapshot.model.reach);
     if (this.pending && (performance.now() > this.pending.until || near(frame.obstacles[this.pending.index], this.pending.position))) this.pending = null;
     this.dirty = true;
+  }
+
+  // Obstacles added or removed renumber the others: a drag, its held position
+  // and the selection follow their obstacle by id, and end if it is gone.
+  followObstacles(previous, snapshot) {
+    const remap = (i) => {
+      const id = previous.obstacles[i] ? previous.obstacles[i].id : null;
+      const now = id === null ? -1 : snapshot.obstacles.findIndex((o) => o.id === id);
+      return now >= 0 ? now : null;
+    };
+    if (this.gesture && this.gesture.kind === 'drag') {
+      this.gesture.index = remap(this.gesture.index);
+      if (this.gesture.index === null) this.gesture = null;
+    }
+    if (this.pending) {
+      this.pending.index = remap(this.pending.index);
+      if (this.pending.index === null) this.pending = null;
+    }
+    if (this.selected !== null) this.select(remap(this.selected));
   }
 
   setLanes(lanes) { this.lanes = lanes; this.dirty = true; }

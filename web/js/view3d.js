@@ -17,8 +17,18 @@ const pathColour = '#43a047', targetColour = '#2e7d32';
 const laneOpacity = 0.4;
 const dragHoldMs = 1500;  // after a drag, keep the dragged position until the server's frames show it
 
+// Probed once per page; the probe's context is released at once (browsers
+// keep only a few contexts alive, and every view already needs its own).
+let webgl2Probe = null;
 function webgl2Available() {
-  try { return !!document.createElement('canvas').getContext('webgl2'); } catch { return false; }
+  if (webgl2Probe === null) {
+    try {
+      const gl = document.createElement('canvas').getContext('webgl2');
+      webgl2Probe = !!gl;
+      if (gl) { const lose = gl.getExtension('WEBGL_lose_context'); if (lose) lose.loseContext(); }
+    } catch { webgl2Probe = false; }
+  }
+  return webgl2Probe;
 }
 
 // A round grid step for about 12 lines over a span: 1, 2 or 5 times a power of ten.
@@ -235,7 +245,14 @@ export class View3D {
       const index = keepId === null ? -1 : snapshot.obstacles.findIndex((o) => o.id === keepId);
       this._selected = null;
       this.selected = index >= 0 ? index : null;
-      if (this.override && this.override.index >= snapshot.obstacles.length) this.override = null;
+      // a drag in progress follows its obstacle by id; it ends if that one is gone
+      const remap = (i) => {
+        const id = previous && previous.obstacles[i] ? previous.obstacles[i].id : null;
+        const now = id === null ? -1 : snapshot.obstacles.findIndex((o) => o.id === id);
+        return now >= 0 ? now : null;
+      };
+      if (this.override) { const i = remap(this.override.index); if (i === null) this.override = null; else this.override.index = i; }
+      if (this.pointer && this.pointer.down && this.pointer.down.index !== null) this.pointer.down.index = remap(this.pointer.down.index);
     }
     const pathKey = JSON.stringify(snapshot.task.path);
     if (pathKey !== this.pathKey) {
@@ -466,11 +483,14 @@ export class View3D {
     this.dirty = true;
   }
 
+  invalidate() { this.dirty = true; }
+
   destroy() {
     if (this.failed) { this.container.replaceChildren(); return; }
     this.resizeObserver.disconnect();
     this.pointer.dispose();
     this.controls.dispose();
+    if (this.axesGizmo) this.axesGizmo.dispose();
     this.setLanes([]);
     for (const part of [this.arm, this.shadow, this.obstacles, this.overlayLayer, this.path]) if (part) part.dispose();
     disposeTree(this.scene);

@@ -50,6 +50,7 @@ export class PointerTool {
     const picked = this.pick(event);
     if (!picked) return;
     view.select(picked.index);
+    if (!view.onObstacleDrag) return;  // replays and ended runs: select only
     // grab: the plane facing the camera through the grabbed point
     const normal = view.camera.getWorldDirection(new THREE.Vector3());
     this.plane.setFromNormalAndCoplanarPoint(normal, picked.point);
