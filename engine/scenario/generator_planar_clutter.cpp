@@ -16,20 +16,15 @@
 // | time_law      | "linear" (constant speed) or "quintic" (per segment) | linear                  | —        |
 //
 // Obstacles never touch the hand's path (its capsule of link_radius): the
-// task stays feasible, and half the obstacles are drawn within 0.25 reach of
-// a point of the path, where they matter; the rest anywhere within reach.
+// task stays feasible. Every other one is drawn within 0.25 reach of a point
+// of the path, where it matters, the rest anywhere within reach
+// (place_clutter, generator_clutter.hpp).
 #include "scenario/generator_arms.hpp"
 #include "scenario/generator_case.hpp"
-#include "scenario/generator_obstacles.hpp"
+#include "scenario/generator_clutter.hpp"
 #include "scenario/generator_path.hpp"
 
 namespace rrlab {
-
-namespace {
-
-constexpr double kNearPath = 0.25;  // reaches
-
-}  // namespace
 
 nlohmann::json generate_planar_clutter(GeneratorCase& c) {
   const GeneratorOptions options(c.options, c.family,
@@ -44,16 +39,7 @@ nlohmann::json generate_planar_clutter(GeneratorCase& c) {
     std::optional<GeneratedPath> path = draw_path(arm, path_options.waypoints.draw(rng), rng);
     if (!path) continue;
     time_path(*path, path_options, arm.reach, rng);
-    const KeepOut keep_out{arm_capsules(arm.model, path->configurations[0]), clutter.clearance,
-                           path_capsules(path->points, arm.link_radius)};
-    const auto draw = [&](int k, Rng& r) -> std::optional<nlohmann::json> {
-      const bool near_path = k % 2 == 0;
-      const Eigen::Vector3d center = near_path ? point_in_ball(point_along(*path, r.uniform()), kNearPath * arm.reach, false, r)
-                                               : point_in_ball(Eigen::Vector3d::Zero(), arm.reach, false, r);
-      const std::string& shape = clutter.shapes[r.below(clutter.shapes.size())];
-      return draw_obstacle(shape, center, clutter.size.draw(r) * arm.reach, false, k + 1, r);
-    };
-    const std::optional<nlohmann::json> obstacles = place_obstacles(clutter.count.draw(rng), keep_out, draw, rng);
+    const std::optional<nlohmann::json> obstacles = place_clutter(clutter, arm, *path, false, rng);
     if (!obstacles) continue;
     const std::string description =
         case_title(c) + ": " + arm.summary + " among " + obstacle_summary(*obstacles) + ", each more than " +

@@ -23,7 +23,7 @@
 // candidates, drawn from the case's stream: deterministic).
 #include "scenario/generator_arms.hpp"
 #include "scenario/generator_case.hpp"
-#include "scenario/generator_obstacles.hpp"
+#include "scenario/generator_clutter.hpp"
 #include "scenario/generator_path.hpp"
 #include "scenario/scenario.hpp"
 #include "sim/simulator.hpp"
@@ -68,14 +68,7 @@ nlohmann::json generate_planar_limits(GeneratorCase& c) {
     std::optional<GeneratedPath> path = draw_path(arm, path_options.waypoints.draw(rng), rng);
     if (!path) continue;
     time_path(*path, path_options, arm.reach, rng);
-    const KeepOut keep_out{arm_capsules(arm.model, path->configurations[0]), clutter.clearance,
-                           path_capsules(path->points, arm.link_radius)};
-    const auto draw = [&](int k, Rng& r) -> std::optional<nlohmann::json> {
-      const Eigen::Vector3d center = point_in_ball(Eigen::Vector3d::Zero(), arm.reach, false, r);
-      const std::string& shape = clutter.shapes[r.below(clutter.shapes.size())];
-      return draw_obstacle(shape, center, clutter.size.draw(r) * arm.reach, false, k + 1, r);
-    };
-    const std::optional<nlohmann::json> obstacles = place_obstacles(clutter.count.draw(rng), keep_out, draw, rng);
+    const std::optional<nlohmann::json> obstacles = place_clutter(clutter, arm, *path, false, rng);
     if (!obstacles) continue;
     nlohmann::json doc = case_document(c, "", path_options.dt, path->duration,
                                        robot_with_q0(arm, path->configurations[0]), *obstacles,

@@ -18,20 +18,15 @@
 //
 // Each alpha is +90 or -90 deg (drawn; the last 0), joint limits are the
 // iiwa's (+-170, 120, 170, 120, 170, 120, 175 deg), configurations are drawn
-// within 0.9 of them. Obstacles never touch the hand's path; half are drawn
-// within 0.25 reach of a point of it, the rest anywhere within reach.
+// within 0.9 of them. Obstacles never touch the hand's path; every other one
+// is drawn within 0.25 reach of a point of it, the rest anywhere within reach
+// (place_clutter, generator_clutter.hpp).
 #include "scenario/generator_arms.hpp"
 #include "scenario/generator_case.hpp"
-#include "scenario/generator_obstacles.hpp"
+#include "scenario/generator_clutter.hpp"
 #include "scenario/generator_path.hpp"
 
 namespace rrlab {
-
-namespace {
-
-constexpr double kNearPath = 0.25;  // reaches
-
-}  // namespace
 
 nlohmann::json generate_spatial_clutter(GeneratorCase& c) {
   const GeneratorOptions options(c.options, c.family,
@@ -46,16 +41,7 @@ nlohmann::json generate_spatial_clutter(GeneratorCase& c) {
     std::optional<GeneratedPath> path = draw_path(arm, path_options.waypoints.draw(rng), rng);
     if (!path) continue;
     time_path(*path, path_options, arm.reach, rng);
-    const KeepOut keep_out{arm_capsules(arm.model, path->configurations[0]), clutter.clearance,
-                           path_capsules(path->points, arm.link_radius)};
-    const auto draw = [&](int k, Rng& r) -> std::optional<nlohmann::json> {
-      const bool near_path = k % 2 == 0;
-      const Eigen::Vector3d center = near_path ? point_in_ball(point_along(*path, r.uniform()), kNearPath * arm.reach, true, r)
-                                               : point_in_ball(Eigen::Vector3d::Zero(), arm.reach, true, r);
-      const std::string& shape = clutter.shapes[r.below(clutter.shapes.size())];
-      return draw_obstacle(shape, center, clutter.size.draw(r) * arm.reach, true, k + 1, r);
-    };
-    const std::optional<nlohmann::json> obstacles = place_obstacles(clutter.count.draw(rng), keep_out, draw, rng);
+    const std::optional<nlohmann::json> obstacles = place_clutter(clutter, arm, *path, true, rng);
     if (!obstacles) continue;
     const std::string description =
         case_title(c) + ": " + arm.summary + " among " + obstacle_summary(*obstacles) + ", each more than " +
