@@ -21,8 +21,10 @@ const std::vector<std::string>& generator_families();
 // Case `index` of `family` under `seed` with the family's options (DOF range,
 // obstacle count, path length, speed, ...; missing keys take the documented
 // defaults). The same (family, options, seed, index) always gives the same
-// document. Throws ScenarioError naming the option (path "options.<key>" or
-// "generator" for an unknown family).
+// document. Throws ScenarioError naming the option (path "options.<key>";
+// "generator" for an unknown family or when no case met the family's
+// conditions within its bounded attempts; "index" for a negative index).
+// Families and options: docs/generators.md.
 nlohmann::json generate_scenario(const std::string& family, const nlohmann::json& options, std::uint64_t seed,
                                  int index);
 

@@ -1,0 +1,30 @@
+// Clearance of generated cases, measured by the engine's own collision code
+// (CollisionWorld over capsules), so "clear of an obstacle" in a generated
+// case means what a run of it measures.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "collision/scene.hpp"
+#include "model/model.hpp"
+
+namespace rrlab {
+
+// A segment grown by a radius: an arm link, or a stretch of the hand's path.
+struct CapsuleSegment {
+  Eigen::Vector3d a = Eigen::Vector3d::Zero(), b = Eigen::Vector3d::Zero();
+  double radius = 0;
+};
+
+// The link capsules of `model` at configuration q.
+std::vector<CapsuleSegment> arm_capsules(const Model& model, const Eigen::VectorXd& q);
+
+// The polyline through `points` as capsules of `radius` (the hand's swept path).
+std::vector<CapsuleSegment> path_capsules(const std::vector<Eigen::Vector3d>& points, double radius);
+
+// Smallest signed distance (m, < 0 when penetrating) from the capsules to the
+// obstacle placed at its position0 (t = 0).
+double capsules_clearance(const std::vector<CapsuleSegment>& capsules, const Obstacle& obstacle);
+
+}  // namespace rrlab

@@ -1,0 +1,22 @@
+// Static clutter around a generated arm and its hand's path: the obstacles of
+// planar_clutter, spatial_clutter and planar_limits.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <optional>
+
+#include "scenario/generator_arms.hpp"
+#include "scenario/generator_obstacles.hpp"
+#include "scenario/generator_path.hpp"
+
+namespace rrlab {
+
+// Draws the option's obstacle count: every other obstacle (the 1st, 3rd, ...)
+// within 0.25 reach of a random point of the path, where it matters, the rest
+// anywhere within reach of the base; each more than the clearance from every
+// link of the start configuration and off the hand's path. Nullopt when one
+// found no place.
+std::optional<nlohmann::json> place_clutter(const ClutterOptions& clutter, const GeneratedArm& arm,
+                                            const GeneratedPath& path, bool spatial, Rng& rng);
+
+}  // namespace rrlab

@@ -1,0 +1,54 @@
+// Family planar_clutter: a planar arm among static obstacles of mixed shapes,
+// its hand on a polyline through reachable waypoints.
+//
+// | option        | meaning                                              | default                 | unit     |
+// |---------------|------------------------------------------------------|-------------------------|----------|
+// | dof           | joints (links) of the arm, [min, max] or a number    | [3, 12]                 | —        |
+// | link_length   | each link's length, drawn per link                   | [0.2, 0.6]              | m        |
+// | link_radius   | every link's capsule radius                          | 0.02                    | m        |
+// | obstacles     | obstacle count                                       | [1, 8]                  | —        |
+// | obstacle_size | sphere radius / box half-edge / polygon radius       | [0.04, 0.12]            | × reach  |
+// | shapes        | shapes drawn from (uniformly)                        | sphere, box, polygon, point | —    |
+// | clearance     | least distance of an obstacle from the start arm     | 0.05                    | m        |
+// | waypoints     | waypoints after the start                            | [2, 4]                  | —        |
+// | speed         | hand speed along the path (sets the duration)        | 0.2 × reach per second  | m/s      |
+// | dt            | time step                                            | 0.01                    | s        |
+// | time_law      | "linear" (constant speed) or "quintic" (per segment) | linear                  | —        |
+//
+// Obstacles never touch the hand's path (its capsule of link_radius): the
+// task stays feasible. Every other one is drawn within 0.25 reach of a point
+// of the path, where it matters, the rest anywhere within reach
+// (place_clutter, generator_clutter.hpp).
+#include "scenario/generator_arms.hpp"
+#include "scenario/generator_case.hpp"
+#include "scenario/generator_clutter.hpp"
+#include "scenario/generator_path.hpp"
+
+namespace rrlab {
+
+nlohmann::json generate_planar_clutter(GeneratorCase& c) {
+  const GeneratorOptions options(c.options, c.family,
+                                 {"dof", "link_length", "link_radius", "obstacles", "obstacle_size", "shapes",
+                                  "clearance", "waypoints", "speed", "dt", "time_law"});
+  const PlanarArmOptions arm_options = read_planar_arm_options(options, false);
+  const ClutterOptions clutter = read_clutter_options(options, {1, 8}, {"sphere", "box", "polygon", "point"});
+  const PathOptions path_options = read_path_options(options);
+  Rng& rng = c.rng;
+  for (int attempt = 0; attempt < kCaseAttempts; ++attempt) {
+    const GeneratedArm arm = draw_planar_arm(arm_options, rng);
+    std::optional<GeneratedPath> path = draw_path(arm, path_options.waypoints.draw(rng), rng);
+    if (!path) continue;
+    time_path(*path, path_options, arm.reach, rng);
+    const std::optional<nlohmann::json> obstacles = place_clutter(clutter, arm, *path, false, rng);
+    if (!obstacles) continue;
+    const std::string description =
+        case_title(c) + ": " + arm.summary + " among " + obstacle_summary(*obstacles) + ", each more than " +
+        fixed_digits(clutter.clearance, 3) + " m from every link of the start configuration and off the hand's path; " +
+        path_summary(*path) + ".";
+    return case_document(c, description, path_options.dt, path->duration,
+                         robot_with_q0(arm, path->configurations[0]), *obstacles, path_task(*path, TaskSpace::xy));
+  }
+  no_case_found(c, "options.obstacles, options.obstacle_size or options.clearance");
+}
+
+}  // namespace rrlab

@@ -1,0 +1,56 @@
+// Family spatial_clutter: a 7-DOF DH arm after the KUKA LBR iiwa among
+// spheres and boxes, its hand on a 3D polyline (task space "xyz") through
+// reachable waypoints.
+//
+// | option        | meaning                                                 | default                 | unit    |
+// |---------------|---------------------------------------------------------|-------------------------|---------|
+// | length_scale  | factor on each of the iiwa's d (0.36, 0.42, 0.40, 0.126 m), drawn per link | [0.8, 1.2] | — |
+// | a_offset      | each link's a (the iiwa has 0)                          | [-0.05, 0.05]           | m       |
+// | link_radius   | every link's capsule radius                             | 0.05                    | m       |
+// | obstacles     | obstacle count                                          | [1, 8]                  | —       |
+// | obstacle_size | sphere radius / box half-edge                           | [0.04, 0.12]            | × reach |
+// | shapes        | shapes drawn from (uniformly)                           | sphere, box             | —       |
+// | clearance     | least distance of an obstacle from the start arm        | 0.05                    | m       |
+// | waypoints     | waypoints after the start                               | [2, 4]                  | —       |
+// | speed         | hand speed along the path (sets the duration)           | 0.2 × reach per second  | m/s     |
+// | dt            | time step                                               | 0.01                    | s       |
+// | time_law      | "linear" (constant speed) or "quintic" (per segment)    | linear                  | —       |
+//
+// Each alpha is +90 or -90 deg (drawn; the last 0), joint limits are the
+// iiwa's (+-170, 120, 170, 120, 170, 120, 175 deg), configurations are drawn
+// within 0.9 of them. Obstacles never touch the hand's path; every other one
+// is drawn within 0.25 reach of a point of it, the rest anywhere within reach
+// (place_clutter, generator_clutter.hpp).
+#include "scenario/generator_arms.hpp"
+#include "scenario/generator_case.hpp"
+#include "scenario/generator_clutter.hpp"
+#include "scenario/generator_path.hpp"
+
+namespace rrlab {
+
+nlohmann::json generate_spatial_clutter(GeneratorCase& c) {
+  const GeneratorOptions options(c.options, c.family,
+                                 {"length_scale", "a_offset", "link_radius", "obstacles", "obstacle_size", "shapes",
+                                  "clearance", "waypoints", "speed", "dt", "time_law"});
+  const DhArmOptions arm_options = read_dh_arm_options(options);
+  const ClutterOptions clutter = read_clutter_options(options, {1, 8}, {"sphere", "box"});
+  const PathOptions path_options = read_path_options(options);
+  Rng& rng = c.rng;
+  for (int attempt = 0; attempt < kCaseAttempts; ++attempt) {
+    const GeneratedArm arm = draw_dh7_arm(arm_options, rng);
+    std::optional<GeneratedPath> path = draw_path(arm, path_options.waypoints.draw(rng), rng);
+    if (!path) continue;
+    time_path(*path, path_options, arm.reach, rng);
+    const std::optional<nlohmann::json> obstacles = place_clutter(clutter, arm, *path, true, rng);
+    if (!obstacles) continue;
+    const std::string description =
+        case_title(c) + ": " + arm.summary + " among " + obstacle_summary(*obstacles) + ", each more than " +
+        fixed_digits(clutter.clearance, 3) + " m from every link of the start configuration and off the hand's path; " +
+        path_summary(*path) + ".";
+    return case_document(c, description, path_options.dt, path->duration,
+                         robot_with_q0(arm, path->configurations[0]), *obstacles, path_task(*path, TaskSpace::xyz));
+  }
+  no_case_found(c, "options.obstacles, options.obstacle_size or options.clearance");
+}
+
+}  // namespace rrlab

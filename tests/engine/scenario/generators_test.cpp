@@ -1,0 +1,240 @@
+#include "scenario/generators.hpp"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <functional>
+#include <iostream>
+#include <sstream>
+
+#include "collision/collision_world.hpp"
+#include "kinematics/kinematics.hpp"
+#include "scenario/generator_clearance.hpp"
+#include "scenario/scenario.hpp"
+#include "sim/simulator.hpp"
+
+namespace rrlab {
+namespace {
+
+using nlohmann::json;
+
+// What every generated case guarantees; "" when it does, else the first problem.
+std::string case_problem(const json& doc, const std::string& family, int index) {
+  Scenario sc;
+  try {
+    sc = parse_scenario(doc);
+  } catch (const ScenarioError& e) {
+    return std::string("does not parse: ") + e.what();
+  }
+  if (sc.name != family + "-" + std::to_string(index)) return "name " + sc.name;
+  if (sc.description.find(family) == std::string::npos) return "description does not name the family";
+  // start collision-free, by the engine's collision code, obstacles at t = 0
+  KinematicsData kin(sc.model);
+  forward_kinematics(sc.model, sc.q0, kin);
+  Scene scene = sc.scene;
+  scene.advance_to(0.0);
+  CollisionWorld world(sc.model, scene);
+  DistanceTable distances;
+  world.compute(kin, distances);
+  if (!(distances.min_distance > 0)) return "start collides: min distance " + std::to_string(distances.min_distance);
+  for (int i = 0; i < sc.model.dof(); ++i)
+    if (sc.q0[i] < sc.model.limits.lower[i] || sc.q0[i] > sc.model.limits.upper[i])
+      return "q0[" + std::to_string(i) + "] outside the limits";
+  // the path starts at the start's hand; every waypoint within reach of the base
+  const std::vector<Eigen::Vector3d>& points = sc.task.trajectory.points;
+  if (sc.task.trajectory.type != TrajectoryType::polyline || points.size() < 2) return "not a polyline";
+  if ((points[0] - kin.end_effector().translation()).norm() > 1e-5) return "path does not start at the hand";
+  const Eigen::Vector3d base = sc.model.base.translation();
+  for (size_t i = 0; i < points.size(); ++i)
+    if ((points[i] - base).norm() > sc.model.reach()) return "waypoint " + std::to_string(i) + " beyond reach";
+  return "";
+}
+
+// Static obstacles keep off the hand's path (a capsule of the hand link's radius).
+std::string path_blocked(const json& doc) {
+  const Scenario sc = parse_scenario(doc);
+  const auto path = path_capsules(sc.task.trajectory.points, sc.model.links.back().radius);
+  for (const Obstacle& o : sc.scene.obstacles)
+    if (!o.moving() && capsules_clearance(path, o) <= 0) return "obstacle " + o.id + " touches the path";
+  return "";
+}
+
+struct FamilyRun {
+  int cases = 0;
+  double ms_per_case = 0;
+};
+
+// Generates `cases` cases under seed 7, checks each with `check` (and the
+// common guarantees), reports the first problem and the generation time.
+FamilyRun check_family(const std::string& family, int cases, const json& options,
+                       const std::function<std::string(const json&)>& check = nullptr) {
+  int failures = 0;
+  std::string first;
+  double generation_ms = 0;
+  for (int index = 0; index < cases; ++index) {
+    const auto start = std::chrono::steady_clock::now();
+    json doc;
+    try {
+      doc = generate_scenario(family, options, 7, index);
+    } catch (const std::exception& e) {
+      ++failures;
+      if (first.empty()) first = "case " + std::to_string(index) + " throws: " + e.what();
+      continue;
+    }
+    generation_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    std::string problem = case_problem(doc, family, index);
+    if (problem.empty() && check) problem = check(doc);
+    if (!problem.empty()) {
+      ++failures;
+      if (first.empty()) first = "case " + std::to_string(index) + ": " + problem + "\n" + doc.dump();
+    }
+  }
+  EXPECT_EQ(failures, 0) << family << ": " << first;
+  const FamilyRun run{cases, generation_ms / cases};
+  std::cout << "[ generated ] " << family << ": " << cases << " cases, " << run.ms_per_case << " ms per case\n";
+  return run;
+}
+
+TEST(Generators, ListsTheFamilies) {
+  EXPECT_EQ(generator_families(),
+            (std::vector<std::string>{"planar_clutter", "planar_limits", "narrow_passage", "spatial_clutter",
+                                      "moving_obstacles"}));
+}
+
+TEST(Generators, PlanarClutterCasesAreValid) {
+  check_family("planar_clutter", 1000, json::object(), path_blocked);
+}
+
+TEST(Generators, NarrowPassageCasesAreValid) {
+  check_family("narrow_passage", 1000, json::object(), [](const json& doc) -> std::string {
+    if (doc["obstacles"].size() != 2) return "not two walls";
+    return path_blocked(doc);
+  });
+}
+
+TEST(Generators, SpatialClutterCasesAreValid) {
+  check_family("spatial_clutter", 1000, json::object(), [](const json& doc) -> std::string {
+    if (doc["task"]["space"] != "xyz" || doc["robot"]["kind"] != "dh" || doc["robot"]["links"].size() != 7)
+      return "not a 7-DOF DH arm on an xyz task";
+    return path_blocked(doc);
+  });
+}
+
+TEST(Generators, MovingObstaclesCasesAreValid) {
+  check_family("moving_obstacles", 1000, json::object(), [](const json& doc) -> std::string {
+    const size_t n = doc["obstacles"].size();
+    if (n < 1 || n > 4) return "obstacle count " + std::to_string(n);
+    for (const json& o : doc["obstacles"])
+      if (!o.contains("velocity")) return "obstacle " + o["id"].get<std::string>() + " does not move";
+    return "";
+  });
+}
+
+// 200 cases, not 1000: each is checked here by a full pinv run (and the
+// generator already ran pinv on it, and on every rejected candidate).
+TEST(Generators, PlanarLimitsCasesMakePinvViolateALimit) {
+  check_family("planar_limits", 200, json::object(), [](const json& doc) -> std::string {
+    const Scenario sc = parse_scenario(doc);
+    if (!sc.model.limits.has_position()) return "no joint limits";
+    Simulator sim(sc, "pinv");
+    while (!sim.done()) sim.step();
+    if (!sim.summary().joint_limit_violated) return "pinv stays inside the limits";
+    return "";
+  });
+}
+
+// Options away from the defaults keep the guarantees (100 cases each).
+TEST(Generators, NonDefaultOptionsKeepTheGuarantees) {
+  check_family("planar_clutter", 100, {{"obstacles", {8, 8}}, {"obstacle_size", {0.2, 0.3}}, {"clearance", 0.2}},
+               path_blocked);
+  check_family("planar_clutter", 100, {{"dof", 3}, {"waypoints", 10}, {"time_law", "quintic"}}, path_blocked);
+  check_family("planar_clutter", 100, {{"dof", 64}, {"link_length", {0.01, 0.02}}, {"link_radius", 0.004}},
+               path_blocked);
+  check_family("narrow_passage", 100, {{"gap_width", 0.041}, {"dof", 3}, {"waypoints", {4, 6}}}, path_blocked);
+  check_family("planar_limits", 50, {{"obstacles", {3, 5}}, {"limit_deg", {120, 180}}}, path_blocked);
+  check_family("spatial_clutter", 100, {{"obstacles", 16}, {"length_scale", {0.5, 2}}, {"a_offset", 0.1}},
+               path_blocked);
+  check_family("moving_obstacles", 100, {{"obstacles", 4}, {"obstacle_speed", {0.01, 3}}, {"shapes", {"point"}}});
+}
+
+TEST(Generators, SameInputsGiveTheSameDocument) {
+  const json options = {{"dof", {4, 9}}, {"time_law", "quintic"}};
+  for (const std::string& family : generator_families()) {
+    const json opts = family == "spatial_clutter" ? json{{"time_law", "quintic"}} : options;
+    for (int index : {0, 1, 31}) {
+      const json doc = generate_scenario(family, opts, 42, index);
+      EXPECT_EQ(doc.dump(), generate_scenario(family, opts, 42, index).dump()) << family << " " << index;
+      EXPECT_NE(doc.dump(), generate_scenario(family, opts, 42, index + 1).dump()) << family << " " << index;
+      EXPECT_NE(doc.dump(), generate_scenario(family, opts, 43, index).dump()) << family << " " << index;
+      EXPECT_EQ(doc["task"]["trajectory"]["time_law"], "quintic");
+    }
+  }
+}
+
+TEST(Generators, OptionsAreHonoured) {
+  const json doc = generate_scenario(
+      "planar_clutter", {{"dof", 7}, {"obstacles", {3, 3}}, {"shapes", {"box"}}, {"link_length", 0.5}, {"dt", 0.02},
+                         {"speed", 0.5}},
+      1, 5);
+  EXPECT_EQ(doc["robot"]["links"].size(), 7u);
+  for (const json& link : doc["robot"]["links"]) EXPECT_EQ(link["length"], 0.5);
+  ASSERT_EQ(doc["obstacles"].size(), 3u);
+  for (const json& o : doc["obstacles"]) EXPECT_EQ(o["shape"], "box");
+  EXPECT_EQ(doc["dt"], 0.02);
+  const Scenario sc = parse_scenario(doc);
+  double length = 0;
+  for (size_t i = 1; i < sc.task.trajectory.points.size(); ++i)
+    length += (sc.task.trajectory.points[i] - sc.task.trajectory.points[i - 1]).norm();
+  EXPECT_NEAR(sc.duration, length / 0.5, 0.02 + 1e-9);  // rounded up to whole steps
+
+  const json passage = generate_scenario("narrow_passage", {{"gap_width", 0.1}, {"link_radius", 0.03}}, 1, 2);
+  EXPECT_NE(passage["description"].get<std::string>().find("0.1000 m wide"), std::string::npos);
+  const json limits = generate_scenario("planar_limits", {{"limit_deg", 90}, {"dof", 5}}, 1, 2);
+  for (const json& upper : limits["robot"]["limits"]["upper"]) EXPECT_NEAR(upper.get<double>(), M_PI / 2, 1e-4);
+}
+
+void expect_error(const std::string& family, const json& options, const std::string& path,
+                  const std::string& message) {
+  try {
+    generate_scenario(family, options, 1, 0);
+    ADD_FAILURE() << family << " " << options.dump() << ": no error";
+  } catch (const ScenarioError& e) {
+    EXPECT_EQ(e.path(), path) << e.what();
+    EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+  }
+}
+
+TEST(Generators, BadOptionsNameTheirPath) {
+  expect_error("planar_clutter", {{"dofs", 5}}, "options.dofs", "unknown option of planar_clutter");
+  expect_error("planar_clutter", {{"dof", {2, 5}}}, "options.dof[0]", "allowed range [3, 64]");
+  expect_error("planar_clutter", {{"dof", {8, 5}}}, "options.dof", "min 8 is above max 5");
+  expect_error("planar_clutter", {{"dof", 4.5}}, "options.dof", "integer");
+  expect_error("planar_clutter", {{"dof", "7"}}, "options.dof", "must be a number or [min, max]");
+  expect_error("planar_clutter", {{"clearance", -1}}, "options.clearance", "allowed range [0, 1]");
+  expect_error("planar_clutter", {{"time_law", "cubic"}}, "options.time_law", "linear, quintic");
+  expect_error("planar_clutter", {{"shapes", {"cone"}}}, "options.shapes[0]", "sphere, box, polygon, point");
+  expect_error("planar_clutter", {{"link_radius", 0.2}}, "options.link_radius", "below half the shortest link");
+  expect_error("planar_clutter", json::array(), "options", "must be an object");
+  expect_error("spatial_clutter", {{"shapes", {"polygon"}}}, "options.shapes[0]", "sphere, box");
+  expect_error("spatial_clutter", {{"dof", 7}}, "options.dof", "unknown option of spatial_clutter");
+  expect_error("narrow_passage", {{"gap_width", 0.03}}, "options.gap_width", "allowed range");
+  expect_error("planar_limits", {{"limit_deg", {60, 200}}}, "options.limit_deg[1]", "[10, 180]");
+  expect_error("moving_obstacles", {{"obstacles", 0}}, "options.obstacles", "at least 1");
+  expect_error("moving_obstacles", {{"obstacle_speed", 0}}, "options.obstacle_speed", "allowed range [0.001, 100]");
+  expect_error("planar_limits", {{"limit_deg", {10, 12}}, {"dof", 3}}, "generator", "loosen options.limit_deg");
+  expect_error("torus_maze", json::object(), "generator", "unknown family");
+  try {
+    generate_scenario("planar_clutter", json::object(), 1, -1);
+    ADD_FAILURE() << "negative index accepted";
+  } catch (const ScenarioError& e) {
+    EXPECT_EQ(e.path(), "index");
+  }
+}
+
+TEST(Generators, NullOptionsAreTheDefaults) {
+  EXPECT_EQ(generate_scenario("planar_clutter", json(), 3, 4).dump(),
+            generate_scenario("planar_clutter", json::object(), 3, 4).dump());
+}
+
+}  // namespace
+}  // namespace rrlab
