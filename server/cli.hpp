@@ -34,10 +34,40 @@ struct ReplayOptions {
   bool verify = false;
 };
 
+struct SweepOptions {
+  std::string spec_file;
+  std::string db;
+  int jobs = 0;  // 0: one per hardware thread
+  std::optional<std::string> shard;  // I/N
+  std::optional<int> shards;         // N, the index from the array job's environment
+  std::optional<std::string> out_csv;
+  bool frames = false;
+  std::optional<std::string> scenarios_dir;  // catalogue names
+};
+
+struct MergeOptions {
+  std::string out_db;
+  std::vector<std::string> in_dbs;
+};
+
+struct ReportOptions {
+  std::string db;
+  std::optional<std::string> sweep;
+  std::string format = "md";
+  std::optional<std::string> out;
+};
+
 // Exit codes: 0 success, 1 verification failed (replay), 2 bad input (message on stderr).
 int run(const RunOptions& options);
 int methods();
 int serve(const ServeOptions& options);
 int replay(const ReplayOptions& options);
+// sweep: 0 every run stored, 1 some runs failed (named on stderr), 2 bad input,
+// 130 interrupted (SIGINT/SIGTERM: the runs under way were finished and stored).
+int sweep(const SweepOptions& options);
+int merge(const MergeOptions& options);
+int report(const ReportOptions& options);
+// A directory given on the command line, else ./NAME, else the source tree's.
+std::string find_dir(const std::optional<std::string>& given, const char* name);
 
 }  // namespace rrlab::cli

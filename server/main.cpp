@@ -1,4 +1,4 @@
-// rrlab: command line front end (serve, run, replay, methods).
+// rrlab: command line front end (serve, run, replay, methods, sweep, merge, report).
 #include <CLI/CLI.hpp>
 
 #include "cli.hpp"
@@ -38,6 +38,31 @@ int main(int argc, char** argv) {
 
   app.add_subcommand("methods", "print every method with its parameter specs as JSON");
 
+  rrlab::cli::SweepOptions sweep;
+  CLI::App* sweep_cmd = app.add_subcommand("sweep", "run a sweep spec's runs (resumable, shardable) into a database");
+  sweep_cmd->add_option("spec", sweep.spec_file, "sweep spec JSON file")->required();
+  sweep_cmd->add_option("--db", sweep.db, "SQLite database file (created if missing)")->required();
+  sweep_cmd->add_option("--jobs", sweep.jobs, "worker threads (default: one per hardware thread)")
+      ->check(CLI::Range(1, 1024));
+  sweep_cmd->add_option("--shard", sweep.shard, "run shard I of N (0-based): the runs whose position mod N is I");
+  sweep_cmd->add_option("--shards", sweep.shards, "N shards, this one's index from SLURM_ARRAY_TASK_ID or JOB_COMPLETION_INDEX")
+      ->check(CLI::Range(1, 1000000));
+  sweep_cmd->add_option("--out", sweep.out_csv, "write the shard's run summaries as CSV to this file");
+  sweep_cmd->add_flag("--frames", sweep.frames, "store every run's frames too (default: summaries only)");
+  sweep_cmd->add_option("--scenarios", sweep.scenarios_dir, "directory of catalogue scenarios (NAME.json)");
+
+  rrlab::cli::MergeOptions merge;
+  CLI::App* merge_cmd = app.add_subcommand("merge", "merge shard databases' sweep runs into one database");
+  merge_cmd->add_option("out", merge.out_db, "database to merge into (created if missing)")->required();
+  merge_cmd->add_option("in", merge.in_dbs, "databases to merge from")->required();
+
+  rrlab::cli::ReportOptions report;
+  CLI::App* report_cmd = app.add_subcommand("report", "report a database's sweeps (markdown, HTML or CSV)");
+  report_cmd->add_option("db", report.db, "SQLite database file")->required();
+  report_cmd->add_option("--sweep", report.sweep, "only this sweep");
+  report_cmd->add_option("--format", report.format, "md, html or csv")->check(CLI::IsMember({"md", "html", "csv"}));
+  report_cmd->add_option("--out", report.out, "write to this file (default: stdout)");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -47,5 +72,8 @@ int main(int argc, char** argv) {
   if (serve_cmd->parsed()) return rrlab::cli::serve(serve);
   if (run_cmd->parsed()) return rrlab::cli::run(run);
   if (replay_cmd->parsed()) return rrlab::cli::replay(replay);
+  if (sweep_cmd->parsed()) return rrlab::cli::sweep(sweep);
+  if (merge_cmd->parsed()) return rrlab::cli::merge(merge);
+  if (report_cmd->parsed()) return rrlab::cli::report(report);
   return rrlab::cli::methods();
 }

@@ -2,6 +2,8 @@
 
 #include <sqlite3.h>
 
+#include <ctime>
+
 namespace rrlab::storage {
 
 namespace {
@@ -66,6 +68,15 @@ std::string Statement::column_text(int column) const {
 std::string_view Statement::column_blob(int column) const {
   const auto* bytes = static_cast<const char*>(sqlite3_column_blob(stmt_, column));
   return bytes ? std::string_view(bytes, size_t(sqlite3_column_bytes(stmt_, column))) : std::string_view();
+}
+
+std::string utc_now() {
+  const std::time_t now = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&now, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
 }
 
 Database::Database(const std::string& path) {

@@ -17,6 +17,9 @@ class StorageError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// Now in UTC, ISO 8601 (the created columns).
+std::string utc_now();
+
 class Statement {
  public:
   Statement(sqlite3* db, std::string_view sql);

@@ -1,7 +1,6 @@
 #include "storage/run_store.hpp"
 
 #include <cmath>
-#include <ctime>
 #include <limits>
 
 #include "storage/database.hpp"
@@ -10,15 +9,6 @@
 namespace rrlab::storage {
 
 namespace {
-
-std::string utc_now() {
-  const std::time_t now = std::time(nullptr);
-  std::tm tm{};
-  gmtime_r(&now, &tm);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
-  return buf;
-}
 
 constexpr const char* kRunColumns =
     "id, scenario_name, scenario, method, params, seed, mode, created, status, frames, summary, dof, "

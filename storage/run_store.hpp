@@ -49,6 +49,29 @@ struct StoredFrame {
   std::string data;  // frame_codec.hpp
 };
 
+// A sweep run's identity and verdict (table sweep_runs).
+struct SweepRunRow {
+  std::string sweep, key, scenario_key, config_key, family;
+  bool success = false;
+};
+
+// A run stored whole, once it has ended: status "completed".
+struct FinishedRun {
+  NewRun run;
+  std::string summary_json;
+  std::optional<std::string> created;  // kept when copying a stored run; now otherwise
+  std::vector<StoredFrame> frames;     // may be empty
+  std::vector<StoredEvent> events;
+};
+
+// A stored sweep run with what reports and merges read of its run.
+struct SweepRunEntry {
+  SweepRunRow row;
+  std::int64_t run_id = 0;
+  std::uint64_t seed = 0;
+  std::optional<std::string> summary_json;
+};
+
 struct RunFilter {
   std::optional<std::string> scenario, method, status;
   int limit = 100, offset = 0;
@@ -90,6 +113,14 @@ class RunStore {
   bool put_scenario(const std::string& name, const std::string& json);  // false: exists
   std::optional<std::string> scenario(const std::string& name);
   std::vector<std::string> scenario_names();
+
+  // Sweeps (run_store_sweeps.cpp). Stores the run, its frames and events and
+  // its sweep_runs row in one transaction; nullopt, storing nothing, when
+  // (row.sweep, row.key) is stored already.
+  std::optional<std::int64_t> add_sweep_run(const FinishedRun& run, const SweepRunRow& row);
+  std::vector<std::string> sweep_keys(const std::string& sweep);
+  // Every sweep's runs, or one sweep's, ordered by sweep then key.
+  std::vector<SweepRunEntry> sweep_runs(const std::optional<std::string>& sweep);
 
   std::string integrity_check();  // "ok" when sound
 

@@ -51,3 +51,20 @@ CREATE TABLE IF NOT EXISTS scenarios (
   json     TEXT NOT NULL,
   created  TEXT NOT NULL
 );
+
+-- Sweeps (rrlab sweep): one row per stored sweep run. (sweep, key) is the
+-- run's identity across invocations, shards and merges; success is judged by
+-- the sweep spec's criteria when the run is stored, so reports need no spec.
+-- Added after version 1 shipped: CREATE ... IF NOT EXISTS adds it to existing
+-- databases at open.
+CREATE TABLE IF NOT EXISTS sweep_runs (
+  sweep        TEXT NOT NULL,
+  key          TEXT NOT NULL,                  -- sweep/scenario_key/config_key/seed
+  run_id       INTEGER NOT NULL REFERENCES runs(id) ON DELETE CASCADE,
+  scenario_key TEXT NOT NULL,                  -- file:NAME | gen:FAMILY:SEED:INDEX
+  config_key   TEXT NOT NULL,                  -- method{param=value,...}
+  family       TEXT NOT NULL,                  -- generator family, or "file"
+  success      INTEGER NOT NULL,
+  PRIMARY KEY (sweep, key)
+) WITHOUT ROWID;
+CREATE INDEX IF NOT EXISTS sweep_runs_run ON sweep_runs(run_id);

@@ -14,18 +14,6 @@
 
 namespace rrlab::cli {
 
-namespace {
-// A directory given on the command line, else ./NAME, else the source tree's.
-std::string find_dir(const std::optional<std::string>& given, const char* name) {
-  if (given) return *given;
-  std::error_code ec;
-  if (std::filesystem::is_directory(name, ec)) return name;
-  const std::string source = std::string(RRLAB_SOURCE_DIR) + "/" + name;
-  if (std::filesystem::is_directory(source, ec)) return source;
-  return name;
-}
-}  // namespace
-
 int serve(const ServeOptions& options) {
   using namespace rrlab::server;
   try {

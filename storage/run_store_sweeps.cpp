@@ -1,0 +1,92 @@
+// RunStore's sweep functions: a whole run and its sweep_runs row stored in
+// one transaction (resume and merge rely on never seeing half a run).
+#include <cmath>
+
+#include "storage/database.hpp"
+#include "storage/run_store.hpp"
+
+namespace rrlab::storage {
+
+std::optional<std::int64_t> RunStore::add_sweep_run(const FinishedRun& finished, const SweepRunRow& row) {
+  std::lock_guard lock(mutex_);
+  Transaction tx(*db_);
+  Statement exists = db_->prepare("SELECT 1 FROM sweep_runs WHERE sweep = ? AND key = ?");
+  exists.bind(1, row.sweep).bind(2, row.key);
+  if (exists.step()) return std::nullopt;  // rolled back: nothing was written
+
+  const NewRun& run = finished.run;
+  Statement insert_run = db_->prepare(
+      "INSERT INTO runs(scenario_name, scenario, method, params, seed, mode, created, status, frames, summary, "
+      "dof, diagnostic_names, source_run, compare_group) VALUES (?,?,?,?,?,?,?,'completed',?,?,?,?,?,?)");
+  insert_run.bind(1, run.scenario_name).bind(2, run.scenario_json).bind(3, run.method).bind(4, run.params_json);
+  insert_run.bind(5, std::int64_t(run.seed)).bind(6, run.mode).bind(7, finished.created.value_or(utc_now()));
+  insert_run.bind(8, std::int64_t(finished.frames.size())).bind(9, finished.summary_json).bind(10, run.dof);
+  insert_run.bind(11, run.diagnostic_names_json);
+  if (run.source_run) insert_run.bind(12, *run.source_run); else insert_run.bind_null(12);
+  if (run.compare_group) insert_run.bind(13, *run.compare_group); else insert_run.bind_null(13);
+  insert_run.step();
+  const std::int64_t id = db_->last_insert_id();
+
+  if (!finished.frames.empty()) {
+    Statement insert = db_->prepare(
+        "INSERT INTO frames(run_id, seq, step, t, task_error, min_distance, collided, data) VALUES (?,?,?,?,?,?,?,?)");
+    for (const StoredFrame& f : finished.frames) {
+      insert.bind(1, id).bind(2, f.seq).bind(3, f.step).bind(4, f.t).bind(5, f.task_error);
+      if (std::isfinite(f.min_distance)) insert.bind(6, f.min_distance); else insert.bind_null(6);
+      insert.bind(7, f.collided ? 1 : 0).bind_blob(8, f.data);
+      insert.step();
+      insert.reset();
+    }
+  }
+  if (!finished.events.empty()) {
+    Statement insert = db_->prepare("INSERT INTO events(run_id, seq, step, kind, payload) VALUES (?,?,?,?,?)");
+    for (const StoredEvent& e : finished.events) {
+      insert.bind(1, id).bind(2, e.seq).bind(3, e.step).bind(4, e.kind).bind(5, e.payload_json);
+      insert.step();
+      insert.reset();
+    }
+  }
+  db_->prepare(
+         "INSERT INTO sweep_runs(sweep, key, run_id, scenario_key, config_key, family, success) "
+         "VALUES (?,?,?,?,?,?,?)")
+      .bind(1, row.sweep)
+      .bind(2, row.key)
+      .bind(3, id)
+      .bind(4, row.scenario_key)
+      .bind(5, row.config_key)
+      .bind(6, row.family)
+      .bind(7, row.success ? 1 : 0)
+      .step();
+  tx.commit();
+  return id;
+}
+
+std::vector<std::string> RunStore::sweep_keys(const std::string& sweep) {
+  std::lock_guard lock(read_mutex_);
+  Statement s = read_db_->prepare("SELECT key FROM sweep_runs WHERE sweep = ? ORDER BY key");
+  s.bind(1, sweep);
+  std::vector<std::string> out;
+  while (s.step()) out.push_back(s.column_text(0));
+  return out;
+}
+
+std::vector<SweepRunEntry> RunStore::sweep_runs(const std::optional<std::string>& sweep) {
+  std::lock_guard lock(read_mutex_);
+  Statement s = read_db_->prepare(
+      "SELECT w.sweep, w.key, w.scenario_key, w.config_key, w.family, w.success, w.run_id, r.seed, r.summary "
+      "FROM sweep_runs w JOIN runs r ON r.id = w.run_id WHERE (?1 IS NULL OR w.sweep = ?1) ORDER BY w.sweep, w.key");
+  if (sweep) s.bind(1, *sweep); else s.bind_null(1);
+  std::vector<SweepRunEntry> out;
+  while (s.step()) {
+    SweepRunEntry e;
+    e.row = {s.column_text(0), s.column_text(1), s.column_text(2), s.column_text(3), s.column_text(4),
+             s.column_int(5) != 0};
+    e.run_id = s.column_int(6);
+    e.seed = std::uint64_t(s.column_int(7));
+    if (!s.is_null(8)) e.summary_json = s.column_text(8);
+    out.push_back(std::move(e));
+  }
+  return out;
+}
+
+}  // namespace rrlab::storage

@@ -1,0 +1,27 @@
+// One sweep case run to the end and described for storage: the scenario as
+// run (generated if need be, with the case's seed and method configuration
+// written into its JSON so the stored record reproduces it), its summary,
+// the success verdict and, on request, its frames.
+#pragma once
+
+#include "sim/frame.hpp"
+#include "storage/run_store.hpp"
+#include "sweep/sweep_expansion.hpp"
+
+namespace rrlab::sweep {
+
+struct CaseResult {
+  storage::FinishedRun run;
+  storage::SweepRunRow row;
+  Summary summary;
+};
+
+// The scenario of a case: the file's or the generated one, with the case's
+// seed and method configuration (parameters not set keep the method's
+// defaults; the scenario's own method parameters do not carry over).
+Scenario scenario_of_case(const SweepSpec& spec, const SweepCase& c);
+
+// Throws what the engine throws (ScenarioError, ParamError) for a case it cannot run.
+CaseResult run_case(const SweepSpec& spec, const SweepCase& c, bool with_frames);
+
+}  // namespace rrlab::sweep

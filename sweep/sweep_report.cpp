@@ -1,0 +1,147 @@
+#include "sweep/sweep_report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <stdexcept>
+#include <tuple>
+
+namespace rrlab::sweep {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// What a report reads of one run's stored summary.
+struct RunFacts {
+  const storage::SweepRunEntry* entry;
+  double min_distance = kInf;  // null (no obstacles, or not finite): +inf
+  double max_tracking_error = std::numeric_limits<double>::quiet_NaN();
+  bool joint_limit_violated = false;
+  long nonfinite_steps = 0;
+  double step_p50 = 0, step_p99 = 0;
+};
+
+double number_or(const nlohmann::json& j, const char* key, double def) {
+  return j.contains(key) && j[key].is_number() ? j[key].get<double>() : def;
+}
+
+RunFacts facts_of(const storage::SweepRunEntry& e) {
+  RunFacts f{&e};
+  if (!e.summary_json) return f;
+  nlohmann::json s;
+  try {
+    s = nlohmann::json::parse(*e.summary_json);
+  } catch (const nlohmann::json::parse_error&) {
+    throw std::runtime_error("run " + std::to_string(e.run_id) + " (" + e.row.key + "): its summary is not JSON");
+  }
+  f.min_distance = number_or(s, "min_distance", kInf);
+  f.max_tracking_error = number_or(s, "max_tracking_error", std::numeric_limits<double>::quiet_NaN());
+  f.joint_limit_violated = s.value("joint_limit_violated", false);
+  f.nonfinite_steps = s.value("nonfinite_steps", 0L);
+  if (s.contains("step_us") && s["step_us"].is_object()) {
+    f.step_p50 = number_or(s["step_us"], "p50", 0);
+    f.step_p99 = number_or(s["step_us"], "p99", 0);
+  }
+  return f;
+}
+
+GroupStats group_stats(const std::vector<const RunFacts*>& runs) {
+  GroupStats g;
+  const storage::SweepRunRow& row = runs.front()->entry->row;
+  g.sweep = row.sweep;
+  g.config_key = row.config_key;
+  g.family = row.family;
+  g.n = runs.size();
+  std::vector<double> distances, errors, p50s, p99s;
+  size_t limits = 0, nonfinite = 0;
+  for (const RunFacts* f : runs) {
+    g.successes += f->entry->row.success ? 1 : 0;
+    if (std::isfinite(f->min_distance)) distances.push_back(f->min_distance);
+    if (!std::isnan(f->max_tracking_error)) errors.push_back(f->max_tracking_error);
+    limits += f->joint_limit_violated ? 1 : 0;
+    nonfinite += f->nonfinite_steps > 0 ? 1 : 0;
+    p50s.push_back(f->step_p50);
+    p99s.push_back(f->step_p99);
+  }
+  g.success_rate = double(g.successes) / double(g.n);
+  g.success_interval = wilson_interval(g.successes, g.n);
+  g.median_min_distance = quantile(distances, 0.5);
+  g.p10_min_distance = quantile(distances, 0.1);
+  g.median_max_tracking_error = quantile(errors, 0.5);
+  g.joint_limit_share = double(limits) / double(g.n);
+  g.nonfinite_share = double(nonfinite) / double(g.n);
+  g.step_us_p50 = quantile(p50s, 0.5);
+  g.step_us_p99 = quantile(p99s, 0.5);
+  return g;
+}
+
+int compare_distance(double a, double b) {
+  if (a == b || std::abs(a - b) <= kDistanceTie || (std::isnan(a) && std::isnan(b))) return 0;
+  if (std::isnan(b)) return 1;
+  if (std::isnan(a)) return -1;
+  return a > b ? 1 : -1;
+}
+
+void tally(WinLossTie& t, int outcome) {
+  if (outcome > 0) ++t.wins;
+  else if (outcome < 0) ++t.losses;
+  else ++t.ties;
+}
+
+}  // namespace
+
+SweepReport build_report(const std::vector<storage::SweepRunEntry>& entries) {
+  std::vector<RunFacts> facts;
+  facts.reserve(entries.size());
+  for (const storage::SweepRunEntry& e : entries) facts.push_back(facts_of(e));
+
+  SweepReport report;
+  std::map<std::tuple<std::string, std::string, std::string>, std::vector<const RunFacts*>> groups;
+  std::map<std::string, std::map<std::string, std::vector<const RunFacts*>>> by_config;  // sweep -> config -> runs
+  // sweep -> (scenario key, seed) -> config -> run
+  std::map<std::string, std::map<std::pair<std::string, std::uint64_t>, std::map<std::string, const RunFacts*>>> cases;
+  for (const RunFacts& f : facts) {
+    const storage::SweepRunRow& row = f.entry->row;
+    groups[{row.sweep, row.config_key, row.family}].push_back(&f);
+    by_config[row.sweep][row.config_key].push_back(&f);
+    cases[row.sweep][{row.scenario_key, f.entry->seed}][row.config_key] = &f;
+  }
+  for (const auto& [key, runs] : groups) report.groups.push_back(group_stats(runs));
+
+  for (const auto& [sweep, configs] : by_config) {
+    report.sweeps.push_back(sweep);
+    std::vector<RankEntry> ranking;
+    for (const auto& [config, runs] : configs) {
+      GroupStats all = group_stats(runs);
+      ranking.push_back({sweep, config, all.n, all.success_rate, all.median_max_tracking_error});
+    }
+    std::stable_sort(ranking.begin(), ranking.end(), [](const RankEntry& x, const RankEntry& y) {
+      if (x.success_rate != y.success_rate) return x.success_rate > y.success_rate;
+      const double ex = std::isnan(x.median_max_tracking_error) ? kInf : x.median_max_tracking_error;
+      const double ey = std::isnan(y.median_max_tracking_error) ? kInf : y.median_max_tracking_error;
+      return ex < ey;
+    });
+    report.ranking.insert(report.ranking.end(), ranking.begin(), ranking.end());
+
+    for (auto a = configs.begin(); a != configs.end(); ++a) {
+      for (auto b = std::next(a); b != configs.end(); ++b) {
+        PairedComparison pair{sweep, a->first, b->first, 0, {}, {}};
+        for (const auto& [case_key, runs] : cases[sweep]) {
+          const auto ra = runs.find(a->first), rb = runs.find(b->first);
+          if (ra == runs.end() || rb == runs.end()) continue;
+          ++pair.cases;
+          tally(pair.success, int(ra->second->entry->row.success) - int(rb->second->entry->row.success));
+          tally(pair.min_distance, compare_distance(ra->second->min_distance, rb->second->min_distance));
+        }
+        report.pairs.push_back(pair);
+      }
+    }
+  }
+  return report;
+}
+
+}  // namespace rrlab::sweep

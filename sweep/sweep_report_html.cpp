@@ -1,0 +1,120 @@
+#include "sweep/sweep_report_html.hpp"
+
+#include <cstdio>
+#include <string>
+
+#include "sweep/sweep_report_text.hpp"
+
+namespace rrlab::sweep {
+
+namespace {
+
+std::string escape(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+std::string fixed(double value) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.1f", value);
+  return buf;
+}
+
+// Horizontal bars: one row per group, 0–100 % axis, interval whiskers.
+void success_chart(std::ostream& out, const SweepReport& report, const std::string& sweep) {
+  constexpr double kLabel = 320, kPlot = 480, kRow = 26, kTop = 24;
+  int rows = 0;
+  for (const GroupStats& g : report.groups) rows += g.sweep == sweep ? 1 : 0;
+  const double height = kTop + kRow * rows + 8;
+  out << "<svg role=\"img\" aria-label=\"success rate by method configuration and family\" width=\""
+      << fixed(kLabel + kPlot + 60) << "\" height=\"" << fixed(height) << "\" xmlns=\"http://www.w3.org/2000/svg\">\n";
+  for (int tick = 0; tick <= 100; tick += 25) {
+    const double x = kLabel + kPlot * tick / 100.0;
+    out << "<line x1=\"" << fixed(x) << "\" y1=\"" << fixed(kTop - 4) << "\" x2=\"" << fixed(x) << "\" y2=\""
+        << fixed(height - 8) << "\" stroke=\"#ddd\"/><text x=\"" << fixed(x) << "\" y=\"14\" font-size=\"11\" "
+        << "text-anchor=\"middle\" fill=\"#555\">" << tick << "%</text>\n";
+  }
+  int row = 0;
+  for (const GroupStats& g : report.groups) {
+    if (g.sweep != sweep) continue;
+    const double y = kTop + kRow * row++;
+    const double w = kPlot * g.success_rate, lo = kLabel + kPlot * g.success_interval.low,
+                 hi = kLabel + kPlot * g.success_interval.high, mid = y + kRow / 2 - 2;
+    out << "<text x=\"" << fixed(kLabel - 8) << "\" y=\"" << fixed(mid + 4) << "\" font-size=\"12\" "
+        << "text-anchor=\"end\">" << escape(g.config_key + " · " + g.family) << "</text>\n"
+        << "<rect x=\"" << fixed(kLabel) << "\" y=\"" << fixed(y + 4) << "\" width=\"" << fixed(w) << "\" height=\""
+        << fixed(kRow - 12) << "\" fill=\"#4a7fb5\"><title>" << escape(percent(g.success_rate) + " of " +
+                                                                         std::to_string(g.n) + ", 95% CI " +
+                                                                         percent(g.success_interval.low) + "–" +
+                                                                         percent(g.success_interval.high))
+        << "</title></rect>\n"
+        << "<path d=\"M" << fixed(lo) << " " << fixed(mid) << "H" << fixed(hi) << "M" << fixed(lo) << " "
+        << fixed(mid - 5) << "V" << fixed(mid + 5) << "M" << fixed(hi) << " " << fixed(mid - 5) << "V"
+        << fixed(mid + 5) << "\" stroke=\"#222\" stroke-width=\"1.5\" fill=\"none\"/>\n"
+        << "<text x=\"" << fixed(kLabel + kPlot + 6) << "\" y=\"" << fixed(mid + 4) << "\" font-size=\"11\">"
+        << percent(g.success_rate) << "</text>\n";
+  }
+  out << "</svg>\n";
+}
+
+}  // namespace
+
+void write_report_html(std::ostream& out, const SweepReport& report) {
+  out << "<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>rrlab sweep report</title>\n"
+      << "<style>body{font:14px/1.4 system-ui,sans-serif;margin:2em;color:#222}table{border-collapse:collapse;"
+         "margin:1em 0}th,td{border:1px solid #ccc;padding:3px 8px}td.n{text-align:right}th{background:#f3f3f3}"
+         "p.note{color:#555;max-width:60em}</style></head><body>\n<h1>Sweep report</h1>\n"
+      << "<p class=\"note\">Success as judged by each sweep's criteria when the run was stored; bars show the success "
+         "rate, whiskers its 95 % Wilson score interval. Min distance over runs with obstacles (p10: 10th "
+         "percentile). Step time: median over runs of each run's step_us.p50 and of each run's step_us.p99 (wall "
+         "clock, µs). Paired comparisons count A's wins/losses/ties against B on the same cases (scenario and "
+         "seed): on success, and on min distance (larger wins, ties within 1e-9).</p>\n";
+  if (report.sweeps.empty()) out << "<p>No sweep runs stored.</p>\n";
+  for (const std::string& sweep : report.sweeps) {
+    out << "<h2>" << escape(sweep) << "</h2>\n";
+    success_chart(out, report, sweep);
+    out << "<table><tr><th>method config</th><th>family</th><th>n</th><th>success</th><th>95% CI</th>"
+           "<th>min dist median</th><th>min dist p10</th><th>max track err median</th><th>joint-limit viol.</th>"
+           "<th>non-finite</th><th>step µs p50</th><th>step µs p99</th></tr>\n";
+    for (const GroupStats& g : report.groups) {
+      if (g.sweep != sweep) continue;
+      out << "<tr><td>" << escape(g.config_key) << "</td><td>" << escape(g.family) << "</td><td class=\"n\">" << g.n
+          << "</td><td class=\"n\">" << percent(g.success_rate) << "</td><td>" << percent(g.success_interval.low)
+          << "–" << percent(g.success_interval.high) << "</td><td class=\"n\">" << short_number(g.median_min_distance)
+          << "</td><td class=\"n\">" << short_number(g.p10_min_distance) << "</td><td class=\"n\">"
+          << short_number(g.median_max_tracking_error) << "</td><td class=\"n\">" << percent(g.joint_limit_share)
+          << "</td><td class=\"n\">" << percent(g.nonfinite_share) << "</td><td class=\"n\">"
+          << short_number(g.step_us_p50) << "</td><td class=\"n\">" << short_number(g.step_us_p99) << "</td></tr>\n";
+    }
+    out << "</table>\n<h3>Ranking</h3>\n<table><tr><th>rank</th><th>method config</th><th>n</th><th>success</th>"
+           "<th>max track err median</th></tr>\n";
+    int rank = 0;
+    for (const RankEntry& r : report.ranking) {
+      if (r.sweep != sweep) continue;
+      out << "<tr><td class=\"n\">" << ++rank << "</td><td>" << escape(r.config_key) << "</td><td class=\"n\">" << r.n
+          << "</td><td class=\"n\">" << percent(r.success_rate) << "</td><td class=\"n\">"
+          << short_number(r.median_max_tracking_error) << "</td></tr>\n";
+    }
+    out << "</table>\n<h3>Paired comparisons</h3>\n<table><tr><th>A</th><th>B</th><th>cases</th>"
+           "<th>success W/L/T</th><th>min distance W/L/T</th></tr>\n";
+    for (const PairedComparison& p : report.pairs) {
+      if (p.sweep != sweep) continue;
+      out << "<tr><td>" << escape(p.a) << "</td><td>" << escape(p.b) << "</td><td class=\"n\">" << p.cases
+          << "</td><td>" << p.success.wins << "/" << p.success.losses << "/" << p.success.ties << "</td><td>"
+          << p.min_distance.wins << "/" << p.min_distance.losses << "/" << p.min_distance.ties << "</td></tr>\n";
+    }
+    out << "</table>\n";
+  }
+  out << "</body></html>\n";
+}
+
+}  // namespace rrlab::sweep

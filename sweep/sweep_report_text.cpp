@@ -1,0 +1,104 @@
+#include "sweep/sweep_report_text.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+namespace rrlab::sweep {
+
+namespace {
+
+std::string csv_number(double value) {
+  if (std::isnan(value)) return "";
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.10g", value);
+  return buf;
+}
+
+// CSV field: quoted when it holds a comma, quote or newline.
+std::string csv_field(const std::string& text) {
+  if (text.find_first_of(",\"\n") == std::string::npos) return text;
+  std::string out = "\"";
+  for (char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+// Markdown cell: a | would end the cell.
+std::string cell(const std::string& text) {
+  std::string out;
+  for (char c : text) out += c == '|' ? std::string("\\|") : std::string(1, c);
+  return out;
+}
+
+std::string wlt(const WinLossTie& t) {
+  return std::to_string(t.wins) + "/" + std::to_string(t.losses) + "/" + std::to_string(t.ties);
+}
+
+}  // namespace
+
+std::string short_number(double value) {
+  if (std::isnan(value)) return "—";
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.4g", value);
+  return buf;
+}
+
+std::string percent(double share) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.1f%%", 100 * share);
+  return buf;
+}
+
+void write_report_markdown(std::ostream& out, const SweepReport& report) {
+  out << "# Sweep report\n\n"
+      << "Success as judged by each sweep's criteria when the run was stored; interval: 95 % Wilson score. "
+         "Min distance over runs with obstacles (p10: 10th percentile). Step time: median over runs of each "
+         "run's step_us.p50 and of each run's step_us.p99 (wall clock, µs).\n";
+  if (report.sweeps.empty()) out << "\nNo sweep runs stored.\n";
+  for (const std::string& sweep : report.sweeps) {
+    out << "\n## " << sweep << "\n\n"
+        << "| method config | family | n | success | 95% CI | min dist median | min dist p10 | max track err median "
+           "| joint-limit viol. | non-finite | step µs p50 | step µs p99 |\n"
+        << "|---|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|\n";
+    for (const GroupStats& g : report.groups) {
+      if (g.sweep != sweep) continue;
+      out << "| " << cell(g.config_key) << " | " << cell(g.family) << " | " << g.n << " | " << percent(g.success_rate)
+          << " | " << percent(g.success_interval.low) << "–" << percent(g.success_interval.high) << " | "
+          << short_number(g.median_min_distance) << " | " << short_number(g.p10_min_distance) << " | "
+          << short_number(g.median_max_tracking_error) << " | " << percent(g.joint_limit_share) << " | "
+          << percent(g.nonfinite_share) << " | " << short_number(g.step_us_p50) << " | " << short_number(g.step_us_p99)
+          << " |\n";
+    }
+    out << "\n### Ranking\n\nBy success rate, then median max tracking error.\n\n"
+        << "| rank | method config | n | success | max track err median |\n|---:|---|---:|---:|---:|\n";
+    int rank = 0;
+    for (const RankEntry& r : report.ranking) {
+      if (r.sweep != sweep) continue;
+      out << "| " << ++rank << " | " << cell(r.config_key) << " | " << r.n << " | " << percent(r.success_rate) << " | "
+          << short_number(r.median_max_tracking_error) << " |\n";
+    }
+    out << "\n### Paired comparisons\n\nOn the same cases (scenario and seed): A's wins/losses/ties against B, on "
+           "success, and on min distance (larger wins, ties within 1e-9).\n\n"
+        << "| A | B | cases | success W/L/T | min distance W/L/T |\n|---|---|---:|---|---|\n";
+    for (const PairedComparison& p : report.pairs) {
+      if (p.sweep != sweep) continue;
+      out << "| " << cell(p.a) << " | " << cell(p.b) << " | " << p.cases << " | " << wlt(p.success) << " | "
+          << wlt(p.min_distance) << " |\n";
+    }
+  }
+}
+
+void write_report_csv(std::ostream& out, const SweepReport& report) {
+  out << "sweep,config,family,n,successes,success_rate,ci_low,ci_high,min_distance_median,min_distance_p10,"
+         "max_tracking_error_median,joint_limit_share,nonfinite_share,step_us_p50_median,step_us_p99_median\n";
+  for (const GroupStats& g : report.groups) {
+    out << csv_field(g.sweep) << ',' << csv_field(g.config_key) << ',' << csv_field(g.family) << ',' << g.n << ','
+        << g.successes << ',' << csv_number(g.success_rate) << ',' << csv_number(g.success_interval.low) << ','
+        << csv_number(g.success_interval.high) << ',' << csv_number(g.median_min_distance) << ','
+        << csv_number(g.p10_min_distance) << ',' << csv_number(g.median_max_tracking_error) << ','
+        << csv_number(g.joint_limit_share) << ',' << csv_number(g.nonfinite_share) << ','
+        << csv_number(g.step_us_p50) << ',' << csv_number(g.step_us_p99) << '\n';
+  }
+}
+
+}  // namespace rrlab::sweep

@@ -1,0 +1,18 @@
+// A sweep report as Markdown (every table) or CSV (the per configuration ×
+// family table, one row per group, for machines).
+#pragma once
+
+#include <ostream>
+
+#include "sweep/sweep_report.hpp"
+
+namespace rrlab::sweep {
+
+void write_report_markdown(std::ostream& out, const SweepReport& report);
+void write_report_csv(std::ostream& out, const SweepReport& report);
+
+// Shared by the formats: %.4g, "—" for NaN; a share as a percentage.
+std::string short_number(double value);
+std::string percent(double share);
+
+}  // namespace rrlab::sweep

@@ -1,0 +1,194 @@
+#include "sweep/sweep_spec.hpp"
+
+#include <algorithm>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "methods/method.hpp"
+#include "scenario/generators.hpp"
+#include "scenario/json_reader.hpp"
+#include "sim/simulator.hpp"
+
+namespace rrlab::sweep {
+
+namespace {
+
+constexpr int kMaxCount = 1'000'000;
+constexpr size_t kMaxEntries = 10'000;
+
+std::uint64_t non_negative_integer(const nlohmann::json& value, const std::string& path) {
+  if (!value.is_number_integer() || value.get<long long>() < 0)
+    throw ScenarioError(path, "must be a non-negative integer, got " + (value.is_number() ? value.dump() : json_type_name(value)));
+  return value.get<std::uint64_t>();
+}
+
+std::string prefixed(const std::string& prefix, const ScenarioError& e) {
+  return e.path().empty() ? prefix : prefix + "." + e.path();
+}
+
+// The message without its "path: " prefix.
+std::string bare_message(const ScenarioError& e) {
+  const std::string what = e.what();
+  return e.path().empty() ? what : what.substr(e.path().size() + 2);
+}
+
+ScenarioEntry file_entry(const std::string& text, const std::string& path, const SpecDirs& dirs) {
+  ScenarioEntry entry;
+  entry.family = "file";
+  std::filesystem::path file;
+  const bool is_path = text.find('/') != std::string::npos || text.ends_with(".json");
+  if (is_path) {
+    file = std::filesystem::path(text).is_absolute() ? std::filesystem::path(text) : dirs.spec_dir / text;
+    entry.name = file.stem().string();
+  } else {
+    if (!is_plain_name(text))
+      throw ScenarioError(path, "\"" + text + "\" is neither a catalogue name ([A-Za-z0-9_.-]) nor a path ending in .json");
+    file = dirs.scenarios_dir / (text + ".json");
+    entry.name = text;
+  }
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec))
+    throw ScenarioError(path, is_path ? "no scenario file '" + file.string() + "'"
+                                      : "no catalogue scenario '" + text + "' (" + file.string() + ")");
+  try {
+    entry.scenario = load_scenario_file(file.string());
+  } catch (const ScenarioError& e) {
+    throw ScenarioError(prefixed(path, e), bare_message(e));
+  }
+  return entry;
+}
+
+ScenarioEntry generator_entry(const nlohmann::json& value, const std::string& path) {
+  JsonObject object(value, path);
+  ScenarioEntry entry;
+  entry.family = object.string("generator");
+  const auto& families = generator_families();
+  if (std::find(families.begin(), families.end(), entry.family) == families.end()) {
+    std::string known;
+    for (const std::string& f : families) known += (known.empty() ? "" : ", ") + f;
+    throw ScenarioError(object.child("generator"), "unknown family \"" + entry.family + "\" (known: " + known + ")");
+  }
+  const double count = object.number("count");
+  if (count != double(long(count)) || count < 1 || count > kMaxCount)
+    throw ScenarioError(object.child("count"), "must be an integer in [1, " + std::to_string(kMaxCount) + "]");
+  entry.count = int(count);
+  entry.seed = object.has("seed") ? non_negative_integer(object.raw("seed"), object.child("seed")) : 1;
+  entry.name = entry.family;
+  for (auto it = value.begin(); it != value.end(); ++it)
+    if (it.key() != "generator" && it.key() != "count" && it.key() != "seed") entry.options[it.key()] = it.value();
+  // the options are checked by generating the first case
+  try {
+    parse_scenario(generate_scenario(entry.family, entry.options, entry.seed, 0));
+  } catch (const ScenarioError& e) {
+    std::string at = e.path();
+    if (at.starts_with("options.")) at = at.substr(8);
+    const std::string message = bare_message(e);
+    throw ScenarioError(at.empty() ? path : path + "." + at, message);
+  }
+  return entry;
+}
+
+// Builds each file scenario's simulator with each configuration, so that a
+// parameter a scenario cannot take (ccp_link past its links) is bad input now.
+void check_configs_on_files(const SweepSpec& spec) {
+  for (size_t s = 0; s < spec.scenarios.size(); ++s) {
+    if (!spec.scenarios[s].scenario) continue;
+    for (const MethodConfig& config : spec.configs) {
+      Scenario scenario = *spec.scenarios[s].scenario;
+      scenario.method.name = config.method;
+      scenario.method.params.clear();
+      for (const ParamValue& p : config.params) scenario.method.params.emplace_back(p.name, p.value);
+      try {
+        Simulator sim(scenario);
+      } catch (const ParamError& e) {
+        throw ScenarioError(index_path("methods", config.entry),
+                            config.key + " on " + index_path("scenarios", s) + ": " + e.what());
+      } catch (const ScenarioError& e) {
+        throw ScenarioError(index_path("methods", config.entry),
+                            config.key + " on " + index_path("scenarios", s) + ": " + e.what());
+      }
+    }
+  }
+}
+
+}  // namespace
+
+std::string ScenarioEntry::case_key(int index) const {
+  if (!generated()) return "file:" + name;
+  return "gen:" + family + ":" + std::to_string(seed) + ":" + std::to_string(index);
+}
+
+bool is_plain_name(const std::string& name) {
+  if (name.empty() || name.size() > 64) return false;
+  for (char c : name)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '.' || c == '-')) return false;
+  return true;
+}
+
+SweepSpec parse_sweep_spec(const nlohmann::json& doc, const SpecDirs& dirs) {
+  JsonObject root(doc, "");
+  root.check_keys({"name", "description", "scenarios", "methods", "seeds", "success", "steps"});
+  SweepSpec spec;
+  spec.name = root.string("name");
+  if (!is_plain_name(spec.name)) throw ScenarioError("name", "must match [A-Za-z0-9_.-]{1,64}");
+  if (root.has("description")) root.string("description");
+
+  const nlohmann::json& scenarios = root.array("scenarios", kMaxEntries);
+  if (scenarios.empty()) throw ScenarioError("scenarios", "must list at least one scenario");
+  std::map<std::string, size_t> seen;  // entry identity -> index
+  for (size_t i = 0; i < scenarios.size(); ++i) {
+    const std::string path = index_path("scenarios", i);
+    const nlohmann::json& value = scenarios[i];
+    if (value.is_string()) spec.scenarios.push_back(file_entry(value.get<std::string>(), path, dirs));
+    else if (value.is_object()) spec.scenarios.push_back(generator_entry(value, path));
+    else throw ScenarioError(path, "must be a path, a catalogue name or {\"generator\", ...}, got " + json_type_name(value));
+    const ScenarioEntry& entry = spec.scenarios.back();
+    const std::string identity = entry.generated() ? "gen:" + entry.family + ":" + std::to_string(entry.seed)
+                                                   : entry.case_key(0);
+    const auto [it, fresh] = seen.emplace(identity, i);
+    if (!fresh)
+      throw ScenarioError(path, "gives the same case keys (" + identity + ") as " + index_path("scenarios", it->second) +
+                                    (entry.generated() ? ": give it another seed" : ""));
+  }
+
+  spec.configs = parse_method_configs(root.raw("methods"), "methods");
+
+  if (root.has("seeds")) {
+    const nlohmann::json& seeds = root.array("seeds", 100000);
+    if (seeds.empty()) throw ScenarioError("seeds", "must list at least one seed (or be left out)");
+    std::set<std::uint64_t> distinct;
+    for (size_t i = 0; i < seeds.size(); ++i) {
+      const std::uint64_t seed = non_negative_integer(seeds[i], index_path("seeds", i));
+      if (!distinct.insert(seed).second) throw ScenarioError(index_path("seeds", i), "repeats seed " + std::to_string(seed));
+      spec.seeds.push_back(seed);
+    }
+  }
+  spec.success = parse_success_criteria(root.raw("success"), "success");
+  if (root.has("steps")) {
+    const double steps = root.number("steps");
+    if (steps != double(long(steps)) || steps < 1 || steps > double(ScenarioLimits::max_steps))
+      throw ScenarioError("steps", "must be an integer in [1, " + std::to_string(ScenarioLimits::max_steps) + "]");
+    spec.steps = long(steps);
+  }
+  check_configs_on_files(spec);
+  return spec;
+}
+
+SweepSpec load_sweep_spec(const std::string& file, const std::filesystem::path& scenarios_dir) {
+  std::ifstream in(file);
+  if (!in) throw ScenarioError("", "cannot read sweep spec '" + file + "'");
+  std::stringstream text;
+  text << in.rdbuf();
+  nlohmann::json doc;
+  try {
+    doc = nlohmann::json::parse(text.str());
+  } catch (const nlohmann::json::parse_error& e) {
+    throw ScenarioError("", "sweep spec '" + file + "' is not valid JSON: " + e.what());
+  }
+  const std::filesystem::path parent = std::filesystem::path(file).parent_path();
+  return parse_sweep_spec(doc, {parent.empty() ? std::filesystem::path(".") : parent, scenarios_dir});
+}
+
+}  // namespace rrlab::sweep

@@ -1,0 +1,126 @@
+// Report numbers against a small case computed by hand.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "sweep/sweep_report.hpp"
+#include "sweep/sweep_report_html.hpp"
+#include "sweep/sweep_report_text.hpp"
+#include "sweep/sweep_stats.hpp"
+
+namespace rrlab::sweep {
+namespace {
+
+TEST(SweepStats, WilsonIntervalOfSevenInTen) {
+  const Interval i = wilson_interval(7, 10);
+  EXPECT_NEAR(i.low, 0.3968, 1e-4);
+  EXPECT_NEAR(i.high, 0.8922, 1e-4);
+  const Interval none = wilson_interval(0, 0);
+  EXPECT_EQ(none.low, 0);
+  EXPECT_EQ(none.high, 1);
+  const Interval all = wilson_interval(10, 10);
+  EXPECT_NEAR(all.low, 0.7225, 1e-4);
+  EXPECT_NEAR(all.high, 1, 1e-12);
+}
+
+TEST(SweepStats, QuantilesInterpolateBetweenOrderStatistics) {
+  EXPECT_DOUBLE_EQ(quantile({3, 1, 2}, 0.5), 2);
+  EXPECT_DOUBLE_EQ(quantile({4, 1, 3, 2}, 0.5), 2.5);
+  EXPECT_DOUBLE_EQ(quantile({1, 2, 3, 4, 5, 6, 7, 8, 9, 10}, 0.1), 1.9);  // h = 0.9
+  EXPECT_TRUE(std::isnan(quantile({}, 0.5)));
+}
+
+// Configuration a: 10 cases, successes on cases 0..6, min distance
+// (i + 1) / 10 shuffled, max tracking error (i + 1) / 100, joint limits
+// violated on 2 runs, non-finite steps on 1, step_us.p50 = i + 1.
+// Configuration b on the same cases: successes on 3..7, min distance a's
+// + 0.1 on 0..3, a's + 1e-12 on 4..6, a's − 0.1 on 7..9.
+std::vector<storage::SweepRunEntry> hand_case() {
+  const double distance[10] = {0.5, 0.1, 0.9, 0.3, 0.7, 0.2, 0.8, 0.4, 1.0, 0.6};
+  std::vector<storage::SweepRunEntry> runs;
+  for (int i = 0; i < 10; ++i) {
+    const std::string scenario = "file:s" + std::to_string(i);
+    nlohmann::json a = {{"min_distance", distance[i]},
+                        {"max_tracking_error", (i + 1) / 100.0},
+                        {"joint_limit_violated", i < 2},
+                        {"nonfinite_steps", i == 9 ? 3 : 0},
+                        {"step_us", {{"mean", 1}, {"p50", i + 1}, {"p99", 10 * (i + 1)}}}};
+    const double db = i <= 3 ? distance[i] + 0.1 : i <= 6 ? distance[i] + 1e-12 : distance[i] - 0.1;
+    nlohmann::json b = a;
+    b["min_distance"] = db;
+    b["max_tracking_error"] = 0.5;
+    runs.push_back({{"w", "w/" + scenario + "/a/own", scenario, "a", "file", i <= 6}, 2 * i + 1, 1, a.dump()});
+    runs.push_back({{"w", "w/" + scenario + "/b/own", scenario, "b", "file", i >= 3 && i <= 7}, 2 * i + 2, 1, b.dump()});
+  }
+  return runs;
+}
+
+TEST(SweepReport, GroupNumbers) {
+  const SweepReport report = build_report(hand_case());
+  ASSERT_EQ(report.groups.size(), 2u);
+  const GroupStats& a = report.groups[0];
+  EXPECT_EQ(a.config_key, "a");
+  EXPECT_EQ(a.family, "file");
+  EXPECT_EQ(a.n, 10u);
+  EXPECT_EQ(a.successes, 7u);
+  EXPECT_DOUBLE_EQ(a.success_rate, 0.7);
+  EXPECT_NEAR(a.success_interval.low, 0.3968, 1e-4);
+  EXPECT_NEAR(a.success_interval.high, 0.8922, 1e-4);
+  EXPECT_NEAR(a.median_min_distance, 0.55, 1e-12);
+  EXPECT_NEAR(a.p10_min_distance, 0.19, 1e-12);
+  EXPECT_NEAR(a.median_max_tracking_error, 0.055, 1e-12);
+  EXPECT_DOUBLE_EQ(a.joint_limit_share, 0.2);
+  EXPECT_DOUBLE_EQ(a.nonfinite_share, 0.1);
+  EXPECT_DOUBLE_EQ(a.step_us_p50, 5.5);
+  EXPECT_DOUBLE_EQ(a.step_us_p99, 55);
+  EXPECT_EQ(report.groups[1].successes, 5u);
+}
+
+TEST(SweepReport, PairedComparisonsAndRanking) {
+  const SweepReport report = build_report(hand_case());
+  ASSERT_EQ(report.pairs.size(), 1u);
+  const PairedComparison& p = report.pairs[0];
+  EXPECT_EQ(p.a, "a");
+  EXPECT_EQ(p.b, "b");
+  EXPECT_EQ(p.cases, 10u);
+  EXPECT_EQ(p.success.wins, 3u);  // cases 0, 1, 2
+  EXPECT_EQ(p.success.losses, 1u);  // case 7
+  EXPECT_EQ(p.success.ties, 6u);
+  EXPECT_EQ(p.min_distance.wins, 3u);  // 7, 8, 9
+  EXPECT_EQ(p.min_distance.losses, 4u);  // 0..3
+  EXPECT_EQ(p.min_distance.ties, 3u);  // within 1e-9
+  ASSERT_EQ(report.ranking.size(), 2u);
+  EXPECT_EQ(report.ranking[0].config_key, "a");
+  EXPECT_EQ(report.ranking[1].config_key, "b");
+}
+
+TEST(SweepReport, RankingBreaksTiesOnTrackingError) {
+  std::vector<storage::SweepRunEntry> runs;
+  runs.push_back({{"w", "k1", "file:s", "a", "file", true}, 1, 1, R"({"max_tracking_error": 0.2})"});
+  runs.push_back({{"w", "k2", "file:s", "b", "file", true}, 2, 1, R"({"max_tracking_error": 0.1})"});
+  const SweepReport report = build_report(runs);
+  EXPECT_EQ(report.ranking[0].config_key, "b");
+}
+
+TEST(SweepReport, FormatsCarryTheNumbers) {
+  const SweepReport report = build_report(hand_case());
+  std::ostringstream md, csv, html;
+  write_report_markdown(md, report);
+  write_report_csv(csv, report);
+  write_report_html(html, report);
+  EXPECT_NE(md.str().find("| a | file | 10 | 70.0% | 39.7%–89.2% | 0.55 | 0.19 | 0.055 | 20.0% | 10.0% | 5.5 | 55 |"),
+            std::string::npos)
+      << md.str();
+  EXPECT_NE(md.str().find("| a | b | 10 | 3/1/6 | 3/4/3 |"), std::string::npos) << md.str();
+  EXPECT_NE(csv.str().find("w,a,file,10,7,0.7,0.396"), std::string::npos) << csv.str();
+  const std::string page = html.str();
+  EXPECT_NE(page.find("<svg"), std::string::npos);
+  EXPECT_EQ(page.find("<script"), std::string::npos);
+  EXPECT_EQ(page.find("src="), std::string::npos);
+  EXPECT_EQ(page.find("href="), std::string::npos);
+}
+
+}  // namespace
+}  // namespace rrlab::sweep

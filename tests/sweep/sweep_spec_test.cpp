@@ -1,0 +1,139 @@
+// Sweep specs: what parses, and errors that name the JSON path.
+#include <gtest/gtest.h>
+
+#include "sweep/sweep_spec.hpp"
+#include "sweep_test_support.hpp"
+
+namespace rrlab::sweep {
+namespace {
+
+using nlohmann::json;
+using testing::parse_spec;
+using testing::small_spec;
+
+// The error's text starts with `prefix` ("path: message...").
+void expect_error(const json& doc, const std::string& prefix) {
+  try {
+    parse_spec(doc);
+    ADD_FAILURE() << "no error, expected " << prefix;
+  } catch (const ScenarioError& e) {
+    EXPECT_EQ(std::string(e.what()).substr(0, prefix.size()), prefix) << e.what();
+  }
+}
+
+TEST(SweepSpec, ParsesScenariosConfigsSeedsAndCriteria) {
+  const SweepSpec spec = parse_spec(small_spec());
+  EXPECT_EQ(spec.name, "small");
+  ASSERT_EQ(spec.scenarios.size(), 2u);
+  EXPECT_EQ(spec.scenarios[0].family, "file");
+  EXPECT_EQ(spec.scenarios[0].case_key(0), "file:01_planar7_obstacles");
+  ASSERT_EQ(spec.configs.size(), 3u);
+  EXPECT_EQ(spec.configs[0].key, "pinv");
+  EXPECT_EQ(spec.configs[1].key, "dls{lambda=0.02}");
+  EXPECT_EQ(spec.configs[2].key, "dls{lambda=0.10000000000000001}");  // %.17g: exactly the double
+  EXPECT_EQ(spec.seeds, (std::vector<std::uint64_t>{1, 2}));
+  EXPECT_EQ(*spec.success.max_tracking_error, 0.01);
+  EXPECT_FALSE(spec.success.collision);
+  EXPECT_EQ(*spec.steps, 60);
+}
+
+TEST(SweepSpec, GridIsTheCartesianProductInTheMethodsParameterOrder) {
+  json doc = small_spec();
+  // written damping first: keys follow dls's own order (lambda, damping), labels printed as labels
+  doc["methods"] = json::parse(R"([{"name": "dls", "params": {"damping": ["fixed", "adaptive"], "lambda": [0.5, 1]}}])");
+  const SweepSpec spec = parse_spec(doc);
+  ASSERT_EQ(spec.configs.size(), 4u);
+  EXPECT_EQ(spec.configs[0].key, "dls{lambda=0.5,damping=fixed}");
+  EXPECT_EQ(spec.configs[1].key, "dls{lambda=0.5,damping=adaptive}");
+  EXPECT_EQ(spec.configs[2].key, "dls{lambda=1,damping=fixed}");
+  EXPECT_EQ(spec.configs[3].key, "dls{lambda=1,damping=adaptive}");
+  EXPECT_EQ(spec.configs[3].params[1].value, 1.0);  // the enumeration's index
+}
+
+TEST(SweepSpec, PathsAreRelativeToTheSpecFile) {
+  testing::TempDir dir;
+  std::filesystem::create_directories(dir.path / "sub");
+  std::filesystem::copy_file(testing::scenarios_dir() / "01_planar7_obstacles.json", dir.path / "sub" / "mine.json");
+  json doc = small_spec();
+  doc["scenarios"] = {"sub/mine.json"};
+  const std::string file = dir.write("spec.json", doc.dump());
+  const SweepSpec spec = load_sweep_spec(file, testing::scenarios_dir());
+  EXPECT_EQ(spec.scenarios[0].case_key(0), "file:mine");
+}
+
+TEST(SweepSpec, ErrorsNameTheJsonPath) {
+  const auto with = [](const std::string& key, const json& value) {
+    json doc = small_spec();
+    doc[key] = value;
+    return doc;
+  };
+  expect_error(with("methods", json::parse(R"(["pinv", "dls", {"name": "dls", "params": {"lambda": [0.1, 11]}}])")),
+               "methods[2].params.lambda[1]: must be in [0, 10]");
+  expect_error(with("methods", json::parse(R"(["pinv", "nope"])")), "methods[1]: ");
+  expect_error(with("methods", json::parse(R"([{"name": "dls", "params": {"nope": 1}}])")), "methods[0].params.nope: unknown parameter");
+  expect_error(with("methods", json::parse(R"([{"name": "dls", "params": {"damping": "soft"}}])")), "methods[0].params.damping: must be one of");
+  expect_error(with("methods", json::parse(R"([{"name": "dls", "params": {"lambda": []}}])")), "methods[0].params.lambda: must list");
+  expect_error(with("methods", json::parse(R"(["dls", {"name": "dls"}])")), "methods[1]: repeats the configuration dls of methods[0]");
+  expect_error(with("methods", json::parse(R"([{"name": "dls", "lr": 1}])")), "methods[0].lr: unknown key");
+  expect_error(with("methods", json::array()), "methods: must list");
+  expect_error(with("scenarios", json::parse(R"(["01_planar7_obstacles", "nope"])")), "scenarios[1]: no catalogue scenario 'nope'");
+  expect_error(with("scenarios", json::parse(R"(["missing/file.json"])")), "scenarios[0]: no scenario file");
+  expect_error(with("scenarios", json::parse(R"(["01_planar7_obstacles", "01_planar7_obstacles"])")),
+               "scenarios[1]: gives the same case keys (file:01_planar7_obstacles) as scenarios[0]");
+  expect_error(with("scenarios", json::parse(R"(["01_planar7_obstacles", {"generator": "jungle", "count": 3}])")),
+               "scenarios[1].generator: unknown family \"jungle\"");
+  expect_error(with("scenarios", json::parse(R"([{"generator": "planar_clutter", "count": 0}])")), "scenarios[0].count: must be an integer");
+  expect_error(with("scenarios", json::parse(R"([{"generator": "planar_clutter", "count": 2, "seed": -1}])")), "scenarios[0].seed: must be a non-negative integer");
+  expect_error(with("scenarios", json::parse(R"([7])")), "scenarios[0]: must be a path");
+  expect_error(with("seeds", json::parse(R"([1, 1])")), "seeds[1]: repeats seed 1");
+  expect_error(with("seeds", json::parse(R"([1, 2.5])")), "seeds[1]: must be a non-negative integer");
+  expect_error(with("success", json::parse(R"({"max_tracking_error": -1})")), "success.max_tracking_error: must be >= 0");
+  expect_error(with("success", json::parse(R"({"collisions": false})")), "success.collisions: unknown key");
+  expect_error(with("success", json::parse(R"({"collision": "no"})")), "success.collision: must be true or false");
+  expect_error(with("steps", 0), "steps: must be an integer in [1, ");
+  expect_error(with("name", "a b"), "name: must match");
+  expect_error(with("extra", 1), "extra: unknown key");
+  json no_success = small_spec();
+  no_success.erase("success");
+  expect_error(no_success, "success: is required");
+  // a configuration a listed scenario cannot take (the box scene has 7 links)
+  expect_error(with("methods", json::parse(R"([{"name": "ccp_voronoi", "params": {"ccp_link": 9}}])")),
+               "methods[0]: ");
+}
+
+TEST(SweepSpec, ScenarioFileErrorsArePrefixedWithTheEntry) {
+  testing::TempDir dir;
+  json scenario = json::parse(std::ifstream(testing::scenarios_dir() / "01_planar7_obstacles.json"));
+  scenario["robot"]["links"][1]["length"] = -1;
+  dir.write("bad.json", scenario.dump());
+  json doc = small_spec();
+  doc["scenarios"] = {"bad.json"};
+  try {
+    parse_sweep_spec(doc, {dir.path, testing::scenarios_dir()});
+    FAIL();
+  } catch (const ScenarioError& e) {
+    EXPECT_EQ(e.path(), "scenarios[0].robot.links[1].length") << e.what();
+  }
+}
+
+TEST(SuccessCriteria, JudgesASummary) {
+  SuccessCriteria c = parse_success_criteria(json::parse(R"({"max_tracking_error": 0.01, "min_distance": 0})"), "success");
+  Summary s;
+  s.max_tracking_error = 0.005;
+  s.min_distance = 0.1;
+  EXPECT_TRUE(judge_success(c, s));
+  s.collided = true;
+  EXPECT_FALSE(judge_success(c, s));
+  s.collided = false;
+  s.joint_limit_violated = true;
+  EXPECT_FALSE(judge_success(c, s));
+  s.joint_limit_violated = false;
+  s.nonfinite_steps = 1;
+  EXPECT_FALSE(judge_success(c, s));
+  s.nonfinite_steps = 0;
+  s.max_tracking_error = std::nan("");
+  EXPECT_FALSE(judge_success(c, s));
+}
+
+}  // namespace
+}  // namespace rrlab::sweep
