@@ -83,19 +83,11 @@ TEST(SweepExpansion, GeneratorEntryExpandsToCountCasesByName) {
   }
 }
 
-// NEEDS THE REAL GENERATORS (engine/scenario/generators.cpp): skipped while
-// generate_scenario is the stub that throws "not implemented yet".
-TEST(SweepExpansion, ParsedGeneratorEntryRunsItsCases_NeedsRealGenerators) {
+TEST(SweepExpansion, ParsedGeneratorEntryRunsItsCases) {
   nlohmann::json doc = small_spec("gen");
   doc["scenarios"] = nlohmann::json::parse(R"([{"generator": "planar_clutter", "count": 3, "seed": 11}])");
   doc.erase("seeds");
-  SweepSpec spec;
-  try {
-    spec = parse_spec(doc);
-  } catch (const ScenarioError& e) {
-    if (std::string(e.what()).find("not implemented") != std::string::npos) GTEST_SKIP() << e.what();
-    throw;
-  }
+  const SweepSpec spec = parse_spec(doc);
   const std::vector<SweepCase> cases = expand_sweep(spec);
   ASSERT_EQ(cases.size(), 3u * 3u);
   EXPECT_EQ(cases.back().scenario_key, "gen:planar_clutter:11:2");
