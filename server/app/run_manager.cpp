@@ -1,5 +1,7 @@
 #include "app/run_manager.hpp"
 
+#include "app/sweep_jobs.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
@@ -17,7 +19,7 @@ using nlohmann::json;
 
 RunManager::RunManager(storage::RunStore& store, storage::FrameWriter& writer, const std::string& scenarios_dir,
                        ServerLimits limits)
-    : store_(store), writer_(writer), limits_(limits) {
+    : store_(store), writer_(writer), limits_(limits), sweeps_(std::make_unique<SweepJobs>(*this, scenarios_dir)) {
   namespace fs = std::filesystem;
   std::error_code ec;
   if (scenarios_dir.empty() || !fs::is_directory(scenarios_dir, ec)) return;
@@ -43,6 +45,7 @@ RunManager::~RunManager() { stop_all(); }
 // Stops every run, replay and job and waits until their threads are done
 // with the store, the writer and the I/O context.
 void RunManager::stop_all() {
+  sweeps_->stop_all();  // before stopping_: their workers' slots are jobs stop_all waits for
   stopping_ = true;
   std::vector<std::shared_ptr<RunGroup>> groups;
   std::vector<std::shared_ptr<ReplayPlayer>> players;

@@ -23,6 +23,8 @@ class FrameWriter;
 
 namespace rrlab::server {
 
+class SweepJobs;
+
 class ReplayPlayer;
 
 struct ServerLimits {
@@ -74,6 +76,9 @@ class RunManager {
 
   void stop_all();
 
+  // Sweeps started over REST (POST /api/sweeps).
+  SweepJobs& sweeps() { return *sweeps_; }
+
  private:
   void prune_locked();
   int active_locked() const;  // unfinished runs (lanes) and jobs
@@ -93,6 +98,7 @@ class RunManager {
   std::map<std::int64_t, std::shared_ptr<ReplayPlayer>> replays_;
   std::vector<std::shared_ptr<ReplayPlayer>> retired_;  // evicted, their threads ending
   std::int64_t next_replay_ = 1;
+  std::unique_ptr<SweepJobs> sweeps_;
 };
 
 }  // namespace rrlab::server

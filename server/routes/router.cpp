@@ -38,6 +38,10 @@ constexpr Route kRoutes[] = {
     {"GET", "/api/replays/{}", get_replay},
     {"POST", "/api/replays/{}/control", post_replay_control},
     {"POST", "/api/compare", post_compare},
+    {"POST", "/api/sweeps", post_sweep},
+    {"GET", "/api/sweeps", list_sweeps},
+    {"GET", "/api/sweeps/{}", get_sweep},
+    {"POST", "/api/sweeps/{}/control", post_sweep_control},
 };
 
 std::vector<std::string_view> segments(std::string_view path) {

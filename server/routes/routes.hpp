@@ -79,4 +79,10 @@ void parse_run_options(JsonObject& body, const nlohmann::json& doc, const std::s
 std::int64_t query_int(const RouteContext& context, const std::string& name, std::int64_t def, std::int64_t min,
                        std::int64_t max);
 
+// sweep_routes.cpp
+ApiResponse post_sweep(RouteContext&);
+ApiResponse list_sweeps(RouteContext&);
+ApiResponse get_sweep(RouteContext&);
+ApiResponse post_sweep_control(RouteContext&);
+
 }  // namespace rrlab::server

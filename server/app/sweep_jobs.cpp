@@ -1,0 +1,208 @@
+#include "app/sweep_jobs.hpp"
+
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <vector>
+
+#include "app/api.hpp"
+#include "app/run_manager.hpp"
+#include "scenario/scenario.hpp"
+#include "sweep/sweep_expansion.hpp"
+#include "sweep/sweep_report.hpp"
+#include "sweep/sweep_report_json.hpp"
+#include "sweep/sweep_runner.hpp"
+#include "sweep/sweep_spec.hpp"
+
+namespace rrlab::server {
+
+using nlohmann::json;
+
+namespace {
+
+constexpr size_t kMaxRunsPerSweep = 100'000;
+constexpr int kMaxRunningSweeps = 4;
+constexpr size_t kMaxKeptSweeps = 64;  // finished ones beyond this are forgotten (their runs stay stored)
+
+// Over REST a scenario entry is a catalogue name or a generator: never a path.
+void refuse_paths(const json& spec) {
+  if (!spec.is_object() || !spec.contains("scenarios") || !spec["scenarios"].is_array()) return;
+  const json& list = spec["scenarios"];
+  for (size_t i = 0; i < list.size(); ++i) {
+    if (!list[i].is_string()) continue;
+    const std::string name = list[i].get<std::string>();
+    if (!sweep::is_plain_name(name) || name.ends_with(".json"))
+      throw ApiError(422, "invalid",
+                     "over REST a sweep names catalogue scenarios or generators, not files: '" + name + "'",
+                     "scenarios[" + std::to_string(i) + "]");
+  }
+}
+
+}  // namespace
+
+struct SweepJobs::Job {
+  std::int64_t id = 0;
+  sweep::SweepSpec spec;
+  std::vector<sweep::SweepCase> cases;
+  int jobs = 1;
+  std::atomic<bool> stop{false};
+  std::thread thread;
+  std::mutex mutex;  // guards the fields below
+  std::string status = "running", error;
+  sweep::RunnerOutcome outcome;
+};
+
+SweepJobs::SweepJobs(RunManager& runs, std::string scenarios_dir) : runs_(runs), scenarios_dir_(std::move(scenarios_dir)) {}
+
+SweepJobs::~SweepJobs() { stop_all(); }
+
+json SweepJobs::start(const json& body, int jobs) {
+  refuse_paths(body);
+  auto job = std::make_shared<Job>();
+  try {
+    job->spec = sweep::parse_sweep_spec(body, {scenarios_dir_, scenarios_dir_});
+  } catch (...) {
+    rethrow_as_api_error("", 422);
+  }
+  job->cases = sweep::expand_sweep(job->spec);
+  if (job->cases.size() > kMaxRunsPerSweep)
+    throw ApiError(422, "invalid",
+                   "this spec expands to " + std::to_string(job->cases.size()) + " runs; over REST at most " +
+                       std::to_string(kMaxRunsPerSweep) + " (the command line has no limit)",
+                   "scenarios");
+  // one core stays for live runs
+  const int cores = int(std::max(1u, std::thread::hardware_concurrency()));
+  job->jobs = std::clamp(jobs, 1, std::max(1, cores - 1));
+
+  std::lock_guard lock(mutex_);
+  int running = 0;
+  for (const auto& [id, other] : jobs_) {
+    std::lock_guard other_lock(other->mutex);
+    if (other->status != "running") continue;
+    ++running;
+    if (other->spec.name == job->spec.name)
+      throw ApiError(409, "wrong_state", "sweep '" + job->spec.name + "' is running already (id " + std::to_string(id) + ")",
+                     "name");
+  }
+  if (running >= kMaxRunningSweeps)
+    throw ApiError(503, "busy", "at most " + std::to_string(kMaxRunningSweeps) + " sweeps may run at once", "");
+  int begun = 0;
+  try {
+    for (; begun < job->jobs; ++begun) runs_.begin_job(0);
+  } catch (...) {
+    for (int i = 0; i < begun; ++i) runs_.end_job(0);
+    throw;
+  }
+  // forget the oldest finished sweeps beyond the limit
+  for (auto it = jobs_.begin(); jobs_.size() >= kMaxKeptSweeps && it != jobs_.end();) {
+    bool ended;
+    {
+      std::lock_guard other_lock(it->second->mutex);
+      ended = it->second->status != "running";
+    }
+    if (!ended) { ++it; continue; }
+    if (it->second->thread.joinable()) it->second->thread.join();
+    it = jobs_.erase(it);
+  }
+  job->id = next_id_++;
+  jobs_[job->id] = job;
+  job->thread = std::thread([this, job] {
+    // Linux: the nice value is per thread and inherited by the workers it starts
+    setpriority(PRIO_PROCESS, 0, 10);
+    sweep::RunnerOptions options;
+    options.jobs = job->jobs;
+    options.stop = &job->stop;
+    std::string status = "completed", error;
+    sweep::RunnerOutcome outcome;
+    try {
+      outcome = sweep::run_sweep(job->spec, job->cases, runs_.store(), options);
+      if (outcome.interrupted) status = "stopped";
+    } catch (const std::exception& e) {
+      status = "failed";
+      error = e.what();
+    }
+    {
+      std::lock_guard job_lock(job->mutex);
+      job->status = status;
+      job->error = error;
+      job->outcome = std::move(outcome);
+    }
+    for (int i = 0; i < job->jobs; ++i) runs_.end_job(0);
+  });
+  return status_of(*job);
+}
+
+json SweepJobs::status_of(Job& job) {
+  std::string status, error;
+  sweep::RunnerOutcome outcome;
+  {
+    std::lock_guard lock(job.mutex);
+    status = job.status;
+    error = job.error;
+    outcome = job.outcome;
+  }
+  const size_t total = job.cases.size();
+  const size_t pending = sweep::pending_cases(job.spec, job.cases, runs_.store()).size();
+  json body = {{"id", job.id},       {"name", job.spec.name}, {"status", status},
+               {"total", total},     {"done", total - pending}, {"jobs", job.jobs}};
+  if (!error.empty()) body["error"] = error;
+  if (status == "running") return body;
+  json failures = json::array();
+  for (size_t i = 0; i < outcome.failures.size() && i < 20; ++i) failures.push_back(outcome.failures[i]);
+  body["failed"] = outcome.failures.size();
+  body["failures"] = failures;
+  body["report"] = sweep::report_json(sweep::build_report(runs_.store().sweep_runs(job.spec.name)));
+  return body;
+}
+
+json SweepJobs::status(std::int64_t id) {
+  std::shared_ptr<Job> job;
+  {
+    std::lock_guard lock(mutex_);
+    auto it = jobs_.find(id);
+    if (it == jobs_.end()) throw ApiError(404, "not_found", "no sweep " + std::to_string(id), "id");
+    job = it->second;
+  }
+  return status_of(*job);
+}
+
+json SweepJobs::list() {
+  std::vector<std::shared_ptr<Job>> jobs;
+  {
+    std::lock_guard lock(mutex_);
+    for (const auto& [id, job] : jobs_) jobs.push_back(job);
+  }
+  json list = json::array();
+  for (const auto& job : jobs) {
+    std::lock_guard lock(job->mutex);
+    list.push_back({{"id", job->id}, {"name", job->spec.name}, {"status", job->status}, {"total", job->cases.size()}});
+  }
+  return list;
+}
+
+json SweepJobs::control(std::int64_t id, const json& body) {
+  if (!body.is_object() || body.size() != 1 || !body.contains("action") || body["action"] != "stop")
+    throw ApiError(400, "invalid", "a sweep takes {\"action\": \"stop\"}", "action");
+  std::shared_ptr<Job> job;
+  {
+    std::lock_guard lock(mutex_);
+    auto it = jobs_.find(id);
+    if (it == jobs_.end()) throw ApiError(404, "not_found", "no sweep " + std::to_string(id), "id");
+    job = it->second;
+  }
+  job->stop = true;
+  return {{"id", id}, {"stopping", true}};
+}
+
+void SweepJobs::stop_all() {
+  std::vector<std::shared_ptr<Job>> jobs;
+  {
+    std::lock_guard lock(mutex_);
+    for (const auto& [id, job] : jobs_) jobs.push_back(job);
+  }
+  for (const auto& job : jobs) job->stop = true;
+  for (const auto& job : jobs)
+    if (job->thread.joinable()) job->thread.join();
+}
+
+}  // namespace rrlab::server

@@ -1,0 +1,48 @@
+// Sweeps started over REST (POST /api/sweeps): each runs on its own thread at
+// a lower CPU priority (nice 10, inherited by its workers), counted against the
+// server's active-run limit with one slot per worker, into the server's own
+// database, so live runs keep their share of the cores. Over REST a spec names
+// catalogue scenarios and generators only, never a file path.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <thread>
+
+namespace rrlab::server {
+
+class RunManager;
+
+class SweepJobs {
+ public:
+  SweepJobs(RunManager& runs, std::string scenarios_dir);
+  ~SweepJobs();  // stop_all()
+
+  // Validates the spec (422 naming the JSON path), starts it: {id, name, total, status, ...}.
+  // `jobs`: worker threads, at most the cores less one (one stays for live runs).
+  nlohmann::json start(const nlohmann::json& spec, int jobs);
+  // Progress; once ended, the report of the sweep's stored runs. 404 if unknown.
+  nlohmann::json status(std::int64_t id);
+  nlohmann::json list();
+  // {"action": "stop"}: workers finish their current run; stored runs stay (resumable).
+  nlohmann::json control(std::int64_t id, const nlohmann::json& body);
+  // Stops every sweep and waits for their threads (server shutdown).
+  void stop_all();
+
+ private:
+  struct Job;
+  nlohmann::json status_of(Job& job);
+
+  RunManager& runs_;
+  std::string scenarios_dir_;
+  std::mutex mutex_;
+  std::map<std::int64_t, std::shared_ptr<Job>> jobs_;
+  std::int64_t next_id_ = 1;
+};
+
+}  // namespace rrlab::server

@@ -1,0 +1,49 @@
+#include "sweep/sweep_report_json.hpp"
+
+#include <cmath>
+
+namespace rrlab::sweep {
+
+namespace {
+
+nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); }
+
+nlohmann::json tally(const WinLossTie& t) { return {{"wins", t.wins}, {"losses", t.losses}, {"ties", t.ties}}; }
+
+}  // namespace
+
+nlohmann::json report_json(const SweepReport& report) {
+  nlohmann::json groups = nlohmann::json::array(), pairs = nlohmann::json::array(),
+                 ranking = nlohmann::json::array();
+  for (const GroupStats& g : report.groups)
+    groups.push_back({{"sweep", g.sweep},
+                      {"config", g.config_key},
+                      {"family", g.family},
+                      {"n", g.n},
+                      {"successes", g.successes},
+                      {"success_rate", number(g.success_rate)},
+                      {"success_interval", {number(g.success_interval.low), number(g.success_interval.high)}},
+                      {"median_min_distance", number(g.median_min_distance)},
+                      {"p10_min_distance", number(g.p10_min_distance)},
+                      {"median_max_tracking_error", number(g.median_max_tracking_error)},
+                      {"joint_limit_share", number(g.joint_limit_share)},
+                      {"nonfinite_share", number(g.nonfinite_share)},
+                      {"step_us_p50", number(g.step_us_p50)},
+                      {"step_us_p99", number(g.step_us_p99)}});
+  for (const PairedComparison& p : report.pairs)
+    pairs.push_back({{"sweep", p.sweep},
+                     {"a", p.a},
+                     {"b", p.b},
+                     {"cases", p.cases},
+                     {"success", tally(p.success)},
+                     {"min_distance", tally(p.min_distance)}});
+  for (const RankEntry& r : report.ranking)
+    ranking.push_back({{"sweep", r.sweep},
+                       {"config", r.config_key},
+                       {"n", r.n},
+                       {"success_rate", number(r.success_rate)},
+                       {"median_max_tracking_error", number(r.median_max_tracking_error)}});
+  return {{"sweeps", report.sweeps}, {"groups", groups}, {"pairs", pairs}, {"ranking", ranking}};
+}
+
+}  // namespace rrlab::sweep

@@ -1,0 +1,97 @@
+// Sweeps over REST: start, progress, report, stop; specs are checked like the
+// command line's (422 naming the JSON path) and may not name files.
+#include <chrono>
+#include <thread>
+
+#include "server_fixture.hpp"
+
+namespace rrlab::testing {
+namespace {
+
+using nlohmann::json;
+
+class SweepRoutes : public ServerTest {
+ protected:
+  static json spec(const std::string& name, int count) {
+    return {{"name", name},
+            {"scenarios", json::array({json{{"generator", "planar_clutter"}, {"count", count}, {"seed", 3}},
+                                       "01_planar7_obstacles"})},
+            {"methods", json::array({"pinv", json{{"name", "dls"}, {"params", {{"lambda", json::array({0.01, 0.1})}}}}})},
+            {"success", {{"max_tracking_error", 0.01}}},
+            {"steps", 200}};
+  }
+  json wait_ended(std::int64_t id) {
+    for (int i = 0; i < 600; ++i) {
+      const json s = get("/api/sweeps/" + std::to_string(id)).json();
+      if (s["status"] != "running") return s;
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    ADD_FAILURE() << "sweep " << id << " did not end";
+    return {};
+  }
+};
+
+TEST_F(SweepRoutes, RunsToTheEndAndAnswersWithItsReport) {
+  const HttpResult started = send("POST", "/api/sweeps", spec("rest-small", 3));
+  ASSERT_EQ(started.status, 202) << started.body;
+  const json head = started.json();
+  EXPECT_EQ(head["total"], (3 + 1) * 3);  // 4 scenarios x 3 method configurations
+  const json done = wait_ended(head["id"].get<std::int64_t>());
+  EXPECT_EQ(done["status"], "completed");
+  EXPECT_EQ(done["done"], 12);
+  EXPECT_EQ(done["failed"], 0);
+  const json& report = done["report"];
+  ASSERT_EQ(report["ranking"].size(), 3u);
+  size_t runs = 0;
+  for (const json& g : report["groups"]) {
+    runs += g["n"].get<size_t>();
+    EXPECT_LE(g["success_interval"][0].get<double>(), g["success_rate"].get<double>());
+    EXPECT_GE(g["success_interval"][1].get<double>(), g["success_rate"].get<double>());
+  }
+  EXPECT_EQ(runs, 12u);
+  EXPECT_EQ(report["pairs"].size(), 3u);
+  // its runs are stored batch runs like any other
+  EXPECT_GE(get("/api/runs?limit=100").json().size(), 12u);
+  // the list knows it
+  const json list = get("/api/sweeps").json();
+  ASSERT_EQ(list.size(), 1u);
+  EXPECT_EQ(list[0]["name"], "rest-small");
+}
+
+TEST_F(SweepRoutes, StopsOnRequestKeepingWhatItStored) {
+  const HttpResult started = send("POST", "/api/sweeps", spec("rest-stop", 400));
+  ASSERT_EQ(started.status, 202) << started.body;
+  const std::int64_t id = started.json()["id"];
+  const HttpResult stop = send("POST", "/api/sweeps/" + std::to_string(id) + "/control", json{{"action", "stop"}});
+  EXPECT_EQ(stop.status, 200) << stop.body;
+  const json ended = wait_ended(id);
+  EXPECT_EQ(ended["status"], "stopped");
+  EXPECT_LT(ended["done"].get<int>(), ended["total"].get<int>());
+  // stop is the one control action
+  EXPECT_EQ(send("POST", "/api/sweeps/" + std::to_string(id) + "/control", json{{"action", "pause"}}).status, 400);
+}
+
+TEST_F(SweepRoutes, BadSpecsAreNamedByTheirPath) {
+  json bad = spec("rest-bad", 2);
+  bad["methods"][1]["params"]["lambda"][1] = -1;
+  HttpResult r = send("POST", "/api/sweeps", bad);
+  EXPECT_EQ(r.status, 422);
+  EXPECT_EQ(r.json()["error"]["path"], "methods[1].params.lambda[1]") << r.body;
+
+  json file = spec("rest-file", 2);
+  file["scenarios"][1] = "../scenarios/01_planar7_obstacles.json";
+  r = send("POST", "/api/sweeps", file);
+  EXPECT_EQ(r.status, 422);
+  EXPECT_EQ(r.json()["error"]["path"], "scenarios[1]") << r.body;
+
+  json huge = spec("rest-huge", 1);
+  huge["scenarios"][0]["count"] = 1000000;
+  r = send("POST", "/api/sweeps", huge);
+  EXPECT_EQ(r.status, 422) << r.body;
+
+  EXPECT_EQ(get("/api/sweeps/99").status, 404);
+  EXPECT_EQ(send("POST", "/api/sweeps", json::array()).status, 422);
+}
+
+}  // namespace
+}  // namespace rrlab::testing
