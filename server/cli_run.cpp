@@ -41,16 +41,7 @@ std::pair<std::string, double> parse_param(const std::string& method, const std:
 
 // A scenario file, or a run record with its events.
 RunRecordDoc load_input(const std::string& file) {
-  std::ifstream in(file);
-  if (!in) throw ScenarioError("", "cannot read scenario file '" + file + "'");
-  std::stringstream text;
-  text << in.rdbuf();
-  nlohmann::json doc;
-  try {
-    doc = nlohmann::json::parse(text.str());
-  } catch (const nlohmann::json::parse_error& e) {
-    throw ScenarioError("", std::string("invalid JSON: ") + e.what());
-  }
+  const nlohmann::json doc = read_json_file(file, "scenario file");
   if (is_run_record(doc)) return parse_run_record(doc);
   RunRecordDoc plain;
   plain.scenario = parse_scenario(doc);

@@ -177,16 +177,7 @@ SweepSpec parse_sweep_spec(const nlohmann::json& doc, const SpecDirs& dirs) {
 }
 
 SweepSpec load_sweep_spec(const std::string& file, const std::filesystem::path& scenarios_dir) {
-  std::ifstream in(file);
-  if (!in) throw ScenarioError("", "cannot read sweep spec '" + file + "'");
-  std::stringstream text;
-  text << in.rdbuf();
-  nlohmann::json doc;
-  try {
-    doc = nlohmann::json::parse(text.str());
-  } catch (const nlohmann::json::parse_error& e) {
-    throw ScenarioError("", "sweep spec '" + file + "' is not valid JSON: " + e.what());
-  }
+  const nlohmann::json doc = read_json_file(file, "sweep spec");
   const std::filesystem::path parent = std::filesystem::path(file).parent_path();
   return parse_sweep_spec(doc, {parent.empty() ? std::filesystem::path(".") : parent, scenarios_dir});
 }

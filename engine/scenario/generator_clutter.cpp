@@ -23,4 +23,24 @@ std::optional<nlohmann::json> place_clutter(const ClutterOptions& clutter, const
   return place_obstacles(clutter.count.draw(rng), keep_out, draw, rng);
 }
 
+nlohmann::json generate_clutter_case(GeneratorCase& c, const ClutterOptions& clutter, const PathOptions& path_options,
+                                     const std::function<GeneratedArm(Rng&)>& draw_arm, bool spatial,
+                                     TaskSpace space) {
+  Rng& rng = c.rng;
+  for (int attempt = 0; attempt < kCaseAttempts; ++attempt) {
+    const std::optional<ArmAndPath> drawn = draw_arm_and_path(draw_arm, path_options, rng);
+    if (!drawn) continue;
+    const std::optional<nlohmann::json> obstacles = place_clutter(clutter, drawn->arm, drawn->path, spatial, rng);
+    if (!obstacles) continue;
+    const std::string description =
+        case_title(c) + ": " + drawn->arm.summary + " among " + obstacle_summary(*obstacles) + ", each more than " +
+        fixed_digits(clutter.clearance, 3) + " m from every link of the start configuration and off the hand's path; " +
+        path_summary(drawn->path) + ".";
+    return case_document(c, description, path_options.dt, drawn->path.duration,
+                         robot_with_q0(drawn->arm, drawn->path.configurations[0]), *obstacles,
+                         path_task(drawn->path, space));
+  }
+  no_case_found(c, "options.obstacles, options.obstacle_size or options.clearance");
+}
+
 }  // namespace rrlab

@@ -2,10 +2,12 @@
 // planar_clutter, spatial_clutter and planar_limits.
 #pragma once
 
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <optional>
 
 #include "scenario/generator_arms.hpp"
+#include "scenario/generator_case.hpp"
 #include "scenario/generator_obstacles.hpp"
 #include "scenario/generator_path.hpp"
 
@@ -18,5 +20,11 @@ namespace rrlab {
 // found no place.
 std::optional<nlohmann::json> place_clutter(const ClutterOptions& clutter, const GeneratedArm& arm,
                                             const GeneratedPath& path, bool spatial, Rng& rng);
+
+// A case of planar_clutter or spatial_clutter: an arm from `draw_arm`, a timed
+// path, and static clutter clear of the start and off the path, tracked in `space`.
+nlohmann::json generate_clutter_case(GeneratorCase& c, const ClutterOptions& clutter, const PathOptions& path_options,
+                                     const std::function<GeneratedArm(Rng&)>& draw_arm, bool spatial,
+                                     TaskSpace space);
 
 }  // namespace rrlab

@@ -57,10 +57,11 @@ nlohmann::json generate_moving_obstacles(GeneratorCase& c) {
   const PathOptions path_options = read_path_options(options);
   Rng& rng = c.rng;
   for (int attempt = 0; attempt < kCaseAttempts; ++attempt) {
-    const GeneratedArm arm = draw_planar_arm(arm_options, rng);
-    std::optional<GeneratedPath> path = draw_path(arm, path_options.waypoints.draw(rng), rng);
-    if (!path) continue;
-    time_path(*path, path_options, arm.reach, rng);
+    std::optional<ArmAndPath> drawn =
+        draw_arm_and_path([&](Rng& r) { return draw_planar_arm(arm_options, r); }, path_options, rng);
+    if (!drawn) continue;
+    const GeneratedArm& arm = drawn->arm;
+    GeneratedPath* path = &drawn->path;
     const KeepOut keep_out{arm_capsules(arm.model, path->configurations[0]), clutter.clearance, {}};
     const Range speed_range =
         speed_given ? given_speed : Range{kDefaultSpeedMin * arm.reach, kDefaultSpeedMax * arm.reach};

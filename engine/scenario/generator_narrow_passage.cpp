@@ -74,10 +74,11 @@ nlohmann::json generate_narrow_passage(GeneratorCase& c) {
   const PathOptions path_options = read_path_options(options, {1, 3});
   Rng& rng = c.rng;
   for (int attempt = 0; attempt < kCaseAttempts; ++attempt) {
-    const GeneratedArm arm = draw_planar_arm(arm_options, rng);
-    std::optional<GeneratedPath> path = draw_path(arm, path_options.waypoints.draw(rng), rng);
-    if (!path) continue;
-    time_path(*path, path_options, arm.reach, rng);
+    std::optional<ArmAndPath> drawn =
+        draw_arm_and_path([&](Rng& r) { return draw_planar_arm(arm_options, r); }, path_options, rng);
+    if (!drawn) continue;
+    const GeneratedArm& arm = drawn->arm;
+    GeneratedPath* path = &drawn->path;
     const KeepOut keep_out{arm_capsules(arm.model, path->configurations[0]), clearance,
                            path_capsules(path->points, arm.link_radius)};
     std::optional<Passage> passage;

@@ -47,6 +47,22 @@ std::optional<GeneratedPath> draw_path(const GeneratedArm& arm, int count, Rng& 
 // Sets speed (drawn, or the default for the arm's reach) and the duration.
 void time_path(GeneratedPath& path, const PathOptions& options, double reach, Rng& rng);
 
+// One attempt of a family: an arm from `draw_arm(rng)`, a path of its
+// end-effector positions, timed by the options (in that order of draws).
+// Nullopt when no path was found for that arm.
+struct ArmAndPath {
+  GeneratedArm arm;
+  GeneratedPath path;
+};
+template <typename DrawArm>
+std::optional<ArmAndPath> draw_arm_and_path(DrawArm&& draw_arm, const PathOptions& options, Rng& rng) {
+  GeneratedArm arm = draw_arm(rng);
+  std::optional<GeneratedPath> path = draw_path(arm, options.waypoints.draw(rng), rng);
+  if (!path) return std::nullopt;
+  time_path(*path, options, arm.reach, rng);
+  return ArmAndPath{std::move(arm), std::move(*path)};
+}
+
 // The document's "task": a polyline in `space` ("xy" or "xyz").
 nlohmann::json path_task(const GeneratedPath& path, TaskSpace space);
 

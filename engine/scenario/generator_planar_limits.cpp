@@ -64,10 +64,11 @@ nlohmann::json generate_planar_limits(GeneratorCase& c) {
   const PathOptions path_options = read_path_options(options);
   Rng& rng = c.rng;
   for (int attempt = 0; attempt < kCaseAttempts; ++attempt) {
-    const GeneratedArm arm = draw_planar_arm(arm_options, rng);
-    std::optional<GeneratedPath> path = draw_path(arm, path_options.waypoints.draw(rng), rng);
-    if (!path) continue;
-    time_path(*path, path_options, arm.reach, rng);
+    std::optional<ArmAndPath> drawn =
+        draw_arm_and_path([&](Rng& r) { return draw_planar_arm(arm_options, r); }, path_options, rng);
+    if (!drawn) continue;
+    const GeneratedArm& arm = drawn->arm;
+    GeneratedPath* path = &drawn->path;
     const std::optional<nlohmann::json> obstacles = place_clutter(clutter, arm, *path, false, rng);
     if (!obstacles) continue;
     nlohmann::json doc = case_document(c, "", path_options.dt, path->duration,

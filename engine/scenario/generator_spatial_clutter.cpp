@@ -35,22 +35,8 @@ nlohmann::json generate_spatial_clutter(GeneratorCase& c) {
   const DhArmOptions arm_options = read_dh_arm_options(options);
   const ClutterOptions clutter = read_clutter_options(options, {1, 8}, {"sphere", "box"});
   const PathOptions path_options = read_path_options(options);
-  Rng& rng = c.rng;
-  for (int attempt = 0; attempt < kCaseAttempts; ++attempt) {
-    const GeneratedArm arm = draw_dh7_arm(arm_options, rng);
-    std::optional<GeneratedPath> path = draw_path(arm, path_options.waypoints.draw(rng), rng);
-    if (!path) continue;
-    time_path(*path, path_options, arm.reach, rng);
-    const std::optional<nlohmann::json> obstacles = place_clutter(clutter, arm, *path, true, rng);
-    if (!obstacles) continue;
-    const std::string description =
-        case_title(c) + ": " + arm.summary + " among " + obstacle_summary(*obstacles) + ", each more than " +
-        fixed_digits(clutter.clearance, 3) + " m from every link of the start configuration and off the hand's path; " +
-        path_summary(*path) + ".";
-    return case_document(c, description, path_options.dt, path->duration,
-                         robot_with_q0(arm, path->configurations[0]), *obstacles, path_task(*path, TaskSpace::xyz));
-  }
-  no_case_found(c, "options.obstacles, options.obstacle_size or options.clearance");
+  return generate_clutter_case(
+      c, clutter, path_options, [&](Rng& r) { return draw_dh7_arm(arm_options, r); }, true, TaskSpace::xyz);
 }
 
 }  // namespace rrlab

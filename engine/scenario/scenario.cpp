@@ -408,12 +408,18 @@ Scenario parse_scenario_text(const std::string& text) {
   return parse_scenario(doc);
 }
 
-Scenario load_scenario_file(const std::string& file) {
+json read_json_file(const std::string& file, const std::string& what) {
   std::ifstream in(file);
-  if (!in) throw ScenarioError("", "cannot read scenario file '" + file + "'");
+  if (!in) throw ScenarioError("", "cannot read " + what + " '" + file + "'");
   std::stringstream buffer;
   buffer << in.rdbuf();
-  return parse_scenario_text(buffer.str());
+  try {
+    return json::parse(buffer.str());
+  } catch (const json::parse_error& e) {
+    throw ScenarioError("", what + " '" + file + "' is not valid JSON: " + e.what());
+  }
 }
+
+Scenario load_scenario_file(const std::string& file) { return parse_scenario(read_json_file(file, "scenario file")); }
 
 }  // namespace rrlab

@@ -58,6 +58,9 @@ struct Scenario {
 Scenario parse_scenario(const nlohmann::json& doc);
 Scenario parse_scenario_text(const std::string& text);
 Scenario load_scenario_file(const std::string& file);
+// A JSON file (`what` names it in errors: "scenario file", "sweep spec"):
+// ScenarioError("", ...) when it cannot be read or is not JSON.
+nlohmann::json read_json_file(const std::string& file, const std::string& what);
 
 // One obstacle in scenario syntax, angles in radians (live edits over REST).
 Obstacle parse_obstacle_json(const nlohmann::json& value, const std::string& path);

@@ -9,32 +9,14 @@
 #include <sstream>
 #include <sys/wait.h>
 
+#include "rrlab_command.hpp"
+
 namespace {
 
 using nlohmann::json;
 
-struct Result {
-  int code = -1;
-  std::string out, err;
-};
-
-Result rrlab(const std::string& args) {
-  const std::string err_file = std::filesystem::temp_directory_path() / ("rrlab_err_" + std::to_string(::getpid()));
-  const std::string cmd = std::string(RRLAB_BINARY) + " " + args + " 2>" + err_file;
-  Result r;
-  FILE* pipe = ::popen(cmd.c_str(), "r");
-  std::array<char, 4096> buf{};
-  size_t n;
-  while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
-  const int status = ::pclose(pipe);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream in(err_file);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  r.err = ss.str();
-  std::filesystem::remove(err_file);
-  return r;
-}
+using Result = rrlab::testing::CommandResult;
+Result rrlab(const std::string& args) { return rrlab::testing::run_rrlab(args); }
 
 std::string scenario(const std::string& name) { return std::string(RRLAB_SOURCE_DIR) + "/scenarios/" + name; }
 
@@ -154,7 +136,7 @@ INSTANTIATE_TEST_SUITE_P(
                  "robot.q0: has 2 values but the robot has 1 joints"},
         BadInput{"method", "{" + kRobot + ", " + kTask + R"(, "method": {"name": "warp"}})",
                  "method.name: unknown method \"warp\""},
-        BadInput{"nan", "{" + kRobot + ", " + kTask + R"(, "dt": NaN})", "invalid JSON"},
+        BadInput{"nan", "{" + kRobot + ", " + kTask + R"(, "dt": NaN})", "is not valid JSON"},
         BadInput{"key", "{" + kRobot + ", " + kTask + R"(, "colour": "red"})", "colour: unknown key"},
         BadInput{"polygon", "{" + kRobot + ", " + kTask + R"(, "obstacles": [{"shape": "polygon", "points": []}]})",
                  "obstacles[0].points"},

@@ -15,6 +15,7 @@
 #include <sstream>
 #include <string>
 
+#include "server/support/rrlab_command.hpp"
 #include "storage/run_store.hpp"
 #include "sweep/sweep_spec.hpp"
 
@@ -67,28 +68,8 @@ inline std::map<std::string, nlohmann::json> stored_runs(storage::RunStore& stor
   return out;
 }
 
-struct CommandResult {
-  int code = -1;
-  std::string out, err;
-};
-
+using CommandResult = rrlab::testing::CommandResult;
 // Runs `rrlab ARGS`, capturing stdout and stderr.
-inline CommandResult rrlab(const std::string& args) {
-  const std::string err_file = std::filesystem::temp_directory_path() / ("rrlab_sweep_err_" + std::to_string(::getpid()));
-  const std::string cmd = std::string(RRLAB_BINARY) + " " + args + " 2>" + err_file;
-  CommandResult r;
-  FILE* pipe = ::popen(cmd.c_str(), "r");
-  std::array<char, 4096> buf{};
-  size_t n;
-  while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
-  const int status = ::pclose(pipe);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream in(err_file);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  r.err = ss.str();
-  std::filesystem::remove(err_file);
-  return r;
-}
+inline CommandResult rrlab(const std::string& args) { return rrlab::testing::run_rrlab(args); }
 
 }  // namespace rrlab::sweep::testing
