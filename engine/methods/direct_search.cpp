@@ -1,5 +1,5 @@
 // Kapoor, Cetin & Tesar (1998): redundancy resolution by direct search
-// (seed 004_39d6c8bbfc7eeb76.txt). Every step:
+// (Kapoor, Cetin, Tesar, "Performance based redundancy resolution with multiple criteria" (DETC 1998)). Every step:
 //  1. generate options (§3.1, eq 1–6): the k perturbed joints take −Δ, 0, +Δ
 //     (3^k combinations); the other joints form the block J_b that meets the
 //     end-effector constraint: δθ_b = J_b⁻¹(δx − J_p δθ_p) (eq 3 with eq 6),

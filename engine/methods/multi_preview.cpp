@@ -1,5 +1,5 @@
 // Zhang, Nakamura, Yang, Song, Minami, Yanou, Deng: multi-preview control
-// (seed 003). Each step, for the preview times t_i* = t + i·t̃ (i = 1..p), a
+// (Zhang, Nakamura, Yang, Song, Minami, Yanou, Deng, "Conceptual configuration control of redundant manipulators inheriting local/global merits: multi-preview control"). Each step, for the preview times t_i* = t + i·t̃ (i = 1..p), a
 // 1-step GA keeps finding the configuration q̃_d(t_i*) of an imaginary
 // manipulator whose hand is on r_d(t_i*) and whose AMSIP ¹S = ¹E + U is
 // largest (eq. 18–22; multi_preview_avoidance.hpp, multi_preview_ga.hpp). The

@@ -1,6 +1,6 @@
 // Qiu, Cao & Sun: redundancy resolution as a QP with the physical limits and
 // obstacle avoidance as inequalities and singularity avoidance as a revision
-// of the task equality (seed 001_f90f85090ab56557.txt).
+// of the task equality (Qiu, Cao, Sun, "Redundant manipulator control with constraints for subgoals").
 //
 //   minimise ½ q̇ᵀq̇                      (eq 8: H = I, φ = 0, minimum norm; the basis
 //                                         p_i of eq 7 is the natural one, so λ = q̇)

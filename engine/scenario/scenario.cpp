@@ -1,4 +1,4 @@
-// Scenario loader: JSON (DESIGN.md "Scenario file") to engine types. Every
+// Scenario loader: scenario JSON (the file format of scenarios/) to engine types. Every
 // check happens here, where user input enters; errors name the JSON path.
 #include "scenario/scenario.hpp"
 
