@@ -88,6 +88,9 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
     stream_.async_read_some(space, [self = shared_from_this()](beast::error_code ec, std::size_t n) {
       self->buffer_.commit(n);
       self->guarded([&] {
+        if (ec == net::error::eof)  // as http::async_read names it
+          return self->on_read_failed(self->buffer_.size() == 0 ? http::error::end_of_stream
+                                                                : http::error::partial_message);
         if (ec) return self->on_read_failed(ec);
         self->parse_header();
       });

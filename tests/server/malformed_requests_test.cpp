@@ -61,6 +61,14 @@ TEST_F(MalformedRequests, ABadChunkSizeAnswers400) {
   EXPECT_EQ(status_of(response), 400) << response;
 }
 
+TEST_F(MalformedRequests, ARequestCutShortAnswers400) {
+  RawConnection connection(port());
+  connection.write("GET /api/health HTTP/1.1\r\nHost: loc");
+  connection.finish_writing();
+  EXPECT_TRUE(connection.read_until_closed());
+  EXPECT_EQ(status_of(connection.received()), 400) << connection.received();
+}
+
 TEST_F(MalformedRequests, AOneMegabyteHeaderAnswers431) {
   const std::string response =
       exchange("GET /api/health HTTP/1.1\r\nHost: localhost\r\nX-Big: " + std::string(1 << 20, 'a') + "\r\n\r\n");

@@ -48,6 +48,9 @@ class RawConnection {
     return true;
   }
 
+  // Half-closes: the server reads the end of the stream, and can still answer.
+  void finish_writing() { ::shutdown(fd_, SHUT_WR); }
+
   // Reads until `marker` has arrived (returns everything read), the server
   // closes, or the timeout passes.
   std::string read_until(const std::string& marker,
