@@ -57,7 +57,8 @@ struct ReportOptions {
   std::optional<std::string> out;
 };
 
-// Exit codes: 0 success, 1 verification failed (replay), 2 bad input (message on stderr).
+// Exit codes: 0 success, 1 verification failed (replay), 2 bad input (message on stderr),
+// 3 nothing to verify (replay --verify of a run that stored no frames).
 int run(const RunOptions& options);
 int methods();
 int serve(const ServeOptions& options);

@@ -7,6 +7,12 @@
 
 namespace rrlab::cli {
 
+namespace {
+// --verify's exit codes: 0 identical, 1 a frame differs, 2 bad input, 3 the run
+// stored no frames, so nothing was compared.
+constexpr int kExitNothingCompared = 3;
+}  // namespace
+
 // Re-simulates a stored run and prints {run, frames_compared, identical, ...}.
 int replay(const ReplayOptions& options) {
   try {
@@ -22,16 +28,15 @@ int replay(const ReplayOptions& options) {
       return 2;
     }
     const server::ResimulationResult result = server::resimulate(store, *run, {});
-    nlohmann::json out = {{"run", run->id},
-                          {"frames_stored", run->frames},
-                          {"frames_compared", result.frames_compared},
-                          {"identical", result.identical()},
-                          {"summary", summary_to_json(result.summary)}};
-    if (result.first_mismatch) {
-      out["first_mismatch"] = *result.first_mismatch;
-      out["mismatch"] = result.mismatch;
-    }
+    nlohmann::json out = {{"run", run->id}, {"frames_stored", run->frames}};
+    out.update(server::verification_json(result));
+    out["summary"] = summary_to_json(result.summary);
     std::cout << out.dump() << '\n';
+    if (!result.compared()) {
+      std::cerr << "rrlab: " << (options.verify ? "verify: " : "") << "nothing compared: run " << run->id
+                << " stored no frames\n";
+      return options.verify ? kExitNothingCompared : 0;
+    }
     if (options.verify && !result.identical()) {
       std::cerr << "rrlab: verify failed: frame " << *result.first_mismatch << " differs (" << result.mismatch << ")\n";
       return 1;

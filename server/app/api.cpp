@@ -40,13 +40,61 @@ nlohmann::json socket_reply(const std::function<nlohmann::json()>& handle) {
   }
 }
 
+namespace {
+// Finds where the parser gave up: a second, SAX-only pass that keeps nothing
+// but the byte offset of the first error (the DOM parser's out_of_range error
+// for a number beyond double's range carries no position).
+class ErrorLocator : public nlohmann::json_sax<nlohmann::json> {
+ public:
+  std::size_t byte = 0;
+  bool null() override { return true; }
+  bool boolean(bool) override { return true; }
+  bool number_integer(number_integer_t) override { return true; }
+  bool number_unsigned(number_unsigned_t) override { return true; }
+  bool number_float(number_float_t, const string_t&) override { return true; }
+  bool string(string_t&) override { return true; }
+  bool binary(binary_t&) override { return true; }
+  bool start_object(std::size_t) override { return true; }
+  bool key(string_t&) override { return true; }
+  bool end_object() override { return true; }
+  bool start_array(std::size_t) override { return true; }
+  bool end_array() override { return true; }
+  bool parse_error(std::size_t position, const std::string&, const nlohmann::json::exception&) override {
+    byte = position;
+    return false;
+  }
+};
+
+std::size_t error_byte(const std::string& text) {
+  ErrorLocator locator;
+  nlohmann::json::sax_parse(text, &locator);
+  return locator.byte;
+}
+
+// The reason without the library's "[json.exception...] parse error at line
+// 1, column 5: " prefix: what was wrong, in words.
+std::string plain_reason(const nlohmann::json::exception& e) {
+  if (e.id == 406) return "number out of range";  // out_of_range: a number beyond double
+  if (e.id == 101) {                              // syntax error: keep the lexer's reason
+    const std::string what = e.what();
+    const auto reason = what.find(": ", what.find("column"));
+    if (reason != std::string::npos) return what.substr(reason + 2);
+  }
+  return "invalid JSON";
+}
+}  // namespace
+
+nlohmann::json parse_client_json(const std::string& text) {
+  try {
+    return nlohmann::json::parse(text);
+  } catch (const nlohmann::json::exception& e) {
+    throw ApiError(400, "malformed_json", plain_reason(e) + " at byte " + std::to_string(error_byte(text)), "");
+  }
+}
+
 nlohmann::json parse_body(const ApiRequest& request) {
   if (request.body.empty()) throw ApiError(400, "malformed_json", "the request needs a JSON body", "");
-  try {
-    return nlohmann::json::parse(request.body);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw ApiError(400, "malformed_json", std::string("invalid JSON: ") + e.what(), "");
-  }
+  return parse_client_json(request.body);
 }
 
 namespace {

@@ -58,7 +58,13 @@ ApiResponse error_response(const ApiError& error);
 // mapped as for REST, anything else is "internal").
 nlohmann::json socket_error(const ApiError& error);
 nlohmann::json socket_reply(const std::function<nlohmann::json()>& handle);
-// Parses a JSON body (400 "malformed_json" naming the position otherwise).
+// Parses JSON text sent by a client (a request body, a WebSocket message):
+// anything the parser refuses, numbers out of double's range included, is a
+// 400 "malformed_json" ApiError with a plain message naming the 1-based byte
+// where the parser stopped ("number out of range at byte 12": the number's
+// last digit), never the parser's exception text.
+nlohmann::json parse_client_json(const std::string& text);
+// Parses a JSON body (parse_client_json; an empty body is 400 too).
 nlohmann::json parse_body(const ApiRequest& request);
 // A run or replay id from a path segment: 1 to 18 decimal digits.
 std::optional<std::int64_t> parse_id(std::string_view text);

@@ -55,6 +55,16 @@ std::string describe_difference(const std::string& stored, const std::string& fr
 
 }  // namespace
 
+json verification_json(const ResimulationResult& result) {
+  json out = {{"identical", result.compared() ? json(result.identical()) : json()},
+              {"compared", result.compared()},
+              {"frames_compared", result.frames_compared},
+              {"first_mismatch", result.first_mismatch ? json(*result.first_mismatch) : json()},
+              {"mismatch", result.mismatch}};
+  if (!result.compared()) out["reason"] = kNothingCompared;
+  return out;
+}
+
 ResimulationResult resimulate(storage::RunStore& store, const storage::RunRecord& run,
                               const std::function<void(std::int64_t, const Frame&, const std::string&)>& on_frame) {
   Simulator sim(scenario_of_run(run));

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "scenario/scenario.hpp"
@@ -26,8 +27,18 @@ struct ResimulationResult {
   std::optional<std::int64_t> first_mismatch;  // seq of the first differing frame
   std::string mismatch;                         // what differed there
   Summary summary;
-  bool identical() const { return !first_mismatch; }
+  // A verdict only when at least one frame was compared: a run that stored no
+  // frames is neither identical nor different.
+  bool compared() const { return frames_compared > 0; }
+  bool identical() const { return compared() && !first_mismatch; }
 };
+
+constexpr const char* kNothingCompared = "the run stored no frames: nothing to compare";
+
+// {identical (null when nothing was compared), compared, frames_compared,
+// first_mismatch, mismatch, reason (only when nothing was compared)}: the
+// verdict as the CLI and REST report it.
+nlohmann::json verification_json(const ResimulationResult& result);
 
 // on_frame (may be empty) sees each re-simulated frame with its seq and packed blob.
 ResimulationResult resimulate(storage::RunStore& store, const storage::RunRecord& run,

@@ -1,8 +1,13 @@
-// One HTTP connection: read a request (body limit, timeout), answer it (API,
-// static file or WebSocket upgrade), then read the next. Deferred API answers
-// (batch runs waited for) come back onto the connection's strand.
+// One HTTP connection: read a request's header (header and URL limits, bare
+// LF refused), answer `Expect: 100-continue`, read the body (body limit,
+// timeout), answer it (API, static file or WebSocket upgrade), then read the
+// next. A request that cannot be parsed or is over a limit gets its 4xx and
+// the connection closes. Deferred API answers (batch runs waited for) come
+// back onto the connection's strand.
 #include "net/sessions.hpp"
+#include <algorithm>
 #include <array>
+#include <string_view>
 
 #include "app/replay_player.hpp"
 #include "net/static_files.hpp"
@@ -16,42 +21,161 @@ const char* status_code_name(int status) {
     case 404: return "not_found";
     case 405: return "method_not_allowed";
     case 413: return "body_too_large";
+    case 414: return "url_too_long";
+    case 431: return "header_too_large";
     case 503: return "busy";
     default: return "bad_request";
   }
 }
+
+// The bytes of `buffer` up to the end of the header ("\r\n\r\n"), or all of
+// them while the header is incomplete.
+std::string_view header_part(std::string_view buffer) {
+  const auto end = buffer.find("\r\n\r\n");
+  return end == std::string_view::npos ? buffer : buffer.substr(0, end + 4);
+}
+
+// A line feed without its carriage return: Beast's parser would wait for a
+// "\r\n\r\n" that never comes, until the read timeout.
+bool has_bare_line_feed(std::string_view header) {
+  for (std::size_t lf = header.find('\n'); lf != std::string_view::npos; lf = header.find('\n', lf + 1))
+    if (lf == 0 || header[lf - 1] != '\r') return true;
+  return false;
+}
+
+// The request line (without its line end) as far as it has arrived.
+std::string_view request_line(std::string_view buffer) {
+  return buffer.substr(0, std::min(buffer.find('\n'), buffer.size()));
+}
+
+bool expects_continue(const http::request<http::string_body>& header) {
+  return header.version() >= 11 && beast::iequals(header[http::field::expect], "100-continue");
+}
+
+constexpr std::string_view kContinue = "HTTP/1.1 100 Continue\r\n\r\n";
 
 class HttpSession : public std::enable_shared_from_this<HttpSession> {
  public:
   HttpSession(tcp::socket&& socket, std::shared_ptr<ServerState> state)
       : stream_(std::move(socket)), state_(std::move(state)) {}
 
-  void run() { net::dispatch(stream_.get_executor(), [self = shared_from_this()] { self->read(); }); }
+  void run() {
+    net::dispatch(stream_.get_executor(), [self = shared_from_this()] { self->guarded([&] { self->read(); }); });
+  }
 
  private:
+  // Every callback of the session goes through here: an exception closes the
+  // connection instead of reaching the I/O loop.
+  template <typename Step>
+  void guarded(Step&& step) {
+    try {
+      step();
+    } catch (const std::exception&) {
+      close();
+    }
+  }
+
   void read() {
     parser_.emplace();
     parser_->body_limit(state_->limits.body_limit);
-    parser_->header_limit(16 * 1024);
+    parser_->header_limit(static_cast<std::uint32_t>(state_->limits.header_limit));
     stream_.expires_after(state_->limits.read_timeout);
-    http::async_read(stream_, buffer_, *parser_, [self = shared_from_this()](beast::error_code ec, std::size_t) {
-      try {
-        self->on_read(ec);
-      } catch (const std::exception&) {
-        self->close();  // never let a handler throw into the I/O loop
-      }
+    parse_header();  // a pipelined request may be in the buffer already
+  }
+
+  void read_header_bytes() {
+    const auto space = buffer_.prepare(4096);
+    stream_.async_read_some(space, [self = shared_from_this()](beast::error_code ec, std::size_t n) {
+      self->buffer_.commit(n);
+      self->guarded([&] {
+        if (ec == net::error::eof)  // as http::async_read names it
+          return self->on_read_failed(self->buffer_.size() == 0 ? http::error::end_of_stream
+                                                                : http::error::partial_message);
+        if (ec) return self->on_read_failed(ec);
+        self->parse_header();
+      });
     });
   }
 
-  void on_read(beast::error_code ec) {
+  // Feeds the buffered bytes to the parser until the header is complete.
+  void parse_header() {
+    const std::string_view buffered(static_cast<const char*>(buffer_.data().data()), buffer_.size());
+    if (buffered.empty()) return read_header_bytes();
+    if (has_bare_line_feed(header_part(buffered)))
+      return refuse(400, "malformed_request", "lines must end with CRLF, not a bare LF");
+    beast::error_code ec;
+    buffer_.consume(parser_->put(buffer_.data(), ec));
+    if (ec == http::error::need_more) return read_header_bytes();
+    if (ec) return on_read_failed(ec);
+    on_header();
+  }
+
+  void on_header() {
+    const auto& header = parser_->get();
+    if (header.target().size() > state_->limits.url_limit) return refuse_url_too_long();
+    if (!parser_->is_done() && expects_continue(header)) return send_continue();
+    read_body();
+  }
+
+  // The header is acceptable (any Content-Length over the body limit has been
+  // refused already): the client may send the body.
+  void send_continue() {
+    net::async_write(stream_, net::buffer(kContinue.data(), kContinue.size()),
+                     [self = shared_from_this()](beast::error_code ec, std::size_t) {
+                       if (ec) return;
+                       self->guarded([&] { self->read_body(); });
+                     });
+  }
+
+  void read_body() {
+    stream_.expires_after(state_->limits.read_timeout);
+    http::async_read(stream_, buffer_, *parser_, [self = shared_from_this()](beast::error_code ec, std::size_t) {
+      self->guarded([&] {
+        if (ec) return self->on_read_failed(ec);
+        self->on_read();
+      });
+    });
+  }
+
+  // A read or parse error: an answer when the client can still read one, then
+  // the connection closes.
+  void on_read_failed(beast::error_code ec) {
     if (ec == http::error::end_of_stream) return close();
-    if (ec == http::error::body_limit) {
-      keep_alive_ = false;
-      drain_after_write_ = true;
-      return send_error(413, "the request body is larger than " + std::to_string(state_->limits.body_limit) +
-                                 " bytes");
-    }
-    if (ec) return;  // timeout or reset: drop the connection
+    if (ec == http::error::body_limit)
+      return refuse(413, "body_too_large",
+                    "the request body is larger than " + std::to_string(state_->limits.body_limit) + " bytes");
+    if (ec == http::error::header_limit) return refuse_header_limit();
+    if (ec.category() == http::make_error_code(http::error::bad_method).category())
+      return refuse(400, "malformed_request", "malformed HTTP request: " + ec.message());
+    // a timeout or a reset: nobody to answer
+  }
+
+  // Over the header limit: 414 when the URL alone is over its limit (or the
+  // request line has not even ended), 431 otherwise. Beast consumes the
+  // request line once it has parsed it; until then it is in the buffer.
+  void refuse_header_limit() {
+    const std::string_view buffered(static_cast<const char*>(buffer_.data().data()), buffer_.size());
+    const std::string_view target = parser_->get().target();
+    const std::size_t url_length = target.empty() ? request_line(buffered).size() : target.size();
+    if (url_length > state_->limits.url_limit) return refuse_url_too_long();
+    refuse(431, "header_too_large",
+           "the request header is larger than " + std::to_string(state_->limits.header_limit) + " bytes");
+  }
+
+  void refuse_url_too_long() {
+    refuse(414, "url_too_long", "the URL is longer than " + std::to_string(state_->limits.url_limit) + " bytes");
+  }
+
+  // A 4xx for a request that will not be read on: answer, then close (reading
+  // and discarding what the client still sends, so that it gets the answer).
+  void refuse(int status, const std::string& code, const std::string& message) {
+    keep_alive_ = false;
+    drain_after_write_ = true;
+    version_ = 11;
+    send_api(error_response(ApiError(status, code, message, "")));
+  }
+
+  void on_read() {
     http::request<http::string_body> request = parser_->release();
     keep_alive_ = request.keep_alive();
     version_ = request.version();
@@ -78,7 +202,8 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
       stream_.expires_never();  // a batch run may take a while
       auto self = shared_from_this();
       response.deferred([self](ApiResponse ready) {
-        net::post(self->stream_.get_executor(), [self, ready = std::move(ready)] { self->send_api(ready); });
+        net::post(self->stream_.get_executor(),
+                  [self, ready = std::move(ready)] { self->guarded([&] { self->send_api(ready); }); });
       });
       return;
     }
@@ -156,9 +281,11 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
     stream_.expires_after(state_->limits.read_timeout);
     http::async_write(stream_, *response, [self = shared_from_this(), response](beast::error_code ec, std::size_t) {
       if (ec) return;
-      if (self->drain_after_write_) return self->drain();
-      if (!self->keep_alive_) return self->close();
-      self->read();
+      self->guarded([&] {
+        if (self->drain_after_write_) return self->drain();
+        if (!self->keep_alive_) return self->close();
+        self->read();
+      });
     });
   }
 

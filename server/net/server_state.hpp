@@ -12,6 +12,8 @@ namespace rrlab::server {
 
 struct NetLimits {
   std::size_t body_limit = 1 << 20;                   // bytes per request body (413 beyond)
+  std::size_t header_limit = 16 << 10;                // request line + header fields (431 beyond)
+  std::size_t url_limit = 8 << 10;                    // request target, query included (414 beyond)
   std::chrono::seconds read_timeout{30};              // per request
   std::size_t ws_message_limit = 64 << 10;            // bytes per incoming WebSocket message
   int ws_messages_per_second = 200;                   // incoming, per socket (errors beyond)

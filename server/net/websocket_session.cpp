@@ -121,11 +121,7 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
   void read() {
     ws_.async_read(buffer_, [self = shared_from_this()](beast::error_code ec, std::size_t) {
       if (ec) return self->close();
-      try {
-        self->on_message();
-      } catch (const std::exception&) {
-        return self->close();  // never let a handler throw into the I/O loop
-      }
+      self->on_message();
       self->read();
     });
   }
@@ -133,25 +129,33 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
   void on_message() {
     const std::string text = beast::buffers_to_string(buffer_.data());
     buffer_.consume(buffer_.size());
-    // rate limit: at most N messages per second window
+    queue(std::make_shared<const std::string>(safe_dump(reply_to(text))));
+  }
+
+  // An ack or an error for every message; the socket stays open whatever the
+  // client sent (no exception reaches the I/O loop).
+  nlohmann::json reply_to(const std::string& text) {
+    try {
+      if (over_rate_limit())
+        throw ApiError(429, "rate_limited",
+                       "more than " + std::to_string(state_->limits.ws_messages_per_second) +
+                           " messages per second; this one was dropped");
+      return source_->handle_message(parse_client_json(text));
+    } catch (const ApiError& e) {
+      return socket_error(e);
+    } catch (const std::exception&) {
+      return socket_error(ApiError(500, "internal", "the message could not be handled"));
+    }
+  }
+
+  // At most N messages per one-second window.
+  bool over_rate_limit() {
     const auto now = Clock::now();
     if (now - window_start_ > std::chrono::seconds(1)) {
       window_start_ = now;
       window_count_ = 0;
     }
-    nlohmann::json reply;
-    if (++window_count_ > state_->limits.ws_messages_per_second) {
-      reply = socket_error(ApiError(429, "rate_limited",
-                                    "more than " + std::to_string(state_->limits.ws_messages_per_second) +
-                                        " messages per second; this one was dropped"));
-    } else {
-      try {
-        reply = source_->handle_message(nlohmann::json::parse(text));
-      } catch (const nlohmann::json::parse_error& e) {
-        reply = socket_error(ApiError(400, "malformed_json", std::string("invalid JSON: ") + e.what()));
-      }
-    }
-    queue(std::make_shared<const std::string>(safe_dump(reply)));
+    return ++window_count_ > state_->limits.ws_messages_per_second;
   }
 
   void close() {

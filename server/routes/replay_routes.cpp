@@ -45,12 +45,8 @@ ApiResponse resimulate_run(RouteContext& c, const storage::RunRecord& run) {
         runs.writer().flush();
         json summary = summary_to_json(result.summary);
         summary["run"] = id;
-        const json verification = {{"run", id},
-                                   {"source_run", run.id},
-                                   {"identical", result.identical()},
-                                   {"frames_compared", result.frames_compared},
-                                   {"first_mismatch", result.first_mismatch ? json(*result.first_mismatch) : json()},
-                                   {"mismatch", result.mismatch}};
+        json verification = {{"run", id}, {"source_run", run.id}};
+        verification.update(verification_json(result));
         summary["verification"] = verification;
         runs.store().finish_run(id, "completed", summary.dump());
         respond(json_response(200, verification));

@@ -72,6 +72,30 @@ TEST(Cli, RunStoresInADatabaseAndReplayVerifies) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(Cli, ReplayVerifyOfARunWithoutFramesExitsThreeNothingCompared) {
+  const auto dir = std::filesystem::temp_directory_path() / "rrlab_cli_nothing_compared_test";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string db = (dir / "runs.db").string();
+  // a sweep stores its runs without frames
+  const std::string spec = write_temp("rrlab_cli_frameless_sweep.json", json{
+      {"name", "frameless"}, {"scenarios", {{{"generator", "planar_clutter"}, {"count", 1}, {"seed", 7}}}},
+      {"methods", {"dls"}}, {"steps", 20}, {"success", {{"max_tracking_error", 0.01}}}}.dump());
+  const Result sweep = rrlab("sweep " + spec + " --db " + db);
+  ASSERT_EQ(sweep.code, 0) << sweep.err;
+
+  const Result verify = rrlab("replay 1 --db " + db + " --verify");
+  EXPECT_EQ(verify.code, 3) << verify.out << verify.err;
+  const json out = json::parse(verify.out);
+  EXPECT_TRUE(out["identical"].is_null()) << out;
+  EXPECT_EQ(out["compared"], false);
+  EXPECT_EQ(out["frames_compared"], 0);
+  EXPECT_EQ(out["reason"], "the run stored no frames: nothing to compare");
+  EXPECT_NE(verify.err.find("nothing compared"), std::string::npos) << verify.err;
+  EXPECT_EQ(rrlab("replay 1 --db " + db).code, 0);  // without --verify: a report, not a verdict
+  std::filesystem::remove_all(dir);
+}
+
 TEST(Cli, OutWritesTheCsvColumns) {
   const auto csv = std::filesystem::temp_directory_path() / "rrlab_cli_test.csv";
   const Result r = rrlab("run " + scenario("01_planar7_obstacles.json") + " --method dls --param lambda=0.1 --steps 20 --out " +
