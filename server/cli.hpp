@@ -26,6 +26,7 @@ struct ServeOptions {
   double display_hz = 60;
   std::size_t body_limit = 1 << 20;
   int ws_stall_ms = 5000;  // a WebSocket write pending this long drops the client
+  std::vector<std::string> allow_hosts, allow_origins;  // beyond this server's own (net/request_guard.hpp)
 };
 
 struct ReplayOptions {

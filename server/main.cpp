@@ -20,6 +20,11 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(std::size_t(1024), std::size_t(64) << 20));
   serve_cmd->add_option("--ws-stall-ms", serve.ws_stall_ms, "drop a WebSocket client whose write is stuck this long")
       ->check(CLI::Range(100, 600000));
+  serve_cmd->add_option("--allow-host", serve.allow_hosts,
+                        "also accept requests whose Host names NAME (repeatable; e.g. behind a proxy or on --host 0.0.0.0)");
+  serve_cmd->add_option("--allow-origin", serve.allow_origins,
+                        "also accept changes and WebSockets from web pages of ORIGIN, e.g. http://lab.example:3000 "
+                        "(repeatable; answers CORS for it)");
 
   rrlab::cli::RunOptions run;
   CLI::App* run_cmd = app.add_subcommand("run", "simulate a scenario (or a run record) and print a JSON summary");

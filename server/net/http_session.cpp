@@ -183,6 +183,15 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
     const auto question = target.find('?');
     const std::string path = target.substr(0, question);
 
+    // Host, Origin and Content-Type rules (net/request_guard.hpp), once per request
+    const AccessDecision access = check_access(
+        state_->access, {std::string(request.method_string()), target, std::string(request[http::field::host]),
+                         std::string(request[http::field::origin]), std::string(request[http::field::content_type]),
+                         !request.body().empty(), websocket::is_upgrade(request)});
+    access_headers_ = access.headers;
+    if (access.status >= 400) return send_api(error_response(ApiError(access.status, access.code, access.message)));
+    if (!access.allowed()) return send_api(ApiResponse{access.status, "", "", {}});  // a CORS preflight
+
     if (websocket::is_upgrade(request)) return upgrade(std::move(request), path);
     if (path.rfind("/api/", 0) == 0 || path == "/api") return answer_api(request, path, target, question);
     return answer_static(request, path);
@@ -213,8 +222,9 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   void send_api(const ApiResponse& api) {
     auto response = std::make_shared<http::response<http::string_body>>(http::status(api.status), version_);
     response->set(http::field::server, "rrlab/" + state_->info.version);
-    response->set(http::field::content_type, api.content_type);
+    if (!api.content_type.empty()) response->set(http::field::content_type, api.content_type);
     response->set(http::field::cache_control, "no-store");
+    for (const auto& [name, value] : access_headers_) response->set(name, value);
     response->keep_alive(keep_alive_);
     response->body() = api.body;
     response->prepare_payload();
@@ -312,6 +322,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   beast::flat_buffer buffer_;
   std::shared_ptr<ServerState> state_;
   std::optional<http::request_parser<http::string_body>> parser_;
+  std::vector<std::pair<std::string, std::string>> access_headers_;  // CORS, for an --allow-origin origin
   bool keep_alive_ = true, drain_after_write_ = false, drained_once_ = false;
   unsigned version_ = 11;
   std::array<char, 16384> discard_{};

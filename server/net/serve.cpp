@@ -17,6 +17,9 @@ namespace rrlab::cli {
 int serve(const ServeOptions& options) {
   using namespace rrlab::server;
   try {
+    for (const auto& origin : options.allow_origins)
+      if (normalize_origin(origin).empty())
+        throw std::runtime_error("--allow-origin " + origin + ": expected scheme://host[:port], e.g. http://localhost:3000");
     const std::filesystem::path db(options.db);
     if (db.has_parent_path()) std::filesystem::create_directories(db.parent_path());
     storage::RunStore store(options.db);
@@ -32,6 +35,8 @@ int serve(const ServeOptions& options) {
     state->info.websockets = &state->websockets;
     net::io_context ioc(options.threads);
     const unsigned short port = start_listener(ioc, options.host, options.port, state);
+    // the listener accepts nothing before ioc.run(): the bound port is known in time
+    state->access = AccessConfig{options.host, port, options.allow_hosts, options.allow_origins};
     std::cout << "rrlab: serving http://" << options.host << ":" << port << "/ (database " << options.db;
     if (store.interrupted_at_open() > 0) std::cout << ", " << store.interrupted_at_open() << " runs marked interrupted";
     std::cout << ")" << std::endl;

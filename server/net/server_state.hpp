@@ -1,4 +1,4 @@
-// What every connection shares: the run manager, limits and the web root.
+// What every connection shares: the run manager, limits, access rules and the web root.
 #pragma once
 
 #include <atomic>
@@ -6,6 +6,7 @@
 #include <string>
 
 #include "app/run_manager.hpp"
+#include "net/request_guard.hpp"
 #include "routes/routes.hpp"
 
 namespace rrlab::server {
@@ -28,6 +29,7 @@ struct ServerState {
   ServerInfo info;
   std::string web_root;
   NetLimits limits;
+  AccessConfig access;  // Host/Origin/Content-Type rules (net/request_guard.hpp)
   std::atomic<int> websockets{0};
 };
 

@@ -24,6 +24,8 @@ class MalformedRequests : public ServerTest {
     }
     return connection.read_until("\r\n\r\n");
   }
+  // What the Host header must name: this server and its port (net/request_guard).
+  static std::string authority() { return "127.0.0.1:" + std::to_string(port()); }
   // The JSON error of a raw answer.
   static json error_in(const std::string& response) {
     const auto body = response.find("\r\n\r\n");
@@ -41,14 +43,14 @@ TEST_F(MalformedRequests, ABadRequestLineAnswers400ThenCloses) {
 TEST_F(MalformedRequests, ABareLineFeedAnswers400AtOnce) {
   // Beast would wait for a "\r\n\r\n" until the read timeout
   const auto start = std::chrono::steady_clock::now();
-  const std::string response = exchange("GET /api/health HTTP/1.1\nHost: localhost\n\n");
+  const std::string response = exchange("GET /api/health HTTP/1.1\nHost: " + authority() + "\n\n");
   EXPECT_EQ(status_of(response), 400) << response;
   EXPECT_NE(error_in(response)["message"].get<std::string>().find("bare LF"), std::string::npos) << response;
   EXPECT_LT(std::chrono::steady_clock::now() - start, milliseconds(2000));
 }
 
 TEST_F(MalformedRequests, ANulByteInAHeaderAnswers400) {
-  const std::string request = std::string("GET /api/health HTTP/1.1\r\nHost: localhost\r\nX-Odd: a") + '\0' +
+  const std::string request = std::string("GET /api/health HTTP/1.1\r\nHost: " + authority() + "\r\nX-Odd: a") + '\0' +
                               "b\r\n\r\n";
   const std::string response = exchange(request);
   EXPECT_EQ(status_of(response), 400) << response;
@@ -56,7 +58,7 @@ TEST_F(MalformedRequests, ANulByteInAHeaderAnswers400) {
 
 TEST_F(MalformedRequests, ABadChunkSizeAnswers400) {
   const std::string response = exchange(
-      "POST /api/scenarios/validate HTTP/1.1\r\nHost: localhost\r\nTransfer-Encoding: chunked\r\n\r\n"
+      "POST /api/scenarios/validate HTTP/1.1\r\nHost: " + authority() + "\r\nTransfer-Encoding: chunked\r\n\r\n"
       "zz\r\n{}\r\n0\r\n\r\n");
   EXPECT_EQ(status_of(response), 400) << response;
 }
@@ -71,27 +73,27 @@ TEST_F(MalformedRequests, ARequestCutShortAnswers400) {
 
 TEST_F(MalformedRequests, AOneMegabyteHeaderAnswers431) {
   const std::string response =
-      exchange("GET /api/health HTTP/1.1\r\nHost: localhost\r\nX-Big: " + std::string(1 << 20, 'a') + "\r\n\r\n");
+      exchange("GET /api/health HTTP/1.1\r\nHost: " + authority() + "\r\nX-Big: " + std::string(1 << 20, 'a') + "\r\n\r\n");
   EXPECT_EQ(status_of(response), 431) << response.substr(0, 200);
   EXPECT_EQ(error_in(response)["code"], "header_too_large");
 }
 
 TEST_F(MalformedRequests, AHundredKilobyteUrlAnswers414) {
   const std::string response =
-      exchange("GET /api/health?x=" + std::string(100 << 10, 'a') + " HTTP/1.1\r\nHost: localhost\r\n\r\n");
+      exchange("GET /api/health?x=" + std::string(100 << 10, 'a') + " HTTP/1.1\r\nHost: " + authority() + "\r\n\r\n");
   EXPECT_EQ(status_of(response), 414) << response.substr(0, 200);
   EXPECT_EQ(error_in(response)["code"], "url_too_long");
 }
 
 TEST_F(MalformedRequests, AUrlOverEightKibWithinTheHeaderLimitAnswers414) {
   const std::string response =
-      exchange("GET /api/health?x=" + std::string(9 << 10, 'a') + " HTTP/1.1\r\nHost: localhost\r\n\r\n");
+      exchange("GET /api/health?x=" + std::string(9 << 10, 'a') + " HTTP/1.1\r\nHost: " + authority() + "\r\n\r\n");
   EXPECT_EQ(status_of(response), 414) << response.substr(0, 200);
 }
 
 TEST_F(MalformedRequests, HeadersAndUrlsUnderTheLimitsAreServed) {
   const std::string response =
-      exchange("GET /api/health?x=" + std::string(7 << 10, 'a') + " HTTP/1.1\r\nHost: localhost\r\nX-Big: " +
+      exchange("GET /api/health?x=" + std::string(7 << 10, 'a') + " HTTP/1.1\r\nHost: " + authority() + "\r\nX-Big: " +
                    std::string(7 << 10, 'b') + "\r\n\r\n",
                false);
   EXPECT_EQ(status_of(response), 200) << response.substr(0, 200);
@@ -99,8 +101,8 @@ TEST_F(MalformedRequests, HeadersAndUrlsUnderTheLimitsAreServed) {
 
 TEST_F(MalformedRequests, PipelinedRequestsAreAllAnswered) {
   RawConnection connection(port());
-  const std::string one = "GET /api/health HTTP/1.1\r\nHost: localhost\r\n\r\n";
-  connection.write(one + one + "GET /api/health HTTP/1.1\r\nHost: localhost\r\nConnection: close\r\n\r\n");
+  const std::string one = "GET /api/health HTTP/1.1\r\nHost: " + authority() + "\r\n\r\n";
+  connection.write(one + one + "GET /api/health HTTP/1.1\r\nHost: " + authority() + "\r\nConnection: close\r\n\r\n");
   EXPECT_TRUE(connection.read_until_closed());
   std::size_t answers = 0;
   for (auto at = connection.received().find("HTTP/1.1 200"); at != std::string::npos;
@@ -113,7 +115,7 @@ TEST_F(MalformedRequests, ExpectContinueGets100WithinTwoHundredMillisecondsThenT
   const std::string body = small_scenario("circle", 2.0).dump();
   RawConnection connection(port());
   const auto start = std::chrono::steady_clock::now();
-  connection.write("POST /api/scenarios/validate HTTP/1.1\r\nHost: localhost\r\nContent-Type: application/json\r\n"
+  connection.write("POST /api/scenarios/validate HTTP/1.1\r\nHost: " + authority() + "\r\nContent-Type: application/json\r\n"
                    "Content-Length: " + std::to_string(body.size()) + "\r\nExpect: 100-continue\r\n\r\n");
   const std::string interim = connection.read_until("\r\n\r\n", milliseconds(1000));
   EXPECT_LT(std::chrono::steady_clock::now() - start, milliseconds(200));
@@ -126,7 +128,7 @@ TEST_F(MalformedRequests, ExpectContinueGets100WithinTwoHundredMillisecondsThenT
 
 TEST_F(MalformedRequests, ExpectContinueOverTheBodyLimitGets413AtOnce) {
   RawConnection connection(port());
-  connection.write("POST /api/scenarios/validate HTTP/1.1\r\nHost: localhost\r\nContent-Length: " +
+  connection.write("POST /api/scenarios/validate HTTP/1.1\r\nHost: " + authority() + "\r\nContent-Length: " +
                    std::to_string(2 << 20) + "\r\nExpect: 100-continue\r\n\r\n");
   const std::string response = connection.read_until("\r\n\r\n", milliseconds(1000));
   EXPECT_EQ(status_of(response), 413) << response;

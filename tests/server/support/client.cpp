@@ -22,7 +22,7 @@ HttpResult http(unsigned short port, const std::string& method, const std::strin
   stream.expires_after(std::chrono::seconds(120));
   stream.connect(tcp::endpoint(net::ip::make_address("127.0.0.1"), port));
   http_ns::request<http_ns::string_body> request(http_ns::string_to_verb(method), target, 11);
-  request.set(http_ns::field::host, "127.0.0.1");
+  request.set(http_ns::field::host, "127.0.0.1:" + std::to_string(port));  // the server checks Host
   if (!body.empty()) request.set(http_ns::field::content_type, "application/json");
   if (!accept.empty()) request.set(http_ns::field::accept, accept);
   for (const auto& [name, value] : request_headers) request.set(name, value);
@@ -61,13 +61,43 @@ struct WsClient::Impl {
   bool open = false;
 };
 
-WsClient::WsClient(unsigned short port, const std::string& target) : impl_(std::make_unique<Impl>()) {
-  auto& lowest = beast::get_lowest_layer(impl_->ws);
+namespace {
+// Connects and upgrades; the handshake's error, the answer in `response`.
+beast::error_code handshake(net::io_context& ioc, websocket::stream<beast::tcp_stream>& ws, unsigned short port,
+                            const std::string& target, const std::map<std::string, std::string>& headers,
+                            websocket::response_type& response) {
+  auto& lowest = beast::get_lowest_layer(ws);
   lowest.expires_after(std::chrono::seconds(10));
   lowest.connect(tcp::endpoint(net::ip::make_address("127.0.0.1"), port));
+  ws.set_option(websocket::stream_base::decorator([headers](websocket::request_type& request) {
+    for (const auto& [name, value] : headers) request.set(name, value);
+  }));
   beast::error_code error;
-  impl_->ws.async_handshake("127.0.0.1", target, [&](beast::error_code ec) { error = ec; });
-  impl_->ioc.run();
+  ws.async_handshake(response, "127.0.0.1:" + std::to_string(port), target, [&](beast::error_code ec) { error = ec; });
+  ioc.run();
+  return error;
+}
+}  // namespace
+
+HttpResult ws_upgrade(unsigned short port, const std::string& target, const std::map<std::string, std::string>& headers) {
+  net::io_context ioc;
+  websocket::stream<beast::tcp_stream> ws(ioc);
+  websocket::response_type response;
+  handshake(ioc, ws, port, target, headers, response);
+  HttpResult result;
+  result.status = int(response.result_int());
+  result.body = response.body();
+  result.content_type = std::string(response[http_ns::field::content_type]);
+  beast::error_code ec;
+  beast::get_lowest_layer(ws).socket().close(ec);
+  return result;
+}
+
+WsClient::WsClient(unsigned short port, const std::string& target, const std::map<std::string, std::string>& headers)
+    : impl_(std::make_unique<Impl>()) {
+  auto& lowest = beast::get_lowest_layer(impl_->ws);
+  websocket::response_type response;
+  const beast::error_code error = handshake(impl_->ioc, impl_->ws, port, target, headers, response);
   if (error) throw std::runtime_error("websocket " + target + ": " + error.message());
   lowest.expires_never();
   impl_->open = true;

@@ -26,10 +26,14 @@ inline HttpResult http_json(unsigned short port, const std::string& method, cons
   return http(port, method, target, body.dump());
 }
 
+// The status of a WebSocket upgrade's answer (101 when accepted) and its body.
+HttpResult ws_upgrade(unsigned short port, const std::string& target,
+                      const std::map<std::string, std::string>& headers = {});
+
 class WsClient {
  public:
-  // Connects and upgrades; throws on failure.
-  WsClient(unsigned short port, const std::string& target);
+  // Connects and upgrades (with these extra request headers); throws on failure.
+  WsClient(unsigned short port, const std::string& target, const std::map<std::string, std::string>& headers = {});
   ~WsClient();
   // The next text message, or nothing within the timeout.
   std::optional<std::string> read(std::chrono::milliseconds timeout = std::chrono::milliseconds(5000));

@@ -1,0 +1,192 @@
+#include "net/request_guard.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <optional>
+
+namespace rrlab::server {
+
+namespace {
+
+std::string lower(std::string s) {
+  for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+std::string trim(const std::string& s) {
+  const auto first = s.find_first_not_of(" \t");
+  if (first == std::string::npos) return "";
+  return s.substr(first, s.find_last_not_of(" \t") - first + 1);
+}
+
+// Client bytes quoted in a message: at most 100 characters.
+std::string quote(const std::string& s) { return "\"" + (s.size() > 100 ? s.substr(0, 100) + "..." : s) + "\""; }
+
+struct Authority {
+  std::string name;  // lower case; an IPv6 address in brackets
+  std::optional<int> port;
+};
+
+// "name", "name:port", "[v6]", "[v6]:port"; nothing if malformed.
+std::optional<Authority> parse_authority(const std::string& text) {
+  Authority a;
+  std::string rest;
+  if (!text.empty() && text[0] == '[') {
+    const auto close = text.find(']');
+    if (close == std::string::npos) return std::nullopt;
+    a.name = lower(text.substr(0, close + 1));
+    rest = text.substr(close + 1);
+  } else {
+    const auto colon = text.find(':');
+    a.name = lower(text.substr(0, colon));
+    rest = colon == std::string::npos ? "" : text.substr(colon);
+  }
+  if (a.name.empty() || a.name == "[]") return std::nullopt;
+  for (char c : a.name)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' || c == '_' || c == '[' || c == ']' ||
+          c == ':'))
+      return std::nullopt;
+  if (rest.empty()) return a;
+  if (rest[0] != ':' || rest.size() < 2 || rest.size() > 6) return std::nullopt;
+  int port = 0;
+  for (char c : rest.substr(1)) {
+    if (c < '0' || c > '9') return std::nullopt;
+    port = port * 10 + (c - '0');
+  }
+  if (port > 65535) return std::nullopt;
+  a.port = port;
+  return a;
+}
+
+std::string bracketed(const std::string& address) {
+  // an IPv6 address (two colons or more) without brackets
+  const bool v6 = std::count(address.begin(), address.end(), ':') >= 2;
+  return v6 && address.front() != '[' ? "[" + address + "]" : address;
+}
+
+bool loopback_bind(const std::string& host) {
+  return host.rfind("127.", 0) == 0 || host == "::1" || host == "[::1]" || lower(host) == "localhost";
+}
+
+// Rule 1 for an authority; `default_port` when it names none.
+bool names_this_server(const AccessConfig& config, const Authority& a, int default_port) {
+  const int port = a.port.value_or(default_port);
+  const std::string bound = lower(bracketed(config.bind_host));
+  if (port == config.port && (a.name == "localhost" || a.name == "127.0.0.1" || a.name == "[::1]" || a.name == bound))
+    return true;
+  for (const std::string& allowed : config.allow_hosts) {
+    const auto named = parse_authority(bracketed(trim(allowed)));
+    if (named && named->name == a.name && (!named->port || a.port.value_or(default_port) == *named->port)) return true;
+  }
+  return false;
+}
+
+struct Origin {
+  std::string scheme;
+  Authority authority;
+};
+
+std::optional<Origin> parse_origin(const std::string& text) {
+  const auto sep = text.find("://");
+  if (sep == std::string::npos || sep == 0) return std::nullopt;
+  Origin o;
+  o.scheme = lower(text.substr(0, sep));
+  std::string rest = text.substr(sep + 3);
+  if (!rest.empty() && rest.back() == '/') rest.pop_back();
+  const auto authority = parse_authority(rest);
+  if (!authority) return std::nullopt;
+  o.authority = *authority;
+  return o;
+}
+
+int default_port(const std::string& scheme) { return scheme == "https" ? 443 : scheme == "http" ? 80 : -1; }
+
+bool is_allowed_origin(const AccessConfig& config, const std::string& normalized) {
+  return !normalized.empty() && std::any_of(config.allow_origins.begin(), config.allow_origins.end(),
+                                            [&](const std::string& o) { return normalize_origin(o) == normalized; });
+}
+
+std::string hosts_for_message(const AccessConfig& config) {
+  std::vector<std::string> hosts = {"localhost", "127.0.0.1"};
+  if (lower(bracketed(config.bind_host)) != "127.0.0.1") hosts.push_back(bracketed(config.bind_host));
+  std::string names;
+  for (const auto& h : hosts)
+    names.append(names.empty() ? "" : ", ").append(h).append(":").append(std::to_string(config.port));
+  for (const auto& h : config.allow_hosts) names.append(", ").append(h);
+  return names;
+}
+
+AccessDecision refuse(int status, std::string code, std::string message) {
+  AccessDecision d;
+  d.status = status;
+  d.code = std::move(code);
+  d.message = std::move(message);
+  return d;
+}
+
+}  // namespace
+
+std::string normalize_origin(const std::string& origin) {
+  const auto o = parse_origin(trim(origin));
+  if (!o || default_port(o->scheme) < 0) return "";
+  std::string text = o->scheme + "://" + o->authority.name;
+  if (o->authority.port && *o->authority.port != default_port(o->scheme))
+    text.append(":").append(std::to_string(*o->authority.port));
+  return text;
+}
+
+AccessDecision check_access(const AccessConfig& config, const AccessRequest& request) {
+  // 1. Host
+  if (request.host.empty()) {
+    if (!loopback_bind(config.bind_host))
+      return refuse(400, "missing_host", "the request needs a Host header naming this server");
+  } else {
+    const auto authority = parse_authority(trim(request.host));
+    if (!authority || !names_this_server(config, *authority, 80))
+      return refuse(421, "misdirected",
+                    "Host " + quote(request.host) + " does not name this server (" + hosts_for_message(config) +
+                        "); start rrlab serve with --allow-host NAME to accept another name");
+  }
+
+  // 2. Origin
+  AccessDecision decision;
+  if (!request.origin.empty()) {
+    const std::string normalized = normalize_origin(request.origin);
+    const auto origin = parse_origin(trim(request.origin));
+    const bool own = origin && origin->scheme == "http" && names_this_server(config, origin->authority, 80);
+    const bool listed = is_allowed_origin(config, normalized);
+    if (listed) {
+      decision.headers = {{"Access-Control-Allow-Origin", trim(request.origin)}, {"Vary", "Origin"}};
+      if (request.method == "OPTIONS") {
+        decision.status = 204;
+        decision.headers.push_back({"Access-Control-Allow-Methods", "GET, HEAD, POST, PUT, PATCH, DELETE"});
+        decision.headers.push_back({"Access-Control-Allow-Headers", "Content-Type"});
+        decision.headers.push_back({"Access-Control-Max-Age", "600"});
+        return decision;
+      }
+    }
+    const bool safe = request.method == "GET" || request.method == "HEAD" || request.method == "OPTIONS";
+    if ((request.upgrade || !safe) && !own && !listed)
+      return refuse(403, "forbidden_origin",
+                    "Origin " + quote(request.origin) +
+                        " may not change this server or open its WebSockets; start rrlab serve with "
+                        "--allow-origin ORIGIN to accept it");
+  }
+
+  // 3. Content-Type of API bodies
+  const std::string path = request.target.substr(0, request.target.find('?'));
+  if (request.has_body && (path == "/api" || path.rfind("/api/", 0) == 0)) {
+    const std::string media = lower(trim(request.content_type.substr(0, request.content_type.find(';'))));
+    if (media != "application/json") {
+      AccessDecision refused = refuse(415, "unsupported_media_type",
+                                      "the Content-Type header must be application/json for a request body" +
+                                          (request.content_type.empty() ? std::string(" (none was given)")
+                                                                        : ", not " + quote(request.content_type)));
+      refused.headers = decision.headers;
+      return refused;
+    }
+  }
+  return decision;
+}
+
+}  // namespace rrlab::server
