@@ -99,7 +99,7 @@ TEST_F(RunRoutes, NotWhileAReplayPlays) {
 
 TEST_F(RunRoutes, NotWhileItIsResimulated) {
   // long enough that the re-simulation is still going when the DELETEs arrive
-  const HttpResult batch = send("POST", "/api/runs", {{"scenario", scenario_named("resimulated", "circle", 1000)},
+  const HttpResult batch = send("POST", "/api/runs", {{"scenario", scenario_named("resimulated", "circle", 3000)},
                                                       {"mode", "batch"}});
   ASSERT_EQ(batch.status, 200);
   const std::int64_t id = batch.json()["id"];
