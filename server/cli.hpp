@@ -71,5 +71,8 @@ int merge(const MergeOptions& options);
 int report(const ReportOptions& options);
 // A directory given on the command line, else ./NAME, else the source tree's.
 std::string find_dir(const std::optional<std::string>& given, const char* name);
+// A database the command reads must exist (it never creates one): false, with
+// the error on stderr, when `db` is not a file.
+bool database_exists(const std::string& db);
 
 }  // namespace rrlab::cli

@@ -1,4 +1,5 @@
 #include <filesystem>
+#include <iostream>
 
 #include "cli.hpp"
 
@@ -11,6 +12,13 @@ std::string find_dir(const std::optional<std::string>& given, const char* name) 
   const std::string source = std::string(RRLAB_SOURCE_DIR) + "/" + name;
   if (std::filesystem::is_directory(source, ec)) return source;
   return name;
+}
+
+bool database_exists(const std::string& db) {
+  std::error_code ec;
+  if (std::filesystem::is_regular_file(db, ec)) return true;
+  std::cerr << "rrlab: error: no database file '" << db << "'\n";
+  return false;
 }
 
 }  // namespace rrlab::cli

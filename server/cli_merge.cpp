@@ -13,10 +13,7 @@ int merge(const MergeOptions& options) {
   try {
     std::error_code ec;
     for (const std::string& in : options.in_dbs) {
-      if (!std::filesystem::is_regular_file(in, ec)) {
-        std::cerr << "rrlab: error: no database file '" << in << "'\n";
-        return 2;
-      }
+      if (!database_exists(in)) return 2;
       if (std::filesystem::exists(options.out_db, ec) && std::filesystem::equivalent(in, options.out_db, ec)) {
         std::cerr << "rrlab: error: '" << in << "' is the output database itself\n";
         return 2;

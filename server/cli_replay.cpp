@@ -16,11 +16,7 @@ constexpr int kExitNothingCompared = 3;
 // Re-simulates a stored run and prints {run, frames_compared, identical, ...}.
 int replay(const ReplayOptions& options) {
   try {
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(options.db, ec)) {
-      std::cerr << "rrlab: error: no database file '" << options.db << "'\n";  // never create one here
-      return 2;
-    }
+    if (!database_exists(options.db)) return 2;
     storage::RunStore store(options.db);
     const auto run = store.run(options.run_id);
     if (!run) {

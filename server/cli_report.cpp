@@ -13,11 +13,7 @@ namespace rrlab::cli {
 
 int report(const ReportOptions& options) {
   try {
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(options.db, ec)) {
-      std::cerr << "rrlab: error: no database file '" << options.db << "'\n";  // never create one here
-      return 2;
-    }
+    if (!database_exists(options.db)) return 2;
     storage::RunStore store(options.db);
     const std::vector<storage::SweepRunEntry> runs = store.sweep_runs(options.sweep);
     if (options.sweep && runs.empty()) {

@@ -3,7 +3,7 @@
 // ?scenario=&method=), draws at the display rate with requestAnimationFrame.
 import { api, describeError } from './api.js';
 import { app, readUrl, writeUrl } from './state.js';
-import { Session, sessionFor } from './session.js';
+import { sessionFor } from './session.js';
 import { buildParams, setupMethodSwitch, fmt } from './params.js';
 import { showMetrics } from './metrics.js';
 import { RunList } from './runs.js';
@@ -275,7 +275,7 @@ $('open-editor').onclick = async () => {
 };
 
 // For browser tests and for measuring: the state, the session and the frame rate.
-window.__rrlab = { app, fps, get session() { return session; }, plots, Session };
+window.__rrlab = { app, fps, get session() { return session; }, plots };
 
 // ---- start: what the address asks for --------------------------------------
 async function start() {

@@ -19,7 +19,6 @@ export const OVERLAYS = [
 ];
 
 export const app = {
-  session: null,      // {kind: 'live'|'replay', runIds: [..], lanes: [Lane..], layout: 'side'|'overlay'}
   overlays: Object.fromEntries(OVERLAYS.map((o) => [o.key, true])),
   methods: [],        // GET /api/methods
   scenarios: [],      // GET /api/scenarios
