@@ -59,6 +59,12 @@ function showLimits(lane) {
   if (!lane || !lane.snapshot || !lane.frame) { box.replaceChildren(); return; }
   const { lower, upper } = lane.snapshot.model.limits;
   const q = lane.frame.q;
+  // an arm without position limits: say so rather than draw empty bars
+  const bounded = (i) => lower && upper && lower[i] !== null && upper[i] !== null && upper[i] > lower[i];
+  if (!q.some((_, i) => bounded(i))) {
+    if (!box.querySelector('.no-limits')) box.innerHTML = '<p class="no-limits muted small">This arm has no joint position limits.</p>';
+    return;
+  }
   if (box.childElementCount !== q.length) {
     box.replaceChildren();
     for (let i = 0; i < q.length; ++i) {

@@ -33,6 +33,7 @@ export class ReplayBar {
 
   attach(session, startFrame) {
     this.session = session;
+    this.pendingSeq = null;
     $('replay-bar').hidden = false;
     const last = Math.max(0, session.frameCount - 1);
     $('scrubber').max = String(last);
@@ -53,12 +54,13 @@ export class ReplayBar {
     if (!this.session) return;
     await Promise.all(this.session.lanes.map((lane) => {
       if (lane.stream && lane.stream.send({ type: 'control', ...body })) return null;
-      return api('POST', `/api/replays/${lane.replayId}/control`, body).catch((e) => app.error(e));
+      return api('POST', `/api/replays/${lane.replayId}/control`, body).catch((e) => { this.pendingSeq = null; app.error(e); });
     }));
   }
 
   setPlaying(playing) {
     this.playing = playing;
+    this.pendingSeq = null;
     this.showPlaying();
     this.control({ action: playing ? 'play' : 'pause', speed: Number($('replay-speed').value) });
     if (!playing) this.session.updateUrl(this.seq);
@@ -75,6 +77,7 @@ export class ReplayBar {
     seq = Math.max(0, Math.min(Number($('scrubber').max), Math.round(seq)));
     $('scrubber').value = String(seq);
     if (this.playing) { this.playing = false; this.showPlaying(); }
+    this.pendingSeq = seq;  // frames sent before the seek must not move the scrubber back
     this.control({ action: 'pause', seq });  // one command: a separate pause could land after the seek
     this.session.updateUrl(seq);
     for (const lane of this.session.lanes) if (lane.view) lane.view.resetTrace();
@@ -92,6 +95,10 @@ export class ReplayBar {
   // A frame of lane 0 arrived: move the scrubber and the readout.
   onFrame(frame) {
     if (!this.session) return;
+    if (this.pendingSeq !== null && this.pendingSeq !== undefined) {
+      if (frame.seq !== this.pendingSeq) return;
+      this.pendingSeq = null;
+    }
     if (!this.scrubbing) $('scrubber').value = String(frame.seq);
     $('replay-frame').textContent = `${frame.seq} / ${$('scrubber').max} · ${frame.t.toFixed(2)} s`;
     if (frame.seq >= Number($('scrubber').max) && this.playing) { this.playing = false; this.showPlaying(); }
