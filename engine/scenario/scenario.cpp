@@ -10,6 +10,7 @@
 #include "collision/polygon.hpp"
 #include "methods/registry.hpp"
 #include "scenario/json_reader.hpp"
+#include "scenario/physical_bounds.hpp"
 
 namespace rrlab {
 
@@ -32,17 +33,44 @@ Eigen::Matrix3d rpy_matrix(const std::vector<double>& rpy, double scale) {
       .toRotationMatrix();
 }
 
-double positive(JsonObject& obj, const std::string& key, std::optional<double> def = std::nullopt) {
-  const double v = def ? obj.number(key, *def) : obj.number(key);
-  if (!(v > 0)) throw ScenarioError(obj.child(key), "must be > 0, got " + std::to_string(v));
-  return v;
+// Every number read below is checked against PhysicalBounds in the file's units.
+void check_all(const std::vector<double>& values, const std::string& path, const Quantity& q, const Units& units) {
+  for (size_t i = 0; i < values.size(); ++i) check_quantity(values[i], q, index_path(path, i), units.angle);
 }
 
-double non_negative(JsonObject& obj, const std::string& key, double def) {
-  const double v = obj.number(key, def);
-  if (v < 0) throw ScenarioError(obj.child(key), "must be >= 0, got " + std::to_string(v));
-  return v;
+double bounded(JsonObject& obj, const std::string& key, const Quantity& q, const Units& units, double def) {
+  return check_quantity(obj.number(key, def), q, obj.child(key), units.angle);
 }
+
+std::vector<double> bounded_numbers(JsonObject& obj, const std::string& key, size_t min_size, size_t max_size,
+                                    const Quantity& q, const Units& units) {
+  std::vector<double> values = obj.numbers(key, min_size, max_size);
+  check_all(values, obj.child(key), q, units);
+  return values;
+}
+
+double positive(JsonObject& obj, const std::string& key, const Quantity& q, const Units& units,
+                std::optional<double> def = std::nullopt) {
+  const double v = def ? obj.number(key, *def) : obj.number(key);
+  if (!(v > 0)) throw ScenarioError(obj.child(key), "must be > 0, got " + format_number(v));
+  return check_quantity(v, q, obj.child(key), units.angle);
+}
+
+double non_negative(JsonObject& obj, const std::string& key, const Quantity& q, const Units& units, double def) {
+  const double v = obj.number(key, def);
+  if (v < 0) throw ScenarioError(obj.child(key), "must be >= 0, got " + format_number(v));
+  return check_quantity(v, q, obj.child(key), units.angle);
+}
+
+// The quantity of a joint coordinate (or of its rate) by joint type.
+struct JointQuantity {
+  const Quantity& revolute;
+  const Quantity& prismatic;
+  const Quantity& of(JointType type) const { return type == JointType::revolute ? revolute : prismatic; }
+};
+constexpr JointQuantity kPosition{PhysicalBounds::angle, PhysicalBounds::length};
+constexpr JointQuantity kVelocity{PhysicalBounds::angular_speed, PhysicalBounds::linear_speed};
+constexpr JointQuantity kAcceleration{PhysicalBounds::acceleration, PhysicalBounds::acceleration};
 
 // ---- robot ----
 
@@ -61,40 +89,46 @@ Model parse_links(JsonObject& robot, const std::string& kind, const Units& units
       JsonObject link(links[i], index_path(links_path, i));
       link.check_keys({"a", "alpha", "d", "theta", "joint", "radius"});
       DhLinkSpec s;
-      s.a = link.number("a", 0.0);
-      s.alpha = link.number("alpha", 0.0) * units.angle;
-      s.d = link.number("d", 0.0);
-      s.theta = link.number("theta", 0.0) * units.angle;
+      s.a = bounded(link, "a", PhysicalBounds::length, units, 0.0);
+      s.alpha = bounded(link, "alpha", PhysicalBounds::angle, units, 0.0) * units.angle;
+      s.d = bounded(link, "d", PhysicalBounds::length, units, 0.0);
+      s.theta = bounded(link, "theta", PhysicalBounds::angle, units, 0.0) * units.angle;
       s.joint = link.choice("joint", {"revolute", "prismatic"}, "revolute") == "prismatic"
                     ? JointType::prismatic
                     : JointType::revolute;
-      s.radius = non_negative(link, "radius", 0.0);
+      s.radius = non_negative(link, "radius", PhysicalBounds::length, units, 0.0);
       specs.push_back(s);
     }
     Eigen::Isometry3d base = Eigen::Isometry3d::Identity();
-    if (robot.has("base")) base.translation() = to_vec3(robot.numbers("base", 3, 3));
-    if (robot.has("base_rpy")) base.linear() = rpy_matrix(robot.numbers("base_rpy", 3, 3), units.angle);
+    if (robot.has("base"))
+      base.translation() = to_vec3(bounded_numbers(robot, "base", 3, 3, PhysicalBounds::length, units));
+    if (robot.has("base_rpy"))
+      base.linear() = rpy_matrix(bounded_numbers(robot, "base_rpy", 3, 3, PhysicalBounds::angle, units), units.angle);
     return make_dh(specs, base);
   }
   std::vector<PlanarLinkSpec> specs;
   for (size_t i = 0; i < links.size(); ++i) {
     JsonObject link(links[i], index_path(links_path, i));
     link.check_keys({"length", "radius"});
-    specs.push_back({positive(link, "length"), non_negative(link, "radius", 0.0)});
+    specs.push_back({positive(link, "length", PhysicalBounds::length, units),
+                     non_negative(link, "radius", PhysicalBounds::length, units, 0.0)});
   }
   if (kind == "planar") {
     if (robot.has("base_rpy")) throw ScenarioError(robot.child("base_rpy"), "only dh robots take base_rpy");
-    const std::vector<double> base = robot.has("base") ? robot.numbers("base", 2, 2) : std::vector<double>{0, 0};
+    const std::vector<double> base = robot.has("base") ? bounded_numbers(robot, "base", 2, 2, PhysicalBounds::length, units)
+                                                       : std::vector<double>{0, 0};
     return make_planar(specs, {base[0], base[1]});
   }
   if (robot.has("base_rpy")) throw ScenarioError(robot.child("base_rpy"), "only dh robots take base_rpy");
-  const std::vector<double> base = robot.has("base") ? robot.numbers("base", 3, 3) : std::vector<double>{0, 0, 0};
+  const std::vector<double> base = robot.has("base") ? bounded_numbers(robot, "base", 3, 3, PhysicalBounds::length, units)
+                                                       : std::vector<double>{0, 0, 0};
   return make_spatial_xz(specs, to_vec3(base));
 }
 
 // Limits entries may be null (unbounded); angles of revolute joints are converted.
 Eigen::VectorXd parse_limit_vector(JsonObject& limits, const std::string& key, const Model& model,
-                                   const Units& units, double unbounded, bool must_be_positive) {
+                                   const Units& units, double unbounded, bool must_be_positive,
+                                   const JointQuantity& quantity) {
   Eigen::VectorXd out = Eigen::VectorXd::Constant(model.dof(), unbounded);
   if (!limits.has(key)) return out;
   const json& v = limits.raw(key);
@@ -105,9 +139,11 @@ Eigen::VectorXd parse_limit_vector(JsonObject& limits, const std::string& key, c
                                   std::to_string(v.size()));
   for (int i = 0; i < model.dof(); ++i) {
     if (v[i].is_null()) continue;
-    const double scale = model.joints[i].type == JointType::revolute ? units.angle : 1.0;
-    out[i] = json_number(v[i], index_path(path, i)) * scale;
-    if (must_be_positive && !(out[i] > 0)) throw ScenarioError(index_path(path, i), "must be > 0");
+    const JointType type = model.joints[i].type;
+    const double scale = type == JointType::revolute ? units.angle : 1.0;
+    const double value = json_number(v[i], index_path(path, i));
+    if (must_be_positive && !(value > 0)) throw ScenarioError(index_path(path, i), "must be > 0");
+    out[i] = check_quantity(value, quantity.of(type), index_path(path, i), scale) * scale;
   }
   return out;
 }
@@ -126,8 +162,11 @@ void parse_robot(JsonObject robot, const Units& units, Scenario& sc) {
       throw ScenarioError(path, "has " + std::to_string(q0.size()) + " values but the robot has " +
                                     std::to_string(n) + " joints");
     const std::vector<double> values = json_numbers(q0, path, n, n);
-    for (int i = 0; i < n; ++i)
-      sc.q0[i] = values[i] * (sc.model.joints[i].type == JointType::revolute ? units.angle : 1.0);
+    for (int i = 0; i < n; ++i) {
+      const JointType type = sc.model.joints[i].type;
+      const double scale = type == JointType::revolute ? units.angle : 1.0;
+      sc.q0[i] = check_quantity(values[i], kPosition.of(type), index_path(path, i), scale) * scale;
+    }
   }
 
   if (robot.has("limits")) {
@@ -135,10 +174,10 @@ void parse_robot(JsonObject robot, const Units& units, Scenario& sc) {
     limits.check_keys({"lower", "upper", "velocity", "acceleration"});
     constexpr double inf = std::numeric_limits<double>::infinity();
     JointLimits& l = sc.model.limits;
-    l.lower = parse_limit_vector(limits, "lower", sc.model, units, -inf, false);
-    l.upper = parse_limit_vector(limits, "upper", sc.model, units, inf, false);
-    l.velocity = parse_limit_vector(limits, "velocity", sc.model, units, inf, true);
-    l.acceleration = parse_limit_vector(limits, "acceleration", sc.model, units, inf, true);
+    l.lower = parse_limit_vector(limits, "lower", sc.model, units, -inf, false, kPosition);
+    l.upper = parse_limit_vector(limits, "upper", sc.model, units, inf, false, kPosition);
+    l.velocity = parse_limit_vector(limits, "velocity", sc.model, units, inf, true, kVelocity);
+    l.acceleration = parse_limit_vector(limits, "acceleration", sc.model, units, inf, true, kAcceleration);
     for (int i = 0; i < n; ++i) {
       if (l.lower[i] >= l.upper[i])
         throw ScenarioError(index_path(limits.child("lower"), i), "must be below the upper limit");
@@ -163,13 +202,15 @@ Obstacle parse_obstacle(const json& value, const std::string& path, size_t index
     o.shape = ShapeKind::polygon;
     const json& points = obj.array("points", ScenarioLimits::max_polygon_points);
     for (size_t i = 0; i < points.size(); ++i) {
-      const std::vector<double> p = json_numbers(points[i], index_path(obj.child("points"), i), 2, 2);
+      const std::string point_path = index_path(obj.child("points"), i);
+      const std::vector<double> p = json_numbers(points[i], point_path, 2, 2);
+      check_all(p, point_path, PhysicalBounds::length, units);
       o.points.emplace_back(p[0], p[1]);
     }
     const std::string problem = polygon_problem(o.points);
     if (!problem.empty()) throw ScenarioError(obj.child("points"), problem);
     if (obj.has("z")) {
-      const std::vector<double> z = obj.numbers("z", 2, 2);
+      const std::vector<double> z = bounded_numbers(obj, "z", 2, 2, PhysicalBounds::length, units);
       if (!(z[0] < z[1])) throw ScenarioError(obj.child("z"), "must be [z_min, z_max] with z_min < z_max");
       o.z_min = z[0];
       o.z_max = z[1];
@@ -177,32 +218,34 @@ Obstacle parse_obstacle(const json& value, const std::string& path, size_t index
   } else if (shape == "box") {
     obj.check_keys({"id", "shape", "center", "size", "rpy", "velocity"});
     o.shape = ShapeKind::box;
-    o.position0 = to_vec3(obj.numbers("center", 2, 3));
-    const std::vector<double> size = obj.numbers("size", 2, 3);
+    o.position0 = to_vec3(bounded_numbers(obj, "center", 2, 3, PhysicalBounds::length, units));
+    const std::vector<double> size = bounded_numbers(obj, "size", 2, 3, PhysicalBounds::length, units);
     o.size = {size[0], size[1], size.size() > 2 ? size[2] : 2.0};  // planar boxes: 2 m tall
     for (int i = 0; i < 3; ++i)
       if (!(o.size[i] > 0)) throw ScenarioError(index_path(obj.child("size"), i), "must be > 0");
-    if (obj.has("rpy")) o.rotation = rpy_matrix(obj.numbers("rpy", 3, 3), units.angle);
+    if (obj.has("rpy"))
+      o.rotation = rpy_matrix(bounded_numbers(obj, "rpy", 3, 3, PhysicalBounds::angle, units), units.angle);
   } else if (shape == "sphere") {
     obj.check_keys({"id", "shape", "center", "radius", "velocity"});
     o.shape = ShapeKind::sphere;
-    o.position0 = to_vec3(obj.numbers("center", 2, 3));
-    o.radius = positive(obj, "radius");
+    o.position0 = to_vec3(bounded_numbers(obj, "center", 2, 3, PhysicalBounds::length, units));
+    o.radius = positive(obj, "radius", PhysicalBounds::length, units);
   } else if (shape == "point") {
     obj.check_keys({"id", "shape", "position", "velocity"});
     o.shape = ShapeKind::point;
-    o.position0 = to_vec3(obj.numbers("position", 2, 3));
+    o.position0 = to_vec3(bounded_numbers(obj, "position", 2, 3, PhysicalBounds::length, units));
   } else {
     obj.check_keys({"id", "shape", "point", "normal", "velocity"});
     o.shape = ShapeKind::wall;
-    o.position0 = to_vec3(obj.numbers("point", 2, 3));
-    const Eigen::Vector3d normal = to_vec3(obj.numbers("normal", 2, 3));
+    o.position0 = to_vec3(bounded_numbers(obj, "point", 2, 3, PhysicalBounds::length, units));
+    const Eigen::Vector3d normal = to_vec3(bounded_numbers(obj, "normal", 2, 3, PhysicalBounds::length, units));
     if (normal.norm() < 1e-12) throw ScenarioError(obj.child("normal"), "must not be zero");
     o.normal = normal.normalized();
   }
   o.id = obj.string("id", "obstacle" + std::to_string(index + 1));
   if (o.id.empty() || o.id.size() > 64) throw ScenarioError(obj.child("id"), "must have 1 to 64 characters");
-  if (obj.has("velocity")) o.velocity = to_vec3(obj.numbers("velocity", 2, 3));
+  if (obj.has("velocity"))
+    o.velocity = to_vec3(bounded_numbers(obj, "velocity", 2, 3, PhysicalBounds::linear_speed, units));
   o.position = o.position0;
   return o;
 }
@@ -227,7 +270,9 @@ void parse_trajectory(JsonObject traj, const Units& units, TaskSpace space, Traj
   const std::string type = traj.choice("type", {"polyline", "circle", "ellipse", "joystick"});
   const size_t dims = space == TaskSpace::xy ? 2 : 3;
   auto point = [&](const json& v, const std::string& path) {
-    return to_vec3(json_numbers(v, path, dims, dims));
+    const std::vector<double> p = json_numbers(v, path, dims, dims);
+    check_all(p, path, PhysicalBounds::length, units);
+    return to_vec3(p);
   };
   auto time_law = [&] {
     return traj.choice("time_law", {"linear", "quintic"}, "linear") == "quintic" ? TimeLaw::quintic
@@ -244,6 +289,7 @@ void parse_trajectory(JsonObject traj, const Units& units, TaskSpace space, Traj
       t.durations = traj.numbers("durations", points.size() - 1, points.size() - 1);
       for (size_t i = 0; i < t.durations.size(); ++i)
         if (!(t.durations[i] > 0)) throw ScenarioError(index_path(traj.child("durations"), i), "must be > 0");
+      check_all(t.durations, traj.child("durations"), PhysicalBounds::time, units);
     }
     return;
   }
@@ -260,20 +306,21 @@ void parse_trajectory(JsonObject traj, const Units& units, TaskSpace space, Traj
   t.type = circle ? TrajectoryType::circle : TrajectoryType::ellipse;
   t.center = point(traj.raw("center"), traj.child("center"));
   if (circle) {
-    t.radius = positive(traj, "radius");
+    t.radius = positive(traj, "radius", PhysicalBounds::length, units);
   } else {
-    const std::vector<double> axes = traj.numbers("semi_axes", 2, 2);
+    const std::vector<double> axes = bounded_numbers(traj, "semi_axes", 2, 2, PhysicalBounds::length, units);
     for (int i = 0; i < 2; ++i)
       if (!(axes[i] > 0)) throw ScenarioError(index_path(traj.child("semi_axes"), i), "must be > 0");
     t.semi_axes = {axes[0], axes[1]};
   }
-  if (auto a = traj.optional_number("start_angle")) t.start_angle = *a * units.angle;
+  if (auto a = traj.optional_number("start_angle"))
+    t.start_angle = check_quantity(*a, PhysicalBounds::angle, traj.child("start_angle"), units.angle) * units.angle;
   t.clockwise = traj.choice("direction", {"ccw", "cw"}, "ccw") == "cw";
-  t.turns = positive(traj, "turns", 1.0);
+  t.turns = positive(traj, "turns", PhysicalBounds::turns, units, 1.0);
   t.time_law = time_law();
   if (traj.has("normal")) {
     if (space == TaskSpace::xy) throw ScenarioError(traj.child("normal"), "only 3D task spaces take a normal");
-    t.normal = to_vec3(traj.numbers("normal", 3, 3));
+    t.normal = to_vec3(bounded_numbers(traj, "normal", 3, 3, PhysicalBounds::length, units));
     if (t.normal.norm() < 1e-12) throw ScenarioError(traj.child("normal"), "must not be zero");
     t.normal.normalize();
   }
@@ -297,7 +344,8 @@ void parse_task(JsonObject task, const Units& units, Scenario& sc) {
   if (task.has("orientation")) {
     if (sc.task.space != TaskSpace::pose)
       throw ScenarioError(task.child("orientation"), "only \"pose\" tasks take an orientation");
-    sc.task.orientation = rpy_matrix(task.numbers("orientation", 3, 3), units.angle);
+    sc.task.orientation =
+        rpy_matrix(bounded_numbers(task, "orientation", 3, 3, PhysicalBounds::angle, units), units.angle);
   }
   parse_trajectory(task.object("trajectory"), units, sc.task.space, sc.task.trajectory);
 }
@@ -374,10 +422,12 @@ Scenario parse_scenario(const json& doc) {
   if (!(sc.dt > 0) || sc.dt > 1.0) throw ScenarioError("dt", "must be in (0, 1] s");
   sc.duration = root.number("duration", 10.0);
   if (!(sc.duration > 0)) throw ScenarioError("duration", "must be > 0 s");
+  // Compared in double: duration/dt may be far beyond any integer.
   if (sc.duration / sc.dt > double(ScenarioLimits::max_steps))
-    throw ScenarioError("duration", "gives " + std::to_string(std::lround(sc.duration / sc.dt)) +
-                                        " steps, at most " + std::to_string(ScenarioLimits::max_steps) +
-                                        " allowed");
+    throw ScenarioError("duration", "must give at most " + std::to_string(ScenarioLimits::max_steps) +
+                                        " steps of dt = " + format_number(sc.dt) + " s (at most " +
+                                        format_number(double(ScenarioLimits::max_steps) * sc.dt) + " s), got " +
+                                        format_number(sc.duration) + " s");
   if (sc.steps() < 1) throw ScenarioError("duration", "must be at least one step (dt)");
   Units units;
   if (root.choice("angle_unit", {"rad", "deg"}, "rad") == "deg") units.angle = M_PI / 180.0;

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "scenario/json_reader.hpp"
+#include "scenario/physical_bounds.hpp"
 #include "sim/simulator.hpp"
 
 namespace rrlab {
@@ -11,15 +12,11 @@ namespace {
 
 using nlohmann::json;
 
-Eigen::Vector3d vector3(JsonObject& obj, const std::string& key, double bound) {
+Eigen::Vector3d vector3(JsonObject& obj, const std::string& key, const Quantity& quantity) {
   const std::vector<double> v = obj.numbers(key, 2, 3);
   Eigen::Vector3d out = Eigen::Vector3d::Zero();
-  for (size_t i = 0; i < v.size(); ++i) {
-    if (!std::isfinite(v[i]) || std::abs(v[i]) > bound)
-      throw ScenarioError(index_path(obj.child(key), i), "must be finite with magnitude at most " +
-                                                             json(bound).dump());
-    out[Eigen::Index(i)] = v[i];
-  }
+  for (size_t i = 0; i < v.size(); ++i)
+    out[Eigen::Index(i)] = check_quantity(v[i], quantity, index_path(obj.child(key), i));
   return out;
 }
 
@@ -64,8 +61,8 @@ void apply_obstacle(Simulator& sim, const json& payload) {
     edited = std::move(parsed);
     reshape = true;
   }
-  if (obj.has("velocity")) edited.velocity = vector3(obj, "velocity", InputLimits::max_obstacle_speed);
-  if (obj.has("position")) edited.position = vector3(obj, "position", InputLimits::max_coordinate);
+  if (obj.has("velocity")) edited.velocity = vector3(obj, "velocity", PhysicalBounds::linear_speed);
+  if (obj.has("position")) edited.position = vector3(obj, "position", PhysicalBounds::length);
   if (obj.has("position") && payload.at("position").size() == 2)
     edited.position.z() = sim.scene().obstacles[size_t(index)].position.z();
   // position(t) = position0 + velocity · t must hold at the current time
@@ -103,8 +100,8 @@ void apply_joystick(Simulator& sim, const json& payload) {
                           " trajectory, not a joystick");
   JsonObject obj(payload, "");
   obj.check_keys({"linear", "angular"});
-  const Eigen::Vector3d linear = vector3(obj, "linear", InputLimits::max_joystick_speed);
-  const Eigen::Vector3d angular = obj.has("angular") ? vector3(obj, "angular", InputLimits::max_joystick_rate)
+  const Eigen::Vector3d linear = vector3(obj, "linear", PhysicalBounds::joystick_speed);
+  const Eigen::Vector3d angular = obj.has("angular") ? vector3(obj, "angular", PhysicalBounds::joystick_rate)
                                                      : Eigen::Vector3d::Zero();
   sim.task().set_joystick(linear, angular);
 }

@@ -33,13 +33,8 @@ class InputStateError : public std::runtime_error {
 // ScenarioError (path relative to the payload) or InputStateError.
 void apply_input(Simulator& sim, const std::string& kind, const nlohmann::json& payload);
 
-// Bounds on live inputs.
-struct InputLimits {
-  static constexpr double max_joystick_speed = 10.0;    // m/s
-  static constexpr double max_joystick_rate = 10.0;     // rad/s
-  static constexpr double max_coordinate = 1.0e4;       // m, positions and sizes
-  static constexpr double max_obstacle_speed = 100.0;   // m/s
-};
+// Live inputs are bounded by PhysicalBounds (scenario/physical_bounds.hpp),
+// the same set that scenario files are checked against.
 
 // The obstacle as scenario-syntax JSON at its current position (radians), for
 // snapshots and for clients that edit it.
