@@ -4,7 +4,7 @@
 #include <limits>
 
 #include "storage/database.hpp"
-#include "storage/schema_sql.hpp"
+#include "storage/migrations.hpp"
 
 namespace rrlab::storage {
 
@@ -12,7 +12,7 @@ namespace {
 
 constexpr const char* kRunColumns =
     "id, scenario_name, scenario, method, params, seed, mode, created, status, frames, summary, dof, "
-    "diagnostic_names, source_run, compare_group";
+    "diagnostic_names, source_run, compare_group, frame_bytes";
 
 RunRecord read_run(const Statement& s) {
   RunRecord r;
@@ -31,6 +31,7 @@ RunRecord read_run(const Statement& s) {
   r.diagnostic_names_json = s.column_text(12);
   if (!s.is_null(13)) r.source_run = s.column_int(13);
   if (!s.is_null(14)) r.compare_group = s.column_int(14);
+  r.frame_bytes = s.column_int(15);
   return r;
 }
 
@@ -41,15 +42,7 @@ RunStore::RunStore(const std::string& path) : db_(std::make_unique<Database>(pat
   db_->exec("PRAGMA synchronous=NORMAL");
   db_->exec("PRAGMA foreign_keys=ON");
   Transaction tx(*db_);
-  db_->exec(kSchemaSql);
-  Statement version = db_->prepare("SELECT version FROM schema_version");
-  if (!version.step()) {
-    db_->prepare("INSERT INTO schema_version(version) VALUES (?)").bind(1, kSchemaVersion).step();
-  } else if (version.column_int(0) != kSchemaVersion) {
-    throw StorageError("database schema version " + std::to_string(version.column_int(0)) +
-                       " is not supported (this rrlab writes version " + std::to_string(kSchemaVersion) +
-                       ")");
-  }
+  migrated_from_ = migrate_to_current(*db_);
   Statement mark = db_->prepare("UPDATE runs SET status = 'interrupted' WHERE status IN ('running', 'paused')");
   mark.step();
   interrupted_at_open_ = db_->changes();
@@ -112,10 +105,10 @@ void RunStore::add_frames(const std::vector<std::pair<std::int64_t, StoredFrame>
   Statement insert = db_->prepare(
       "INSERT INTO frames(run_id, seq, step, t, task_error, min_distance, collided, data) "
       "VALUES (?,?,?,?,?,?,?,?)");
-  Statement count = db_->prepare("UPDATE runs SET frames = frames + ? WHERE id = ?");
-  std::int64_t run = frames.front().first, in_run = 0;
+  Statement count = db_->prepare("UPDATE runs SET frames = frames + ?, frame_bytes = frame_bytes + ? WHERE id = ?");
+  std::int64_t run = frames.front().first, in_run = 0, bytes = 0;
   const auto flush_count = [&] {
-    count.bind(1, in_run).bind(2, run).step();
+    count.bind(1, in_run).bind(2, bytes).bind(3, run).step();
     count.reset();
   };
   for (const auto& [run_id, f] : frames) {
@@ -123,7 +116,9 @@ void RunStore::add_frames(const std::vector<std::pair<std::int64_t, StoredFrame>
       flush_count();
       run = run_id;
       in_run = 0;
+      bytes = 0;
     }
+    bytes += std::int64_t(f.data.size());
     insert.bind(1, run_id).bind(2, f.seq).bind(3, f.step).bind(4, f.t).bind(5, f.task_error);
     if (std::isfinite(f.min_distance)) insert.bind(6, f.min_distance); else insert.bind_null(6);
     insert.bind(7, f.collided ? 1 : 0).bind_blob(8, f.data);

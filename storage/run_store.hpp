@@ -31,6 +31,7 @@ struct RunRecord {
   std::string scenario_name, scenario_json, method, params_json, mode, created, status;
   std::uint64_t seed = 1;
   std::int64_t frames = 0;
+  std::int64_t frame_bytes = 0;  // stored frame data
   std::optional<std::string> summary_json;
   int dof = 0;
   std::string diagnostic_names_json;
@@ -85,6 +86,9 @@ class RunStore {
   ~RunStore();
 
   int interrupted_at_open() const { return interrupted_at_open_; }
+  // The schema version the file had when opened (0: created now); below
+  // kSchemaVersion when it was migrated.
+  int migrated_from() const { return migrated_from_; }
 
   std::int64_t create_run(const NewRun& run);
   void set_status(std::int64_t id, std::string_view status);
@@ -129,6 +133,7 @@ class RunStore {
   std::unique_ptr<Database> db_;       // writes (and integrity checks)
   std::unique_ptr<Database> read_db_;  // reads: exports never hold up the frame writer
   int interrupted_at_open_ = 0;
+  int migrated_from_ = 0;
 };
 
 }  // namespace rrlab::storage

@@ -17,13 +17,17 @@ std::optional<std::int64_t> RunStore::add_sweep_run(const FinishedRun& finished,
   const NewRun& run = finished.run;
   Statement insert_run = db_->prepare(
       "INSERT INTO runs(scenario_name, scenario, method, params, seed, mode, created, status, frames, summary, "
-      "dof, diagnostic_names, source_run, compare_group) VALUES (?,?,?,?,?,?,?,'completed',?,?,?,?,?,?)");
+      "dof, diagnostic_names, source_run, compare_group, frame_bytes) "
+      "VALUES (?,?,?,?,?,?,?,'completed',?,?,?,?,?,?,?)");
   insert_run.bind(1, run.scenario_name).bind(2, run.scenario_json).bind(3, run.method).bind(4, run.params_json);
   insert_run.bind(5, std::int64_t(run.seed)).bind(6, run.mode).bind(7, finished.created.value_or(utc_now()));
   insert_run.bind(8, std::int64_t(finished.frames.size())).bind(9, finished.summary_json).bind(10, run.dof);
   insert_run.bind(11, run.diagnostic_names_json);
   if (run.source_run) insert_run.bind(12, *run.source_run); else insert_run.bind_null(12);
   if (run.compare_group) insert_run.bind(13, *run.compare_group); else insert_run.bind_null(13);
+  std::int64_t frame_bytes = 0;
+  for (const StoredFrame& f : finished.frames) frame_bytes += std::int64_t(f.data.size());
+  insert_run.bind(14, frame_bytes);
   insert_run.step();
   const std::int64_t id = db_->last_insert_id();
 

@@ -1,4 +1,6 @@
--- rrlab storage schema. Version 1. Applied at open; idempotent.
+-- rrlab storage schema. Version 2. A new file gets this whole schema; an older
+-- one is migrated step by step (storage/migrations.cpp), then this is applied
+-- again, which only adds what is missing (every statement is IF NOT EXISTS).
 -- A run's frames are numbered by seq, the count of steps taken in the run
 -- (a reset starts the simulation's step count over, seq goes on). An event
 -- took effect before the frame with the same seq.
@@ -19,7 +21,8 @@ CREATE TABLE IF NOT EXISTS runs (
   dof              INTEGER NOT NULL,
   diagnostic_names TEXT NOT NULL,              -- JSON array, of the starting method
   source_run       INTEGER,                    -- a re-simulation: the run it re-simulates
-  compare_group    INTEGER                     -- runs started together by /api/compare
+  compare_group    INTEGER,                    -- runs started together by /api/compare
+  frame_bytes      INTEGER NOT NULL DEFAULT 0  -- bytes of stored frame data (version 2)
 );
 CREATE INDEX IF NOT EXISTS runs_scenario ON runs(scenario_name);
 CREATE INDEX IF NOT EXISTS runs_method ON runs(method);

@@ -39,6 +39,8 @@ int serve(const ServeOptions& options) {
     state->access = AccessConfig{options.host, port, options.allow_hosts, options.allow_origins};
     std::cout << "rrlab: serving http://" << options.host << ":" << port << "/ (database " << options.db;
     if (store.interrupted_at_open() > 0) std::cout << ", " << store.interrupted_at_open() << " runs marked interrupted";
+    if (store.migrated_from() > 0)
+      std::cout << ", migrated from schema version " << store.migrated_from();
     std::cout << ")" << std::endl;
 
     net::signal_set signals(ioc, SIGINT, SIGTERM);

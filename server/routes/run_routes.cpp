@@ -60,6 +60,7 @@ json run_record_json(const storage::RunRecord& r) {
           {"created", r.created},
           {"status", r.status},
           {"frames", r.frames},
+          {"frame_bytes", r.frame_bytes},
           {"dof", r.dof},
           {"diagnostic_names", json::parse(r.diagnostic_names_json)},
           {"summary", parse_or_null(r.summary_json)},
