@@ -124,7 +124,9 @@ TEST(Cli, VersionPrintsTheProjectVersionAndCommit) {
   EXPECT_EQ(r.code, 0);
   EXPECT_EQ(r.out.rfind(std::string("rrlab ") + RRLAB_PROJECT_VERSION, 0), 0u) << r.out;
   const std::string commit = RRLAB_GIT_COMMIT;
-  if (!commit.empty()) EXPECT_NE(r.out.find("(git " + commit + ")"), std::string::npos) << r.out;
+  if (!commit.empty()) {
+    EXPECT_NE(r.out.find("(git " + commit + ")"), std::string::npos) << r.out;
+  }
   EXPECT_EQ(r.out.back(), '\n');
   EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1);
 }

@@ -54,7 +54,8 @@ TEST(OpenApi, EveryOperationHasAnIdParametersAndAnswers) {
   std::set<std::string> ids;
   for (const auto& [path, item] : doc.at("paths").items()) {
     std::set<std::string> in_path;
-    for (std::sregex_iterator it(path.begin(), path.end(), std::regex("\\{([^}]+)\\}")), end; it != end; ++it)
+    static const std::regex parameter("\\{([^}]+)\\}");
+    for (std::sregex_iterator it(path.begin(), path.end(), parameter), end; it != end; ++it)
       in_path.insert((*it)[1]);
     for (const auto& [verb, op] : item.items()) {
       const std::string where = verb + " " + path;
@@ -68,11 +69,15 @@ TEST(OpenApi, EveryOperationHasAnIdParametersAndAnswers) {
       int success = 0;
       for (const auto& [status, answer] : op.at("responses").items()) {
         if (status[0] == '2') ++success;
-        if (status[0] == '4' || status[0] == '5') EXPECT_TRUE(answer.contains("$ref")) << where << " " << status;
+        if (status[0] == '4' || status[0] == '5') {
+          EXPECT_TRUE(answer.contains("$ref")) << where << " " << status;
+        }
       }
       EXPECT_GE(success, 1) << where;
       // a body means 415 without Content-Type: application/json, so it is documented
-      if (op.contains("requestBody")) EXPECT_TRUE(op.at("responses").contains("415")) << where;
+      if (op.contains("requestBody")) {
+        EXPECT_TRUE(op.at("responses").contains("415")) << where;
+      }
     }
   }
 }
@@ -132,7 +137,9 @@ TEST_F(OpenApiServed, EveryDocumentedRouteReachesAHandler) {
       const HttpResult r = http(port(), upper, target, op.contains("requestBody") ? "{}" : "");
       ++probed;
       EXPECT_NE(r.status, 405) << upper << " " << target;
-      if (r.status == 404) EXPECT_EQ(r.body.find("no API route"), std::string::npos) << upper << " " << target;
+      if (r.status == 404) {
+        EXPECT_EQ(r.body.find("no API route"), std::string::npos) << upper << " " << target;
+      }
     }
   }
   EXPECT_EQ(probed, 25);

@@ -139,6 +139,18 @@ class ClientTest(unittest.TestCase):
         with self.assertRaises(ValueError):
             Client("127.0.0.1:8080")
 
+    def test_readme_snippet_runs(self):
+        # the README's Python block (REST API, "Python client"), as written, on this server
+        with open(os.path.join(SOURCE_DIR, "README.md"), encoding="utf-8") as f:
+            readme = f.read()
+        start = readme.index("```python", readme.index("**Python client.**")) + len("```python")
+        code = readme[start:readme.index("```", start)].replace("http://127.0.0.1:8080", self.server.url)
+        code += "\nprint(len(table), sorted(report))\n"
+        done = subprocess.run([sys.executable, "-c", code], cwd=SOURCE_DIR, capture_output=True, text=True,
+                              timeout=300)
+        self.assertEqual(done.returncode, 0, done.stdout + done.stderr)
+        self.assertIn("3 ['groups', 'pairs', 'ranking', 'sweeps']", done.stdout)
+
     def run_example(self, name, *args, env=None):
         command = [sys.executable, os.path.join(SOURCE_DIR, "clients", "python", "examples", name),
                    "--url", self.server.url, *args]
