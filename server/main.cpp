@@ -6,6 +6,9 @@
 int main(int argc, char** argv) {
   CLI::App app{"rrlab: redundancy-resolution lab"};
   app.require_subcommand(1);
+  // the project(VERSION) of CMakeLists.txt, and the git commit when cmake last ran (if it was a git checkout)
+  app.set_version_flag("--version", std::string("rrlab ") + RRLAB_VERSION +
+                                        (std::string(RRLAB_GIT_COMMIT).empty() ? "" : " (git " RRLAB_GIT_COMMIT ")"));
 
   rrlab::cli::ServeOptions serve;
   CLI::App* serve_cmd = app.add_subcommand("serve", "serve the dashboard, REST and WebSocket API");

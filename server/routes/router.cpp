@@ -16,6 +16,7 @@ struct Route {
 constexpr Route kRoutes[] = {
     {"GET", "/api/health", get_health},
     {"GET", "/api/methods", get_methods},
+    {"GET", "/api/openapi.json", get_openapi},
     {"GET", "/api/scenarios", list_scenarios},
     {"POST", "/api/scenarios", post_scenario},
     {"POST", "/api/scenarios/validate", validate_scenario},  // the literal before the {} pattern
@@ -72,6 +73,12 @@ bool match(std::string_view pattern, const std::vector<std::string_view>& path, 
 }
 
 }  // namespace
+
+std::vector<RouteInfo> api_routes() {
+  std::vector<RouteInfo> routes;
+  for (const Route& route : kRoutes) routes.push_back({route.verb, route.pattern});
+  return routes;
+}
 
 std::int64_t RouteContext::id(size_t index) const {
   const std::string& text = captures.at(index);

@@ -34,6 +34,19 @@ using RouteHandler = ApiResponse (*)(RouteContext&);
 // Dispatches /api/... requests; unknown paths 404, known paths with another verb 405.
 ApiResponse handle_api(RunManager& runs, const ServerInfo& info, const ApiRequest& request);
 
+// The router's table, in dispatch order: verb and pattern ("{}" matches one
+// path segment). The OpenAPI test checks the document against it.
+struct RouteInfo {
+  std::string verb, pattern;
+};
+std::vector<RouteInfo> api_routes();
+
+// openapi_routes.cpp: GET /api/openapi.json, the OpenAPI 3.1 document of every
+// route (server/openapi.json with docs/scenario.schema.json as its Scenario
+// schema, both compiled in).
+ApiResponse get_openapi(RouteContext&);
+const nlohmann::json& openapi_document();
+
 // health_routes.cpp
 ApiResponse get_health(RouteContext&);
 ApiResponse get_methods(RouteContext&);

@@ -1,6 +1,7 @@
 // The rrlab executable: summary JSON, CSV columns, exit codes and messages.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -114,6 +115,20 @@ TEST(Cli, OutWritesTheCsvColumns) {
   while (std::getline(in, line)) ++rows;
   EXPECT_EQ(rows, 20);
   std::filesystem::remove(csv);
+}
+
+// `rrlab --version`: the project(VERSION) of CMakeLists.txt, then the git
+// commit cmake saw (absent outside a git checkout).
+TEST(Cli, VersionPrintsTheProjectVersionAndCommit) {
+  const Result r = rrlab("--version");
+  EXPECT_EQ(r.code, 0);
+  EXPECT_EQ(r.out.rfind(std::string("rrlab ") + RRLAB_PROJECT_VERSION, 0), 0u) << r.out;
+  const std::string commit = RRLAB_GIT_COMMIT;
+  if (!commit.empty()) {
+    EXPECT_NE(r.out.find("(git " + commit + ")"), std::string::npos) << r.out;
+  }
+  EXPECT_EQ(r.out.back(), '\n');
+  EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1);
 }
 
 TEST(Cli, MethodsListsSpecs) {

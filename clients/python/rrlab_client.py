@@ -1,0 +1,382 @@
+"""rrlab_client: a Python client for the REST and WebSocket API of `rrlab serve`.
+
+REST uses the standard library only (urllib); streaming frames uses the
+`websockets` package (Debian: python3-websockets), imported only when
+`Client.stream` is called. `Client.frames` returns numpy arrays when numpy is
+installed, lists otherwise.
+
+    from rrlab_client import Client
+    c = Client("http://127.0.0.1:8080")
+    result = c.run("01_planar7_obstacles", "dls", {"lambda": 0.02})   # batch: waits, returns the summary
+    frames = c.frames(result["id"])                                    # frames["t"], frames["q"], ...
+    live = c.run("04_planar7_joystick", mode="live")
+    for frame in c.stream(live["id"]):
+        c.joystick(live["id"], [0.05, 0.0])
+        ...
+
+Every request says `Content-Type: application/json` when it has a body (the
+server refuses other bodies with 415), names the server in `Host` (urllib does)
+and sends no `Origin` (the server refuses foreign ones). `token` is sent as
+`Authorization: Bearer TOKEN` when given (servers that check no token ignore it).
+Errors are raised as `RrlabError` with the server's status, code, message and
+JSON path. The routes and their bodies: GET /api/openapi.json.
+"""
+
+import json
+import time
+import urllib.error
+import urllib.parse
+import urllib.request
+
+__all__ = ["Client", "RrlabError"]
+
+try:  # optional: frames as arrays
+    import numpy as _np
+except ImportError:  # pragma: no cover - depends on the machine
+    _np = None
+
+_ENDED = ("completed", "stopped", "failed", "interrupted")
+
+
+class RrlabError(Exception):
+    """An error answer of the server: {"error": {"code", "message", "path"}}."""
+
+    def __init__(self, status, code, message, path="", body=None):
+        super().__init__(f"{status} {code}: {message}" + (f" (at {path})" if path else ""))
+        self.status = status
+        self.code = code
+        self.message = message
+        self.path = path
+        self.body = body
+
+
+class Client:
+    """A connection to one rrlab server.
+
+    url: the server's address, e.g. "http://127.0.0.1:8080".
+    token: sent as `Authorization: Bearer TOKEN` on every request when given.
+    timeout: seconds for one HTTP request (a batch run answers when it has
+    ended, so keep it generous).
+    """
+
+    def __init__(self, url="http://127.0.0.1:8080", token=None, timeout=300.0):
+        parsed = urllib.parse.urlsplit(url)
+        if parsed.scheme not in ("http", "https") or not parsed.netloc:
+            raise ValueError(f"url must be http://HOST:PORT, got {url!r}")
+        self.url = f"{parsed.scheme}://{parsed.netloc}"
+        self.token = token
+        self.timeout = timeout
+
+    # ---- plumbing ----
+
+    def _headers(self):
+        headers = {"Accept": "application/json"}
+        if self.token:
+            headers["Authorization"] = f"Bearer {self.token}"
+        return headers
+
+    def request(self, verb, path, body=None, query=None, accept=None):
+        """One REST request; returns the parsed JSON answer (text for CSV).
+
+        verb: GET, POST, PUT, PATCH or DELETE; path: "/api/..."; body: a JSON
+        value (sent with Content-Type: application/json); query: a dict.
+        """
+        url = self.url + path
+        if query:
+            url += "?" + urllib.parse.urlencode({k: v for k, v in query.items() if v is not None})
+        headers = self._headers()
+        if accept:
+            headers["Accept"] = accept
+        data = None
+        if body is not None:
+            data = json.dumps(body).encode("utf-8")
+            headers["Content-Type"] = "application/json"
+        req = urllib.request.Request(url, data=data, headers=headers, method=verb)
+        try:
+            with urllib.request.urlopen(req, timeout=self.timeout) as response:
+                text = response.read().decode("utf-8")
+                kind = response.headers.get("Content-Type", "")
+        except urllib.error.HTTPError as e:
+            text = e.read().decode("utf-8", "replace")
+            try:
+                error = json.loads(text)["error"]
+            except (ValueError, KeyError, TypeError):
+                raise RrlabError(e.code, "http", text.strip() or e.reason) from None
+            raise RrlabError(e.code, error.get("code", ""), error.get("message", ""), error.get("path", ""), text) from None
+        if kind.startswith("application/json"):
+            return json.loads(text)
+        return text
+
+    # ---- catalogue ----
+
+    def health(self):
+        """{status, version, uptime_s, websockets}"""
+        return self.request("GET", "/api/health")
+
+    def openapi(self):
+        """The server's OpenAPI 3.1 document."""
+        return self.request("GET", "/api/openapi.json")
+
+    def methods(self):
+        """Every method with its parameter specs (default, min, max, unit, choices)."""
+        return self.request("GET", "/api/methods")
+
+    def scenarios(self):
+        """The catalogue: [{name, title, description, source, builtin}, ...]."""
+        return self.request("GET", "/api/scenarios")
+
+    def scenario(self, name):
+        """One scenario's JSON."""
+        return self.request("GET", "/api/scenarios/" + urllib.parse.quote(name, safe=""))
+
+    def validate_scenario(self, scenario):
+        """Checks a scenario object as a run would (RrlabError 422 naming the path); stores nothing."""
+        return self.request("POST", "/api/scenarios/validate", scenario)
+
+    def add_scenario(self, scenario):
+        """Stores a scenario object with a new `name` in the server's database."""
+        return self.request("POST", "/api/scenarios", scenario)
+
+    # ---- runs ----
+
+    def run(self, scenario, method=None, params=None, mode="batch", **options):
+        """Starts a run. scenario: a catalogue name or a scenario dict.
+
+        mode "batch" (default here): waits until the run has ended and returns
+        its status with `summary` (pass wait=False to return at once).
+        mode "live": returns at once {id, status, ws, ...}; steer it with
+        set_params, move_obstacle, joystick, control, and watch it with stream.
+        options: rate, paused, steps, wait, display_hz (see POST /api/runs).
+        """
+        body = {"scenario": scenario, "mode": mode}
+        if method is not None:
+            body["method"] = method
+        if params:
+            body["params"] = params
+        body.update(options)
+        return self.request("POST", "/api/runs", body)
+
+    def compare(self, scenario, methods, mode="batch", **options):
+        """Runs 2 to 8 methods on one scenario in lockstep.
+
+        methods: names or {"name", "params"} dicts. batch (default): waits and
+        returns {group, runs, comparison}; live: returns {group, runs} at once.
+        options: steps, wait, rate, paused.
+        """
+        body = {"scenario": scenario, "methods": list(methods), "mode": mode}
+        body.update(options)
+        return self.request("POST", "/api/compare", body)
+
+    def runs(self, scenario=None, method=None, status=None, limit=None, offset=None):
+        """Stored runs, newest first."""
+        return self.request("GET", "/api/runs", query={"scenario": scenario, "method": method, "status": status,
+                                                       "limit": limit, "offset": offset})
+
+    def get_run(self, run_id):
+        """One stored run (with `live` status while it runs)."""
+        return self.request("GET", f"/api/runs/{int(run_id)}")
+
+    def delete_run(self, run_id):
+        return self.request("DELETE", f"/api/runs/{int(run_id)}")
+
+    def events(self, run_id):
+        return self.request("GET", f"/api/runs/{int(run_id)}/events")
+
+    def record(self, run_id):
+        """The run as a record `rrlab run FILE` runs again."""
+        return self.request("GET", f"/api/runs/{int(run_id)}/record")
+
+    def wait(self, run_id, timeout=None, poll=0.1):
+        """Waits until a run has ended; returns the stored run."""
+        deadline = None if timeout is None else time.monotonic() + timeout
+        while True:
+            run = self.get_run(run_id)
+            if run["status"] in _ENDED:
+                return run
+            if deadline is not None and time.monotonic() > deadline:
+                raise TimeoutError(f"run {run_id} is still {run['status']} after {timeout} s")
+            time.sleep(poll)
+
+    def frames(self, run_id, start=0, stop=None, stride=1, arrays=None):
+        """A run's stored frames, exact values, as columns.
+
+        Returns a dict: "seq", "step", "t", "task_error", ... one entry per
+        frame; "q", "qdot", "ee", "target", ... one row per frame;
+        "diagnostics": {name: column}. Columns are numpy arrays when numpy is
+        installed (arrays=None) or arrays=True, lists with arrays=False.
+        Pages through the server's 20,000-frame limit. stop is inclusive.
+        """
+        if arrays is None:
+            arrays = _np is not None
+        if arrays and _np is None:
+            raise RuntimeError("arrays=True needs numpy (Debian: python3-numpy)")
+        rows, names = [], []
+        first = int(start)
+        while True:
+            page = self.request("GET", f"/api/runs/{int(run_id)}/frames",
+                                query={"from": first, "to": stop, "stride": stride})
+            names = page["diagnostic_names"]
+            rows.extend(page["frames"])
+            if not page["frames"]:
+                break
+            last = page["frames"][-1]["seq"]
+            if (stop is not None and last + stride > stop) or len(page["frames"]) < 20000:
+                break
+            first = last + stride
+        columns = {}
+        keys = [k for k in (rows[0] if rows else {}) if k != "diagnostics"]
+        for key in keys:
+            columns[key] = [row.get(key) for row in rows]
+        columns["diagnostics"] = {name: [row["diagnostics"].get(name) for row in rows] for name in names}
+        if arrays:
+            def to_array(values):  # null (a non-finite number) becomes nan
+                if values and isinstance(values[0], list):
+                    return _np.array([[_np.nan if x is None else x for x in v] for v in values], dtype=float)
+                return _np.array([_np.nan if v is None else v for v in values], dtype=float)
+            for key, values in list(columns.items()):
+                if key == "diagnostics":
+                    columns[key] = {n: to_array(v) for n, v in values.items()}
+                elif key == "collided":
+                    columns[key] = _np.array(values, dtype=bool)
+                elif key in ("seq", "step", "min_distance_link"):
+                    columns[key] = _np.array(values, dtype=_np.int64)
+                else:
+                    columns[key] = to_array(values)
+        return columns
+
+    # ---- live runs ----
+
+    def control(self, run_id, action=None, rate=None):
+        """action: start, pause, step, reset or stop; rate: real-time factor (0: as fast as possible)."""
+        body = {}
+        if action is not None:
+            body["action"] = action
+        if rate is not None:
+            body["rate"] = rate
+        return self.request("POST", f"/api/runs/{int(run_id)}/control", body)
+
+    def pause(self, run_id):
+        return self.control(run_id, "pause")
+
+    def resume(self, run_id):
+        return self.control(run_id, "start")
+
+    def step(self, run_id):
+        return self.control(run_id, "step")
+
+    def stop(self, run_id):
+        """Stops a run; answers once it has ended and its frames are stored."""
+        return self.control(run_id, "stop")
+
+    def set_params(self, run_id, params=None, **named):
+        """Sets method parameters of a live run: set_params(id, {"gain": 8}) or set_params(id, gain=8)."""
+        body = dict(params or {})
+        body.update(named)
+        return self.request("PATCH", f"/api/runs/{int(run_id)}/params", body)
+
+    def move_obstacle(self, run_id, obstacle_id, position=None, velocity=None, **fields):
+        """Moves (position, now) or reshapes (size, radius, points, normal, z) an obstacle of a live run."""
+        body = dict(fields)
+        if position is not None:
+            body["position"] = list(position)
+        if velocity is not None:
+            body["velocity"] = list(velocity)
+        return self.request("PUT", f"/api/runs/{int(run_id)}/obstacles/" + urllib.parse.quote(obstacle_id, safe=""),
+                            body)
+
+    def add_obstacle(self, run_id, obstacle):
+        """Adds an obstacle in scenario syntax (with a new `id`) to a live run."""
+        return self.request("POST", f"/api/runs/{int(run_id)}/obstacles", obstacle)
+
+    def remove_obstacle(self, run_id, obstacle_id):
+        return self.request("DELETE", f"/api/runs/{int(run_id)}/obstacles/" + urllib.parse.quote(obstacle_id, safe=""))
+
+    def joystick(self, run_id, linear, angular=None):
+        """Velocity command to a live joystick run: linear [vx, vy(, vz)] m/s, angular rad/s; held until the next."""
+        body = {"linear": list(linear)}
+        if angular is not None:
+            body["angular"] = list(angular)
+        return self.request("POST", f"/api/runs/{int(run_id)}/joystick", body)
+
+    def switch_method(self, run_id, name, params=None):
+        body = {"name": name}
+        if params:
+            body["params"] = params
+        return self.request("POST", f"/api/runs/{int(run_id)}/method", body)
+
+    def replay(self, run_id, mode="resimulate", **options):
+        """resimulate: re-runs it and compares every frame ({identical, ...}); frames: starts a replay."""
+        return self.request("POST", f"/api/runs/{int(run_id)}/replay", dict(options, mode=mode))
+
+    def stream(self, run_id, replay=False, snapshots=False, max_frames=None, timeout=30.0):
+        """A generator of the frames a live run (or, with replay=True, a replay) streams.
+
+        Frames come at the display rate, latest wins (a slow reader skips
+        frames; exact values: Client.frames). Ends when the run has ended
+        (the frame whose status is completed, stopped or failed is the last),
+        after max_frames frames, or when the server closes the socket; raises
+        TimeoutError when nothing arrives for `timeout` seconds. snapshots=True
+        also yields the snapshot messages (type "snapshot": geometry, limits,
+        obstacles, parameters), which come first and after each change.
+        Needs the `websockets` package (Debian: python3-websockets).
+        """
+        try:
+            import asyncio
+            import websockets
+        except ImportError as e:
+            raise RuntimeError("Client.stream needs the websockets package (Debian: python3-websockets)") from e
+        scheme = "wss" if self.url.startswith("https") else "ws"
+        path = f"/ws/replays/{int(run_id)}" if replay else f"/ws/runs/{int(run_id)}"
+        url = scheme + self.url[self.url.index("://"):] + path
+        headers = {"Authorization": f"Bearer {self.token}"} if self.token else {}
+        loop = asyncio.new_event_loop()
+        socket = None
+        try:
+            async def connect():  # created inside the loop: websockets binds to the running loop
+                try:
+                    return await websockets.connect(url, extra_headers=headers, max_size=2 ** 24)
+                except TypeError:  # websockets >= 14 renamed extra_headers
+                    return await websockets.connect(url, additional_headers=headers, max_size=2 ** 24)
+
+            socket = loop.run_until_complete(connect())
+            count = 0
+            while max_frames is None or count < max_frames:
+                try:
+                    text = loop.run_until_complete(asyncio.wait_for(socket.recv(), timeout))
+                except asyncio.TimeoutError:
+                    raise TimeoutError(f"no message from {path} for {timeout} s") from None
+                except websockets.ConnectionClosed:
+                    return
+                message = json.loads(text)
+                kind = message.get("type")
+                if kind == "snapshot" and snapshots:
+                    yield message
+                elif kind == "frame":
+                    count += 1
+                    yield message
+                    if not replay and message.get("status") in _ENDED:
+                        return
+        finally:
+            if socket is not None:
+                loop.run_until_complete(socket.close())
+            loop.close()
+
+    # ---- sweeps ----
+
+    def sweep(self, spec, jobs=1, wait=True, poll=0.5, timeout=None):
+        """Starts a sweep (a spec dict, as `rrlab sweep` takes; scenarios by
+        catalogue name or generator). wait=True: polls until it has ended and
+        returns its status with the report; wait=False: returns {id, ...} at once."""
+        status = self.request("POST", "/api/sweeps", spec, query={"jobs": jobs})
+        if not wait:
+            return status
+        deadline = None if timeout is None else time.monotonic() + timeout
+        while status["status"] == "running":
+            if deadline is not None and time.monotonic() > deadline:
+                raise TimeoutError(f"sweep {status['id']} still running after {timeout} s")
+            time.sleep(poll)
+            status = self.request("GET", f"/api/sweeps/{int(status['id'])}")
+        return status
+
+    def stop_sweep(self, sweep_id):
+        return self.request("POST", f"/api/sweeps/{int(sweep_id)}/control", {"action": "stop"})
