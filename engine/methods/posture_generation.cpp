@@ -37,11 +37,33 @@
 //  active cones, cos(‖D̄‖π/2η) of active Γ2 terms), 0 when none is active, so
 //  that a free link is driven by connection and elasticity alone; γ2 = 1 −
 //  exp(−‖ẋ_{i+1}‖/δ).
-// Where the paper's signs disagree with its own text: eq. 29 prints
-// d(−O_i/‖O_i‖)/dθ and eq. 14 ẋ_C = −[r]; we use eq. 13's J_c = d(−O_i)/dθ
-// so that r_i is the velocity of the proximal joint x_i and matches eq. 15's
-// J_C row for row, and ẋ_C = +[r], the sign that climbs the criteria
-// (tested: Γ1 grows).
+// Eq. 29 prints d(−O_i/‖O_i‖)/dθ, eq. 13 J_c = d(−O_i)/dθ; we use the latter,
+// so that r_i is the velocity of the proximal joint x_i (a length, as eq. 13's
+// sum ẋ_i = ẋ_{i+1} + r_i needs) and matches eq. 15's J_C row for row. As ‖O_i‖
+// is constant under a rotation, d(−O_i)/dθ = ‖O_i‖·d(−O_i/‖O_i‖)/dθ: the
+// choice multiplies link i's r_i by its length. That is a reweighting, not a
+// sign fix: in eq. 16's least squares J_C's rows of link i carry the same
+// factor, so where J_C can meet every r_i (a planar chain, or any chain with
+// J_C of full column rank and λ → 0) the link rates Φ come out unchanged, and
+// where it cannot, longer links weigh more (by ‖O_i‖²) in the residual. The
+// criteria themselves are not scaled: Γ1/Γ3 use dΨ/dθ (length-free), Γ4 the
+// normalised O_i, only Γ2's dΓ2/dθ = d(−O_i)/dθ·D̄/‖D̄‖ and θ^C carry lengths,
+// as their own definitions do. The one sign that differs is eq. 14's
+// ẋ_C = −[r]: we use +[r], the sign that climbs the criteria (tested: Γ1 grows).
+// Rotation order (spatial_xz chains): eq. 11 prints O_i = R_i⋯R_1 L_i; the
+// chain here is serial, each pair's axes riding on the previous link, so
+// O_i = R_1⋯R_i L_i (R_k = R_x(θ_k^x)R_z(θ_k^z) of eq. 12, the printed passive
+// R_x). The two agree for planar chains (rotations about one axis commute)
+// and differ in 3D: the printed order turns link i about axes fixed in the
+// world, which is not a chain of joints. Chen's q0 of Simulations 2–3 gives
+// different arms under the two orders (Sim 3's hand at (2.13, 1.85, 3) here,
+// (−2.75, −0.64, 3) under the printed order).
+// Default weights: the paper's criteria are unweighted (all 1; its scenarios
+// 16–18 here set w_limits = 1). rrlab's default w_limits = 20 was chosen on
+// generated planar_limits cases (seed 1001, 20 cases): with 1 the Γ3 push
+// (ω·dΓ3/dΨ ≈ 0.15 rad/s near a limit) is outweighed in the null-space
+// projection by the other links' connection terms (θ^C, at full rate γ2 ≈ 1)
+// and 14 of 20 runs crossed a limit, with 20 it is 11 of 20 (pinv: 20 of 20).
 // Units: rates per second; the paper's "per cycle" numbers (ω, δ, 0.1 per
 // cycle) are per second of scenario time, with dt a fraction of a cycle.
 #include <Eigen/Cholesky>
@@ -305,7 +327,7 @@ std::vector<ParamSpec> posture_generation_params() {
       {"lambda", "Damping λ", "", "damped least squares of eq. 8 and eq. 16", 0.01, 0.0, 10.0, 0.001, {}},
       {"w_collision", "Weight Γ1", "", "collision cone (eq. 18)", 1.0, 0.0, 100.0, 0.1, {}},
       {"w_adjacent", "Weight Γ2", "", "adjacent-link distance (eq. 21)", 1.0, 0.0, 100.0, 0.1, {}},
-      {"w_limits", "Weight Γ3", "", "joint limits as virtual obstacles (eq. 23)", 1.0, 0.0, 100.0, 0.1, {}},
+      {"w_limits", "Weight Γ3", "", "joint limits as virtual obstacles (eq. 23)", 20.0, 0.0, 100.0, 0.1, {}},
       {"w_connection", "Weight θ^C", "", "posture connection (eq. 26)", 1.0, 0.0, 100.0, 0.1, {}},
       {"w_elastic", "Weight Γ4", "", "elastic posture (eq. 28)", 1.0, 0.0, 100.0, 0.1, {}},
       {"elastic_first_link", "Γ4 on link 1", "", "the paper's simulations do not apply Γ4 to the first link", 0, 0,
