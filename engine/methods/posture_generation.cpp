@@ -58,12 +58,15 @@
 // world, which is not a chain of joints. Chen's q0 of Simulations 2–3 gives
 // different arms under the two orders (Sim 3's hand at (2.13, 1.85, 3) here,
 // (−2.75, −0.64, 3) under the printed order).
-// Default weights: the paper's criteria are unweighted (all 1; its scenarios
-// 16–18 here set w_limits = 1). rrlab's default w_limits = 20 was chosen on
-// generated planar_limits cases (seed 1001, 20 cases): with 1 the Γ3 push
-// (ω·dΓ3/dΨ ≈ 0.15 rad/s near a limit) is outweighed in the null-space
-// projection by the other links' connection terms (θ^C, at full rate γ2 ≈ 1)
-// and 14 of 20 runs crossed a limit, with 20 it is 11 of 20 (pinv: 20 of 20).
+// Default weights: the paper's criteria are unweighted (all 1), and so are
+// rrlab's defaults. w_limits = 20 was tried on generated planar_limits cases
+// (seed 1001): with 1 the Γ3 push (ω·dΓ3/dΨ ≈ 0.15 rad/s near a limit) is
+// outweighed in the null-space projection by the other links' connection
+// terms (θ^C, at full rate γ2 ≈ 1) and 14 of 20 runs crossed a limit, with 20
+// 11 of 20 (pinv 20 of 20); but on spatial chains, where the Γ3 mapping above
+// is only approximate, 20 made it worse (spatial_clutter, seed 1: 8 of 10 runs
+// past a limit, up to 6.1 rad, against 6 of 10 with 1 and with pinv), so the
+// default stays 1.
 // Units: rates per second; the paper's "per cycle" numbers (ω, δ, 0.1 per
 // cycle) are per second of scenario time, with dt a fraction of a cycle.
 #include <Eigen/Cholesky>
@@ -327,7 +330,7 @@ std::vector<ParamSpec> posture_generation_params() {
       {"lambda", "Damping λ", "", "damped least squares of eq. 8 and eq. 16", 0.01, 0.0, 10.0, 0.001, {}},
       {"w_collision", "Weight Γ1", "", "collision cone (eq. 18)", 1.0, 0.0, 100.0, 0.1, {}},
       {"w_adjacent", "Weight Γ2", "", "adjacent-link distance (eq. 21)", 1.0, 0.0, 100.0, 0.1, {}},
-      {"w_limits", "Weight Γ3", "", "joint limits as virtual obstacles (eq. 23)", 20.0, 0.0, 100.0, 0.1, {}},
+      {"w_limits", "Weight Γ3", "", "joint limits as virtual obstacles (eq. 23)", 1.0, 0.0, 100.0, 0.1, {}},
       {"w_connection", "Weight θ^C", "", "posture connection (eq. 26)", 1.0, 0.0, 100.0, 0.1, {}},
       {"w_elastic", "Weight Γ4", "", "elastic posture (eq. 28)", 1.0, 0.0, 100.0, 0.1, {}},
       {"elastic_first_link", "Γ4 on link 1", "", "the paper's simulations do not apply Γ4 to the first link", 0, 0,

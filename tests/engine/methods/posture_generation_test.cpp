@@ -128,9 +128,9 @@ TEST(ChenSim3, UnderPinvJointFourCrossesNotThePapersJointSix) {
   EXPECT_LT(peak[5], 1.4);          // joint 6: measured 1.339 rad, far from 2.356
 }
 
-// The default weights (w_limits = 20, chosen on generated cases of seed 1001)
-// hold the limits on an untuned planar_limits case (seed 2001) that pinv
-// leaves by 0.503 rad.
+// The default (unweighted) criteria hold the limits on a generated
+// planar_limits case (seed 2001, not used for tuning) that pinv leaves by
+// 0.503 rad. Not on every case: 5 of these 10 held (pinv 0 of 10).
 TEST(PostureGenerationDefaults, HoldLimitsWherePinvDoesNot) {
   const nlohmann::json doc = generate_scenario("planar_limits", nlohmann::json::object(), 2001, 2);
   const auto pinv = test::run_scenario(doc, "pinv");
@@ -139,7 +139,7 @@ TEST(PostureGenerationDefaults, HoldLimitsWherePinvDoesNot) {
               pinv.summary.min_joint_limit_margin, chen.summary.min_joint_limit_margin);
   EXPECT_LT(pinv.summary.min_joint_limit_margin, -0.4);  // measured -0.503
   EXPECT_GT(chen.summary.min_joint_limit_margin, 0.2);   // measured 0.336
-  EXPECT_LT(chen.summary.max_tracking_error, 0.003);     // measured 0.0007
+  EXPECT_LT(chen.summary.max_tracking_error, 0.003);     // measured 0.0005
 }
 
 TEST(ChenSim1, Planar12TracksWithoutCollisionOrLimit) {
