@@ -25,8 +25,13 @@
 //     cone is evaluated on joint angles: the link's own joint j (+1 per unit
 //     rotation of the link) and the same-position joint of link i+1 (−1: the
 //     distal joint opens as the link turns with the next link held). Exact
-//     for planar chains; for x/z pairs the next link's joint is the one of
-//     the same axis type (an approximation). Limits: ±`limit_deg`, clipped
+//     for planar chains; in 3D the turn δ·a_j of link i (next link held) moves
+//     joint k of link i+1 by −δ(a_j·a_k) to first order, the part of the turn
+//     that joint can take (for x/z pairs and DH chains with perpendicular
+//     consecutive axes this is 0 or partial; an earlier −1 for "the same axis
+//     type" pushed joints whose axes are not parallel, the wrong way on DH
+//     arms). Joints of zero-length links (DH offsets) get no Γ3 push of their
+//     own: the rule has no link direction to turn there. Limits: ±`limit_deg`, clipped
 //     to the model's limits, only on joints that have limits in the model
 //     (Chen's base rotation −π in Simulations 2–3 has none);
 //  θ^C connection (eq. 26): least squares of d(−O_i)/dθ θ̇ = −ẋ_{i+1};
@@ -230,9 +235,13 @@ class PostureGeneration final : public Method {
         }
       };
       limit_term(j0 + c, +1.0);
-      if (l + 1 < links_) {
-        const int next = first_joint_[l + 1] + c;
-        if (next <= in.model.links[l + 1].last_joint) limit_term(next, -1.0);
+      if (l + 1 < links_) {  // every joint of the next link, by the projection −a_j·a_k
+        const Eigen::Vector3d a = kin.axis_dirs.col(j0 + c);
+        for (int k = first_joint_[l + 1]; k <= in.model.links[l + 1].last_joint; ++k) {
+          if (in.model.joints[k].type != JointType::revolute) continue;
+          const double share = a.dot(kin.axis_dirs.col(k));
+          if (std::abs(share) > 1e-6) limit_term(k, -share);
+        }
       }
     }
     // Γ4: elastic posture (eq. 27–28)
