@@ -68,9 +68,10 @@
 // (seed 1001): with 1 the Γ3 push (ω·dΓ3/dΨ ≈ 0.15 rad/s near a limit) is
 // outweighed in the null-space projection by the other links' connection
 // terms (θ^C, at full rate γ2 ≈ 1) and 14 of 20 runs crossed a limit, with 20
-// 11 of 20 (pinv 20 of 20); but on spatial chains, where the Γ3 mapping above
-// is only approximate, 20 made it worse (spatial_clutter, seed 1: 8 of 10 runs
-// past a limit, up to 6.1 rad, against 6 of 10 with 1 and with pinv), so the
+// 11 of 20 (pinv 20 of 20); but the weighted-up Γ3, active across its whole
+// influence zone, swamps the collision cone in the sum dΓ123 of eq. 29: Chen's
+// Simulation 2 collides from w_limits = 5 (min distance 0.041 → −0.217 m) and
+// Simulation 1's tracking error grows from 0.005 to 0.085 m at 20. So the
 // default stays 1.
 // Units: rates per second; the paper's "per cycle" numbers (ω, δ, 0.1 per
 // cycle) are per second of scenario time, with dt a fraction of a cycle.
