@@ -14,7 +14,7 @@
 namespace rrlab {
 namespace {
 
-enum { kInfluence, kGain };
+enum { kInfluence, kGain, kLambda };
 
 class ClosestPoint final : public Method {
  public:
@@ -49,7 +49,14 @@ class ClosestPoint final : public Method {
         primary_.null_project(column_, projected_);
         jo_tilde_.row(r) = projected_.transpose();
       }
-      avoidance_.factor_pinv(jo_tilde_, 1e-10);
+      // Choice made here: J̃_o = J_oN loses rank where avoidance conflicts with
+      // the end-effector task; its exact pseudoinverse (λ = 0) then gives
+      // unbounded q̇ and the integrated arm leaves the path. λ > 0 damps it
+      // (Maciejewski 1988): J̃_o* = J̃_oᵀ(J̃_oJ̃_oᵀ + λ²I)⁻¹.
+      if (p(kLambda) > 0)
+        avoidance_.factor_dls(jo_tilde_, p(kLambda));
+      else
+        avoidance_.factor_pinv(jo_tilde_, 1e-10);
       const double alpha = p(kGain) * (d0 - cp.distance);
       rhs_ = alpha * cp.normal.head(rows_);
       rhs_.noalias() -= jo_ * out.qdot;  // α_o ẋ_o − J_o J_e⁺ ẋ_e
@@ -71,7 +78,7 @@ class ClosestPoint final : public Method {
 }  // namespace
 
 std::vector<ParamSpec> closest_point_params() {
-  return {influence_distance_spec(0.3), secondary_gain_spec(5.0)};
+  return {influence_distance_spec(0.3), secondary_gain_spec(5.0), secondary_damping_spec(0.1)};
 }
 std::unique_ptr<Method> make_closest_point(const MethodContext& ctx) {
   return std::make_unique<ClosestPoint>(ctx);

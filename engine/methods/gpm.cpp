@@ -119,7 +119,7 @@ class Gpm final : public Method {
 std::vector<ParamSpec> gpm_params() {
   return {{"gradient", "Criterion", "", "criterion whose gradient is projected into the null space",
            0, 0, 2, 1, {"joint_range", "manipulability", "distance"}},
-          {"gain", "Gradient gain k", "", "step along the criterion gradient", 10.0, 0.0, 1e6, 0.1, {}},
+          {"gain", "Gradient gain k", "", "step along the criterion gradient", 200.0, 0.0, 1e6, 0.1, {}},
           influence_distance_spec(0.3)};
 }
 std::unique_ptr<Method> make_gpm(const MethodContext& ctx) { return std::make_unique<Gpm>(ctx); }

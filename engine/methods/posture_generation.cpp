@@ -25,8 +25,13 @@
 //     cone is evaluated on joint angles: the link's own joint j (+1 per unit
 //     rotation of the link) and the same-position joint of link i+1 (−1: the
 //     distal joint opens as the link turns with the next link held). Exact
-//     for planar chains; for x/z pairs the next link's joint is the one of
-//     the same axis type (an approximation). Limits: ±`limit_deg`, clipped
+//     for planar chains; in 3D the turn δ·a_j of link i (next link held) moves
+//     joint k of link i+1 by −δ(a_j·a_k) to first order, the part of the turn
+//     that joint can take (for x/z pairs and DH chains with perpendicular
+//     consecutive axes this is 0 or partial; an earlier −1 for "the same axis
+//     type" pushed joints whose axes are not parallel, the wrong way on DH
+//     arms). Joints of zero-length links (DH offsets) get no Γ3 push of their
+//     own: the rule has no link direction to turn there. Limits: ±`limit_deg`, clipped
 //     to the model's limits, only on joints that have limits in the model
 //     (Chen's base rotation −π in Simulations 2–3 has none);
 //  θ^C connection (eq. 26): least squares of d(−O_i)/dθ θ̇ = −ẋ_{i+1};
@@ -37,11 +42,37 @@
 //  active cones, cos(‖D̄‖π/2η) of active Γ2 terms), 0 when none is active, so
 //  that a free link is driven by connection and elasticity alone; γ2 = 1 −
 //  exp(−‖ẋ_{i+1}‖/δ).
-// Where the paper's signs disagree with its own text: eq. 29 prints
-// d(−O_i/‖O_i‖)/dθ and eq. 14 ẋ_C = −[r]; we use eq. 13's J_c = d(−O_i)/dθ
-// so that r_i is the velocity of the proximal joint x_i and matches eq. 15's
-// J_C row for row, and ẋ_C = +[r], the sign that climbs the criteria
-// (tested: Γ1 grows).
+// Eq. 29 prints d(−O_i/‖O_i‖)/dθ, eq. 13 J_c = d(−O_i)/dθ; we use the latter,
+// so that r_i is the velocity of the proximal joint x_i (a length, as eq. 13's
+// sum ẋ_i = ẋ_{i+1} + r_i needs) and matches eq. 15's J_C row for row. As ‖O_i‖
+// is constant under a rotation, d(−O_i)/dθ = ‖O_i‖·d(−O_i/‖O_i‖)/dθ: the
+// choice multiplies link i's r_i by its length. That is a reweighting, not a
+// sign fix: in eq. 16's least squares J_C's rows of link i carry the same
+// factor, so where J_C can meet every r_i (a planar chain, or any chain with
+// J_C of full column rank and λ → 0) the link rates Φ come out unchanged, and
+// where it cannot, longer links weigh more (by ‖O_i‖²) in the residual. The
+// criteria themselves are not scaled: Γ1/Γ3 use dΨ/dθ (length-free), Γ4 the
+// normalised O_i, only Γ2's dΓ2/dθ = d(−O_i)/dθ·D̄/‖D̄‖ and θ^C carry lengths,
+// as their own definitions do. The one sign that differs is eq. 14's
+// ẋ_C = −[r]: we use +[r], the sign that climbs the criteria (tested: Γ1 grows).
+// Rotation order (spatial_xz chains): eq. 11 prints O_i = R_i⋯R_1 L_i; the
+// chain here is serial, each pair's axes riding on the previous link, so
+// O_i = R_1⋯R_i L_i (R_k = R_x(θ_k^x)R_z(θ_k^z) of eq. 12, the printed passive
+// R_x). The two agree for planar chains (rotations about one axis commute)
+// and differ in 3D: the printed order turns link i about axes fixed in the
+// world, which is not a chain of joints. Chen's q0 of Simulations 2–3 gives
+// different arms under the two orders (Sim 3's hand at (2.13, 1.85, 3) here,
+// (−2.75, −0.64, 3) under the printed order).
+// Default weights: the paper's criteria are unweighted (all 1), and so are
+// rrlab's defaults. w_limits = 20 was tried on generated planar_limits cases
+// (seed 1001): with 1 the Γ3 push (ω·dΓ3/dΨ ≈ 0.15 rad/s near a limit) is
+// outweighed in the null-space projection by the other links' connection
+// terms (θ^C, at full rate γ2 ≈ 1) and 14 of 20 runs crossed a limit, with 20
+// 11 of 20 (pinv 20 of 20); but the weighted-up Γ3, active across its whole
+// influence zone, swamps the collision cone in the sum dΓ123 of eq. 29: Chen's
+// Simulation 2 collides from w_limits = 5 (min distance 0.041 → −0.217 m) and
+// Simulation 1's tracking error grows from 0.005 to 0.085 m at 20. So the
+// default stays 1.
 // Units: rates per second; the paper's "per cycle" numbers (ω, δ, 0.1 per
 // cycle) are per second of scenario time, with dt a fraction of a cycle.
 #include <Eigen/Cholesky>
@@ -205,9 +236,13 @@ class PostureGeneration final : public Method {
         }
       };
       limit_term(j0 + c, +1.0);
-      if (l + 1 < links_) {
-        const int next = first_joint_[l + 1] + c;
-        if (next <= in.model.links[l + 1].last_joint) limit_term(next, -1.0);
+      if (l + 1 < links_) {  // every joint of the next link, by the projection −a_j·a_k
+        const Eigen::Vector3d a = kin.axis_dirs.col(j0 + c);
+        for (int k = first_joint_[l + 1]; k <= in.model.links[l + 1].last_joint; ++k) {
+          if (in.model.joints[k].type != JointType::revolute) continue;
+          const double share = a.dot(kin.axis_dirs.col(k));
+          if (std::abs(share) > 1e-6) limit_term(k, -share);
+        }
       }
     }
     // Γ4: elastic posture (eq. 27–28)

@@ -59,6 +59,11 @@ ParamSpec damping_spec(double def) {
           0.0, 10.0, 0.001, {}};
 }
 
+ParamSpec secondary_damping_spec(double def) {
+  return {"secondary_lambda", "Secondary damping λ₂", "m",
+          "damping of the secondary task's inverse; 0: the exact pseudoinverse", def, 0.0, 10.0, 0.01, {}};
+}
+
 }  // namespace rrlab
 
 namespace rrlab {

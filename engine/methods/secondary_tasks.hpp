@@ -40,6 +40,8 @@ ParamSpec secondary_task_spec();
 ParamSpec influence_distance_spec(double def);
 ParamSpec secondary_gain_spec(double def);
 ParamSpec damping_spec(double def);
+// Damping of the secondary task's inverse (0: the exact pseudoinverse).
+ParamSpec secondary_damping_spec(double def);
 
 }  // namespace rrlab
 

@@ -71,7 +71,7 @@ class SrTaskPriority final : public Method {
 
 std::vector<ParamSpec> sr_task_priority_params() {
   return {damping_spec(0.01), secondary_task_spec(), influence_distance_spec(0.3),
-          secondary_gain_spec(5.0),
+          secondary_gain_spec(50.0),
           {"projector", "Null-space projector", "",
            "exact: I − J⁺J (Chiaverini); damped: I − J*J (Chen eq. 9 as printed)", 0, 0, 1, 1,
            {"exact", "damped"}}};

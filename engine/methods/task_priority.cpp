@@ -10,7 +10,7 @@
 namespace rrlab {
 namespace {
 
-enum { kSecondary, kInfluence, kGain };
+enum { kSecondary, kInfluence, kGain, kLambda };
 
 class TaskPriority final : public Method {
  public:
@@ -42,7 +42,15 @@ class TaskPriority final : public Method {
         column_ = j2_.row(0).transpose();
         primary_.null_project(column_, projected_);
         j2_tilde_.row(0) = projected_.transpose();
-        secondary_.factor_pinv(j2_tilde_);
+        // Choice made here: the restricted Jacobian J₂N₁ vanishes where the
+        // distance task conflicts with the primary (an algorithmic singularity);
+        // its exact pseudoinverse (λ = 0) then sends q̇ to 1e12 and the
+        // integrated arm leaves the path. λ > 0 damps it (Maciejewski 1988,
+        // Chiaverini 1997): (J̃₂)* = J̃₂ᵀ(J̃₂J̃₂ᵀ + λ²)⁻¹.
+        if (p(kLambda) > 0)
+          secondary_.factor_dls(j2_tilde_, p(kLambda));
+        else
+          secondary_.factor_pinv(j2_tilde_);
         rhs_[0] = task.rate - j2_.row(0).dot(out.qdot);  // ẋ₂ − J₂J₁⁺ẋ₁
         secondary_.apply(rhs_, secondary_motion_);
         out.qdot += secondary_motion_;
@@ -68,7 +76,8 @@ class TaskPriority final : public Method {
 }  // namespace
 
 std::vector<ParamSpec> task_priority_params() {
-  return {secondary_task_spec(), influence_distance_spec(0.3), secondary_gain_spec(5.0)};
+  return {secondary_task_spec(), influence_distance_spec(0.3), secondary_gain_spec(5.0),
+          secondary_damping_spec(0.1)};
 }
 std::unique_ptr<Method> make_task_priority(const MethodContext& ctx) {
   return std::make_unique<TaskPriority>(ctx);
