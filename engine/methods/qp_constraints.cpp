@@ -152,6 +152,7 @@ class QpConstraints final : public Method {
     if (in.distances.links * in.distances.obstacles > pair_capacity_)
       size_pairs(in.distances.links, in.distances.obstacles);  // obstacles added (allocates once)
     revise_task_velocity(in, out);
+    clamp_task_velocity(in);
     joint_bounds(in);
     const int rows = obstacle_rows(in, out);
     limit_criterion(in);
@@ -261,6 +262,15 @@ class QpConstraints final : public Method {
       xdot_ -= along * us_;
       out.diag.values[revised_] = 1;
     }
+  }
+
+  // The step cap applies to the hand too: a request to move it farther than c
+  // in one step (the task loop after a large error, K·e) is scaled to c, so a
+  // relaxed step heads for the target instead of saturating every bound.
+  void clamp_task_velocity(const StepInput& in) {
+    const double limit = step_cap() / in.dt;
+    const double speed = xdot_.head(std::min(m_, 3)).norm();
+    if (speed > limit) xdot_ *= limit / speed;
   }
 
   // Makes +u_s the task direction in which σ_min grows: probe q + h J⁺u_s.
