@@ -26,7 +26,12 @@
 //    obstacle, from the engine's distance table; for a point obstacle and a
 //    segment link this is exactly Fig 1's three cases (foot of the
 //    perpendicular, or the nearer joint), and it generalises to any shape;
-//    r_oc (eq 18) is the table's unit normal obstacle → link.
+//    r_oc (eq 18) is the table's unit normal obstacle → link. Against an
+//    obstacle with faces (box, polygon, wall) the link's two ends get rows
+//    too, their distance measured to the tangent plane at the nearest point
+//    (a link nearly parallel to a face has two near points; with one row the
+//    other end swings in). Points and spheres have a unique, smoothly moving
+//    nearest point: one row (Fig 1 exactly).
 //  - ρ(d) (eq 20) is the half-cosine bell ½(1 − cos(π (d − d_s)/σ)): 1 at the
 //    outer edge of the buffer, 0 at d_s; P_c is the approach rate when the
 //    pair entered the buffer, or −approach_rate if that is slower (a pair that
@@ -56,9 +61,11 @@
 //    link outside the buffer cannot reach d_s in one step and no step jumps
 //    through a thin obstacle. Each joint alone: |q̇_i|·dt·R_i ≤ c (R_i: the
 //    farthest capsule point beyond joint i from its axis), a bound of the QP;
-//    all joints together: the solution is scaled down when the largest
-//    displacement of a link end (plus |ω|·radius) exceeds c (the acceleration
-//    bound, when it cannot brake that much, wins). `capped_steps` counts them.
+//    all joints together: the solution is scaled down when a link end (plus
+//    |ω|·radius) would move more than c, or more than the link's clearance
+//    (at least c/10), so a link cannot swing into an obstacle between two
+//    distance checks (the acceleration bound, when it cannot brake that much,
+//    wins). `capped_steps` counts the scaled steps.
 //  - u_s (eq 23) is oriented so that moving the end-effector along +u_s
 //    increases σ_min (finite difference), so eq 23 removes only the motion
 //    towards the singularity.
@@ -212,12 +219,12 @@ class QpConstraints final : public Method {
     pair_capacity_ = std::max(1, links * obstacles);
     entered_.assign(pair_capacity_, false);
     approach_at_entry_.assign(pair_capacity_, 0.0);
-    floor_.resize(pair_capacity_);
-    strict_ = std::make_unique<QpProblem>(n_, m_, pair_capacity_);
-    // relaxed: up to two rows per pair (the softened row and its d_s floor)
-    relaxed_ = std::make_unique<QpProblem>(n_ + m_ + 1, m_, 2 * pair_capacity_);
-    strict_solver_ = QpSolver(n_, m_, pair_capacity_);
-    relaxed_solver_ = QpSolver(n_ + m_ + 1, m_, 2 * pair_capacity_);
+    floor_.resize(3 * pair_capacity_);  // up to three rows per pair (O_c and the link's ends)
+    strict_ = std::make_unique<QpProblem>(n_, m_, 3 * pair_capacity_);
+    // relaxed: each row twice (softened, and its d_s floor)
+    relaxed_ = std::make_unique<QpProblem>(n_ + m_ + 1, m_, 6 * pair_capacity_);
+    strict_solver_ = QpSolver(n_, m_, 3 * pair_capacity_);
+    relaxed_solver_ = QpSolver(n_ + m_ + 1, m_, 6 * pair_capacity_);
     // relaxed problem, x = [q̇; s; e]: H = diag(I, w I, w_o), J q̇ − s = ẋ_R with s
     // free, every obstacle row r_ocᵀJ_o q̇ + e ≥ t with e ≥ 0 (stages 2–4), and
     // from stage 2 on a floor row r_ocᵀJ_o q̇ ≥ floor without e (stages 2–3)
@@ -366,7 +373,7 @@ class QpConstraints final : public Method {
   double cap_step(const StepInput& in, Eigen::VectorXd& qdot, const Eigen::VectorXd& lower,
                   const Eigen::VectorXd& upper) {
     const Model& model = in.model;
-    double largest = 0;
+    double largest = 0;  // the largest ratio of a link's displacement to its cap
     for (int l = 0; l < model.link_count(); ++l) {
       Eigen::Vector3d v0 = Eigen::Vector3d::Zero(), v1 = Eigen::Vector3d::Zero(), w = Eigen::Vector3d::Zero();
       const Eigen::Vector3d p0 = in.kin.link_start.col(l), p1 = in.kin.link_end.col(l);
@@ -382,11 +389,15 @@ class QpConstraints final : public Method {
           w += qdot[i] * u;
         }
       }
-      largest = std::max(largest, std::max(v0.norm(), v1.norm()) + w.norm() * model.links[l].radius);
+      // this link's cap: c, and not farther than its clearance (at least c/10)
+      double cap_l = step_cap();
+      for (int o = 0; o < in.distances.obstacles && l < in.distances.links; ++o)
+        cap_l = std::min(cap_l, std::max(in.distances.at(l, o).distance, 0.1 * step_cap()));
+      const double move = (std::max(v0.norm(), v1.norm()) + w.norm() * model.links[l].radius) * in.dt;
+      if (move > 0) largest = std::max(largest, move / cap_l);
     }
-    const double cap = step_cap() / in.dt;
-    if (!(largest > cap)) return 1.0;
-    double scale = cap / largest;
+    if (!(largest > 1.0)) return 1.0;
+    double scale = 1.0 / largest;
     for (int i = 0; i < n_; ++i) {  // s·q̇ must stay in the box, which holds q̇
       if (qdot[i] > 0 && lower[i] > 0) scale = std::max(scale, lower[i] / qdot[i]);
       if (qdot[i] < 0 && upper[i] < 0) scale = std::max(scale, upper[i] / qdot[i]);
@@ -417,32 +428,45 @@ class QpConstraints final : public Method {
           continue;
         }
         // critical point O_c and r_oc (eq 16–18); J_o at O_c
-        point_jacobian_linear(in.model, in.kin, link, pair.on_link, point_jacobian_);
         const Eigen::Vector3d& r_oc = pair.normal;
         const Eigen::Vector3d& v_obstacle = in.scene.obstacles[o].velocity;
-        auto row = strict_->A_in.row(rows);
-        row.noalias() = r_oc.transpose() * point_jacobian_;  // P = r_ocᵀ J_o q̇ (eq 19)
-        if (row.squaredNorm() < 1e-18) continue;  // no joint changes this distance (e.g. the base link): no row
-        double t, rho = 0;
-        if (d > ds) {
-          if (!entered_[key]) {  // P_c: the approach rate when entering the buffer
-            entered_[key] = true;
-            approach_at_entry_[key] =
-                std::min(-p(kApproach), row.dot(in.state.qdot) - r_oc.dot(v_obstacle));
-          }
-          rho = bell((d - ds) / sigma);         // bell ρ(d)
-          t = rho * approach_at_entry_[key];  // eq 20, buffer zone
-        } else {
+        const double v_along = r_oc.dot(v_obstacle);
+        if (!entered_[key] && d > ds) {  // P_c: the approach rate when entering the buffer
+          point_jacobian_linear(in.model, in.kin, link, pair.on_link, point_jacobian_);
+          entered_[key] = true;
+          approach_at_entry_[key] = std::min(-p(kApproach), r_oc.dot(point_jacobian_ * in.state.qdot) - v_along);
+        } else if (d <= ds) {
           entered_[key] = true;  // back in the buffer later: approach slowly
           approach_at_entry_[key] = -p(kApproach);
-          t = eta;  // eq 20, inside the safety margin: push away
         }
-        const double floor = (std::min(d, ds) - d) / in.dt;  // the d_s floor
-        floor_[rows] = floor + r_oc.dot(v_obstacle);
-        strict_->b_in[rows] = std::max(t, floor) + r_oc.dot(v_obstacle);
-        // eq 7–8's criterion term: φ −= k (1 − ρ) ∂d/∂q, ∂d/∂q = (r_ocᵀJ_o)ᵀ
-        if (gain > 0) phi_.noalias() -= (gain * (1.0 - rho)) * row.transpose();
-        ++rows;
+        // rows at O_c and, against the same tangent plane, at the link's two
+        // ends: a link nearly parallel to a face has two near points, and a
+        // row at one of them alone lets the other end swing in
+        const Eigen::Vector3d ends[3] = {pair.on_link, in.kin.link_start.col(link), in.kin.link_end.col(link)};
+        const double radius = in.model.links[link].radius;
+        const ShapeKind shape = in.scene.obstacles[o].shape;
+        const bool has_faces = shape == ShapeKind::box || shape == ShapeKind::polygon || shape == ShapeKind::wall;
+        for (int e = 0; e < (has_faces ? 3 : 1); ++e) {
+          const double de = e == 0 ? d : r_oc.dot(ends[e] - pair.on_obstacle) - radius;
+          if (e > 0 && (de > ds + sigma || (ends[e] - pair.on_link).squaredNorm() < 1e-12)) continue;
+          point_jacobian_linear(in.model, in.kin, link, ends[e], point_jacobian_);
+          auto row = strict_->A_in.row(rows);
+          row.noalias() = r_oc.transpose() * point_jacobian_;  // P = r_ocᵀ J_o q̇ (eq 19)
+          if (row.squaredNorm() < 1e-18) continue;  // no joint changes this distance (e.g. the base link): no row
+          double t, rho = 0;
+          if (de > ds) {
+            rho = bell((de - ds) / sigma);        // bell ρ(d)
+            t = rho * approach_at_entry_[key];  // eq 20, buffer zone
+          } else {
+            t = eta;  // eq 20, inside the safety margin: push away
+          }
+          const double floor = (std::min(de, ds) - de) / in.dt;  // the d_s floor
+          floor_[rows] = floor + v_along;
+          strict_->b_in[rows] = std::max(t, floor) + v_along;
+          // eq 7–8's criterion term: φ −= k (1 − ρ) ∂d/∂q, ∂d/∂q = (r_ocᵀJ_o)ᵀ (O_c only)
+          if (e == 0 && gain > 0) phi_.noalias() -= (gain * (1.0 - rho)) * row.transpose();
+          ++rows;
+        }
       }
       if (link < static_cast<int>(link_distance_.size()))
         out.diag.values[link_distance_[link]] = std::isfinite(link_min) ? link_min : -1.0;
