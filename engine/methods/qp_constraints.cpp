@@ -555,10 +555,12 @@ class QpConstraints final : public Method {
 }  // namespace
 
 std::vector<ParamSpec> qp_constraints_params() {
-  return {{"d_s", "Safety margin d_s", "m", "distance the links keep from obstacles (Qiu eq 20)", 0.1, 0.0,
+  return {{"d_s", "Safety margin d_s", "m", "distance the links keep from obstacles (Qiu eq 20; the paper's examples: 0.1)", 0.01, 0.0,
            10.0, 0.01, {}},
           {"sigma", "Buffer width σ", "m",
-           "width of the buffer zone [d_s, d_s + σ] in which the approach rate is smoothed to 0 (eq 20)", 0.2,
+           "width of the buffer zone [d_s, d_s + σ] in which the approach rate is smoothed to 0 (eq 20; the paper's "
+           "examples: 0.2)",
+           0.05,
            1e-4, 10.0, 0.01, {}},
           {"eta", "Push-away rate η", "m/s", "separation rate required inside the safety margin (eq 20)",
            0.01, 0.0, 10.0, 0.001, {}},
@@ -583,7 +585,7 @@ std::vector<ParamSpec> qp_constraints_params() {
           {"max_step", "Step cap", "m",
            "no point of the arm moves more than min(max_step, σ) in one step (so no step jumps through an "
            "obstacle, also without velocity limits)",
-           0.05, 1e-4, 10.0, 0.01, {}}};
+           0.02, 1e-4, 10.0, 0.01, {}}};
 }
 std::unique_ptr<Method> make_qp_constraints(const MethodContext& ctx) {
   return std::make_unique<QpConstraints>(ctx);
