@@ -63,6 +63,18 @@ void obstacle_vertices(const Obstacle& o, double z, double time_offset, bool edg
   }
 }
 
+namespace {
+
+// The point of candidate c seen from p: spheres give their surface point toward p.
+Eigen::Vector3d seen_from(const ControlPoint& c, const Eigen::Vector3d& p) {
+  if (c.radius <= 0) return c.point;
+  const Eigen::Vector3d d = p - c.point;
+  const double len = d.norm();
+  return len > 0 ? Eigen::Vector3d(c.point + (c.radius / len) * d) : c.point;
+}
+
+}  // namespace
+
 NearestObstaclePoint nearest_obstacle_point(const Scene& scene, const Eigen::Vector3d& p,
                                             double time_offset, bool edge_midpoints,
                                             std::vector<ControlPoint>& scratch) {
@@ -70,27 +82,41 @@ NearestObstaclePoint nearest_obstacle_point(const Scene& scene, const Eigen::Vec
   best.distance = kInf;
   for (size_t k = 0; k < scene.obstacles.size(); ++k) {
     const Obstacle& o = scene.obstacles[k];
-    auto consider = [&](const Eigen::Vector3d& x) {
+    auto consider = [&](const Eigen::Vector3d& x, int candidate) {
       const double d = (x - p).norm();
-      if (d < best.distance) best = {true, int(k), d, x};
+      if (d < best.distance) best = {true, int(k), candidate, d, x};
     };
     if (o.shape == ShapeKind::wall) {
-      consider(wall_foot(o, time_offset, p));
+      consider(wall_foot(o, time_offset, p), 0);
       continue;
     }
     scratch.clear();
     obstacle_vertices(o, p.z(), time_offset, edge_midpoints, scratch);
-    for (const ControlPoint& c : scratch) {
-      if (c.radius > 0) {  // sphere: the surface point toward p
-        const Eigen::Vector3d d = p - c.point;
-        const double len = d.norm();
-        consider(len > 0 ? Eigen::Vector3d(c.point + (c.radius / len) * d) : c.point);
-      } else {
-        consider(c.point);
-      }
-    }
+    for (size_t c = 0; c < scratch.size(); ++c) consider(seen_from(scratch[c], p), int(c));
   }
   return best;
+}
+
+NearestObstaclePoint obstacle_candidate(const Scene& scene, int obstacle, int candidate, const Eigen::Vector3d& p,
+                                        double time_offset, bool edge_midpoints,
+                                        std::vector<ControlPoint>& scratch) {
+  NearestObstaclePoint out;
+  if (obstacle < 0 || obstacle >= int(scene.obstacles.size()) || candidate < 0) return out;
+  const Obstacle& o = scene.obstacles[size_t(obstacle)];
+  if (o.shape == ShapeKind::wall) {
+    if (candidate != 0) return out;
+    out.point = wall_foot(o, time_offset, p);
+  } else {
+    scratch.clear();
+    obstacle_vertices(o, p.z(), time_offset, edge_midpoints, scratch);
+    if (candidate >= int(scratch.size())) return out;
+    out.point = seen_from(scratch[size_t(candidate)], p);
+  }
+  out.found = true;
+  out.obstacle = obstacle;
+  out.candidate = candidate;
+  out.distance = (out.point - p).norm();
+  return out;
 }
 
 void voronoi_control_points(const Scene& scene, double time_offset, std::vector<ControlPoint>& a,

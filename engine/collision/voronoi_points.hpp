@@ -44,6 +44,7 @@ void obstacle_vertices(const Obstacle& o, double z, double time_offset, bool edg
 struct NearestObstaclePoint {
   bool found = false;
   int obstacle = -1;
+  int candidate = -1;  // index in obstacle_vertices' output for that obstacle (walls: 0)
   double distance = 0;
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
 };
@@ -53,6 +54,14 @@ struct NearestObstaclePoint {
 NearestObstaclePoint nearest_obstacle_point(const Scene& scene, const Eigen::Vector3d& p,
                                             double time_offset, bool edge_midpoints,
                                             std::vector<ControlPoint>& scratch);
+
+// Candidate `candidate` of obstacle `obstacle` as seen from p (spheres: the
+// surface point toward p; walls: the foot of the perpendicular), so that a
+// caller can keep following one vertex (Sezgin eq. 10 with hysteresis on the
+// choice of x_i). found = false when the indices no longer name a candidate.
+NearestObstaclePoint obstacle_candidate(const Scene& scene, int obstacle, int candidate, const Eigen::Vector3d& p,
+                                        double time_offset, bool edge_midpoints,
+                                        std::vector<ControlPoint>& scratch);
 
 // Voronoi-boundary control points (see above), appended to `out` after clearing it.
 void voronoi_control_points(const Scene& scene, double time_offset, std::vector<ControlPoint>& scratch_a,

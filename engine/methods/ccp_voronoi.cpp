@@ -10,18 +10,32 @@
 //    end-effector or a CCP stays that near, then DI again (the paper switches
 //    "based on a preset threshold distance ... and vice versa" without saying
 //    which distance).
+// The nearest vertex x_i of eq. 10 is chosen once per step (the paper's
+// sampling period) at the step's configuration and held over the step's RK4
+// stages or Newton iterations; with `hysteresis` h > 0 a CCP keeps its vertex
+// until another one is nearer by more than h (the paper does not say when the
+// CCP changes vertex; its Figs. 3-4 depend on it). DM's Voronoi points are
+// re-chosen at every evaluation, without hysteresis.
+// Up to five CCPs (Fig. 5 uses three and four; Table 2 times up to five).
 // Integrators (§2, §4.1):
 //  - rk4: Liégeois' gradient projection, eq. 4, θ̇ = J⁺ẋ + λ(I − J⁺J)∇H (λ > 0
-//    for DI, λ < 0 for DM: the parameter `gain` is |λ|), integrated with
-//    classic fourth-order Runge–Kutta over one step; ẋ at each stage is the
-//    task's closed-loop command at the stage's time and configuration, and
-//    the obstacles are moved to the stage's time;
+//    for DI, λ < 0 for DM), integrated with classic fourth-order Runge–Kutta
+//    over one step; ẋ at each stage is the task's closed-loop command at the
+//    stage's time and configuration, and the obstacles are moved to the
+//    stage's time. The paper's λ acts once per sampling period, and its
+//    sampling periods are equal steps along the path (0.02 units), so λ is a
+//    gain per unit of path length: here λ = gain · ‖ẋ_path‖, `gain` in 1/unit
+//    and ẋ_path the path's feed-forward velocity, so that dθ/ds = J⁺ dx/ds +
+//    gain (I − J⁺J)∇H does not depend on how fast the path is traversed (a
+//    target at rest gives no null-space motion; joystick: the commanded speed);
 //  - lagrangian: Chang's position method, eq. 6–7: at each step solve
 //    f(θ) = X_d(t + dt) together with Z∇H(θ) = 0, Z = [(J_a⁻¹J_b)ᵀ  −I]
 //    (J_a m independent columns of J, J_b the rest), by Newton's method with a
-//    forward-difference Jacobian, warm-started at the previous θ. The first
-//    step jumps to the constrained stationary point near θ0 (the paper uses
-//    the Lagrangian method for the initial condition of every run).
+//    forward-difference Jacobian, warm-started at the previous θ. First step
+//    (`lagrangian_start`): climb (DI uphill along the self-motion from θ0 to
+//    a maximum, then Newton; the paper uses the Lagrangian method for the
+//    initial condition of every run) or theta0 (Newton from θ0 straight
+//    away: the stationary point nearest to θ0, of any kind).
 // The CCP Jacobians are point Jacobians of the kinematics module (the paper's
 // eq. 12–13 specialised to its 3-link arm).
 #include <Eigen/LU>
@@ -38,11 +52,31 @@
 namespace rrlab {
 namespace {
 
-enum { kMode, kIntegrator, kGain, kCcpLink, kCcpAt, kCcp2Link, kCcp2At, kSwitch, kMidpoints, kNewtonIters };
+enum {
+  kMode,
+  kIntegrator,
+  kGain,
+  kHysteresis,
+  kCcpLink,  // then kCcpAt, and link/at pairs for CCPs 2..kMaxCcp
+  kSwitch = kCcpLink + 10,
+  kMidpoints,
+  kNewtonIters,
+  kLagrangeStart
+};
 enum { kDI, kDM, kHybrid };
 enum { kRk4, kLagrangian };
-constexpr int kMaxCcp = 2;
+constexpr int kMaxCcp = 5;
+enum { kClimb, kTheta0 };
+static_assert(kSwitch == kCcpLink + 2 * kMaxCcp, "one link/at parameter pair per CCP");
 constexpr double kTiny = 1e-12;
+// Defaults fitted to Sezgin et al.'s Table 1 (Ex1, L-shape, the three
+// one-CCP cases): the (gain, hysteresis) pair that minimises the mean over 35
+// knots of the largest joint difference, the run interpolated at each knot's
+// position along the path (4.06 deg; within 0.3 deg of it over gain 10..11,
+// hysteresis 0.1..0.3). The paper's sampling distance is 0.02 units, so its
+// λ per sampling period is 0.02 · 10.75 = 0.215.
+constexpr double kCcpDefaultGain = 10.75;
+constexpr double kCcpDefaultHysteresis = 0.1;
 
 class CcpVoronoi final : public Method {
  public:
@@ -84,14 +118,21 @@ class CcpVoronoi final : public Method {
     switch_measure_ = declare_diagnostic("switch_measure");
     newton_iterations_ = declare_diagnostic("newton_iterations");
     newton_residual_ = declare_diagnostic("newton_residual");
-    valid_link_[0] = p(kCcpLink);
-    valid_link_[1] = p(kCcp2Link);
+    for (int i = 2; i < kMaxCcp; ++i) target_distance_[i] = declare_diagnostic("ccp" + std::to_string(i + 1) + "_target_distance");
+    vertex_switches_ = declare_diagnostic("vertex_switches");
+    for (int i = 0; i < kMaxCcp; ++i) valid_link_[i] = p(kCcpLink + 2 * i);
   }
 
   void step(const StepInput& in, StepOutput& out) override {
     out.diag.clear();
     collect_ccps();
+    if (in.state.step == 0) {
+      for (Held& h : held_) h = Held{};
+      switches_ = 0;
+    }
     const bool dm = use_dm(in);
+    if (!dm) choose_vertices(in);
+    out.diag.values[vertex_switches_] = double(switches_);
     out.diag.values[dm_active_] = dm ? 1.0 : 0.0;
     if (choice(kIntegrator) == kRk4)
       step_rk4(in, out, dm);
@@ -106,12 +147,12 @@ class CcpVoronoi final : public Method {
  protected:
   // A CCP on a link the arm does not have is refused (the previous value stays).
   void on_param_changed(int index) override {
-    if (index != kCcpLink && index != kCcp2Link) return;
-    const int slot = index == kCcpLink ? 0 : 1;
-    const char* name = slot == 0 ? "ccp_link" : "ccp2_link";
+    if (index < kCcpLink || index >= kCcpLink + 2 * kMaxCcp || (index - kCcpLink) % 2 != 0) return;
+    const int slot = (index - kCcpLink) / 2;
+    const std::string name = slot == 0 ? "ccp_link" : "ccp" + std::to_string(slot + 1) + "_link";
     if (p(index) > links_) {
       set_param(name, valid_link_[slot]);
-      throw ParamError(name, std::string(name) + ": the arm has " + std::to_string(links_) + " links");
+      throw ParamError(name, name + ": the arm has " + std::to_string(links_) + " links");
     }
     valid_link_[slot] = p(index);
   }
@@ -122,11 +163,42 @@ class CcpVoronoi final : public Method {
     double at;  // 0 proximal joint .. 1 distal end
   };
 
+  // A CCP whose vertex is being followed (obstacle, candidate; -1: none yet).
+  struct Held {
+    int obstacle = -1, candidate = -1;
+  };
+
   void collect_ccps() {
     ccp_count_ = 0;
     // defaults beyond a short arm's last link fall on its last link
-    if (p(kCcpLink) >= 1) ccps_[ccp_count_++] = {std::min(int(p(kCcpLink)), links_) - 1, p(kCcpAt)};
-    if (p(kCcp2Link) >= 1) ccps_[ccp_count_++] = {std::min(int(p(kCcp2Link)), links_) - 1, p(kCcp2At)};
+    for (int i = 0; i < kMaxCcp; ++i) {
+      const double link = p(kCcpLink + 2 * i);
+      if (link < 1) continue;
+      ccps_[ccp_count_++] = {std::min(int(link), links_) - 1, p(kCcpLink + 2 * i + 1)};
+    }
+  }
+
+  // Eq. 10's x_i for every CCP at the step's configuration: the nearest
+  // obstacle vertex, except that a CCP keeps its previous vertex while no
+  // other is nearer by more than `hysteresis` (rrlab's choice; 0 = always the
+  // nearest). Held over the step (RK4 stages, Newton iterations).
+  void choose_vertices(const StepInput& in) {
+    const bool midpoints = p(kMidpoints) > 0.5;
+    for (int i = 0; i < ccp_count_; ++i) {
+      const Eigen::Vector3d f = ccp_point(in.kin, ccps_[i]);
+      const NearestObstaclePoint nearest = nearest_obstacle_point(in.scene, f, 0.0, midpoints, vertices_);
+      Held& h = held_[i];
+      if (!nearest.found) {
+        h = Held{};
+        continue;
+      }
+      const NearestObstaclePoint kept =
+          obstacle_candidate(in.scene, h.obstacle, h.candidate, f, 0.0, midpoints, vertices_);
+      const bool same = kept.found && kept.obstacle == nearest.obstacle && kept.candidate == nearest.candidate;
+      if (kept.found && (same || nearest.distance >= kept.distance - p(kHysteresis))) continue;
+      if (h.obstacle >= 0) ++switches_;
+      h = {nearest.obstacle, nearest.candidate};
+    }
   }
 
   Eigen::Vector3d ccp_point(const KinematicsData& kin, const Ccp& c) const {
@@ -178,8 +250,8 @@ class CcpVoronoi final : public Method {
         for (const Eigen::Vector3d& v : voronoi_)
           if ((v - f).norm() < best) best = (v - f).norm(), target = v, found = true;
       } else {
-        const NearestObstaclePoint np =
-            nearest_obstacle_point(scene, f, tau, p(kMidpoints) > 0.5, vertices_);
+        const NearestObstaclePoint np = obstacle_candidate(scene, held_[i].obstacle, held_[i].candidate, f, tau,
+                                                           p(kMidpoints) > 0.5, vertices_);
         found = np.found;
         target = np.point;
       }
@@ -210,19 +282,24 @@ class CcpVoronoi final : public Method {
     forward_kinematics(in.model, q, probe_);
     task_jacobian(in.model, probe_, space_, jac_);
     in.task.reference(in.state.t + tau, probe_.end_effector(), ref_);
+    const int rows = std::min(3, m_);
+    double speed = 0;  // ‖ẋ_path‖ at the stage's instant
     if (!in.task.is_joystick()) {
       // RK4 wants the path velocity at the stage's instant, not the mean over
       // the coming step that the reference carries for Euler integrators
       const double t = in.state.t + tau, h = 1e-3 * in.dt;
       const Eigen::Vector3d v = (in.task.target_position(t + h) - in.task.target_position(std::max(0.0, t - h))) /
                                 (t + h - std::max(0.0, t - h));
-      const int rows = std::min(3, m_);
       ref_.xdot.head(rows) = v.head(rows) + in.task.gain() * ref_.error.head(rows);
+      speed = v.head(rows).norm();
+    } else {
+      speed = in.task.joystick_linear().head(rows).norm();
     }
     inverse_.factor_pinv(jac_);  // eq. 3
     inverse_.apply(ref_.xdot, qdot);
     criterion_gradient(in.model, probe_, in.scene, tau, dm, grad_);
-    const double lambda = dm ? -p(kGain) : p(kGain);  // maximise DI, minimise DM
+    // λ per unit of path length times the path speed (see the top of the file)
+    const double lambda = (dm ? -p(kGain) : p(kGain)) * speed;  // maximise DI, minimise DM
     grad_ *= lambda;
     inverse_.null_project(grad_, null_);
     qdot += null_;
@@ -306,7 +383,7 @@ class CcpVoronoi final : public Method {
   void step_lagrangian(const StepInput& in, StepOutput& out, bool dm) {
     theta_ = in.state.q;
     choose_split(in);
-    if (in.state.step == 0) settle_on_optimum(in, dm, 2000);
+    if (in.state.step == 0 && choice(kLagrangeStart) == kClimb) settle_on_optimum(in, dm, 2000);
     int iterations = 0;
     double norm = std::numeric_limits<double>::infinity();
     const int max_iterations = int(p(kNewtonIters));
@@ -370,19 +447,21 @@ class CcpVoronoi final : public Method {
   std::vector<ControlPoint> vertices_, scratch_b_;
   std::vector<Eigen::Vector3d> voronoi_;
   Ccp ccps_[kMaxCcp];
+  Held held_[kMaxCcp];
+  long switches_ = 0;
   int ccp_count_ = 0;
   StepOutput* report_ = nullptr;
   double last_switch_measure_ = 0;
   bool hybrid_dm_ = false;
-  double valid_link_[kMaxCcp] = {0, 0};
+  double valid_link_[kMaxCcp] = {};
   int criterion_, dm_active_, target_distance_[kMaxCcp], voronoi_count_, switch_measure_, newton_iterations_,
-      newton_residual_;
+      newton_residual_, vertex_switches_;
 };
 
 }  // namespace
 
 std::vector<ParamSpec> ccp_voronoi_params() {
-  return {
+  std::vector<ParamSpec> specs = {
       {"mode", "Criterion", "",
        "DI: maximise CCP distances to the nearest obstacle vertices (eq. 10); DM: minimise CCP distances to "
        "Voronoi-boundary control points (eq. 11); hybrid: DM near the Voronoi boundary, DI elsewhere",
@@ -390,22 +469,40 @@ std::vector<ParamSpec> ccp_voronoi_params() {
       {"integrator", "Integrator", "",
        "rk4: gradient projection (eq. 4) integrated by RK4; lagrangian: position method (eq. 6-7) by Newton",
        0, 0, 1, 1, {"rk4", "lagrangian"}},
-      {"gain", "Gradient gain |λ|", "1/s", "λ of eq. 4 (rk4 only): speed of the null-space motion", 1.0, 0.0,
-       1000.0, 0.1, {}},
+      {"gain", "Gradient gain |λ| per path length", "1/m",
+       "λ of eq. 4 per unit of end-effector path length (rk4 only): λ = gain · path speed, so the same path "
+       "gives the same motion at any speed. Default: fitted to Sezgin et al.'s Table 1",
+       kCcpDefaultGain, 0.0, 1000.0, 0.1, {}},
+      {"hysteresis", "Vertex hysteresis", "m",
+       "DI: a CCP keeps its nearest obstacle vertex until another is nearer by more than this (0: always the "
+       "nearest)",
+       kCcpDefaultHysteresis, 0.0, 10.0, 0.01, {}},
       {"ccp_link", "CCP link", "", "1-based link carrying the first CCP", 3, 1, 64, 1, {}},
       {"ccp_at", "CCP position", "", "0 = the link's proximal joint, 0.5 = its middle, 1 = its distal end", 0.0,
        0.0, 1.0, 0.05, {}},
-      {"ccp2_link", "Second CCP link", "", "1-based link of a second CCP; 0 = unused", 0, 0, 64, 1, {}},
-      {"ccp2_at", "Second CCP position", "", "as ccp_at, for the second CCP", 0.5, 0.0, 1.0, 0.05, {}},
-      {"switch_distance", "Hybrid switch distance", "m",
-       "hybrid: DM from when the end-effector comes this near a Voronoi-boundary point, while it or a CCP stays as near", 0.3, 0.0,
-       100.0, 0.01, {}},
-      {"edge_midpoints", "Edge midpoints as vertices", "",
-       "1: polygon edge midpoints count as obstacle vertices for DI (Ex4: the wall's end and middle points)", 0,
-       0, 1, 1, {}},
-      {"newton_iterations", "Newton iterations", "", "lagrangian: most Newton iterations per step", 20, 1, 200, 1,
-       {}},
   };
+  for (int i = 2; i <= kMaxCcp; ++i) {
+    const std::string n = std::to_string(i);
+    specs.push_back({"ccp" + n + "_link", "CCP " + n + " link", "", "1-based link of CCP " + n + "; 0 = unused",
+                     0, 0, 64, 1, {}});
+    specs.push_back({"ccp" + n + "_at", "CCP " + n + " position", "", "as ccp_at, for CCP " + n, 0.5, 0.0, 1.0,
+                     0.05, {}});
+  }
+  specs.push_back({"switch_distance", "Hybrid switch distance", "m",
+                   "hybrid: DM from when the end-effector comes this near a Voronoi-boundary point, while it or a "
+                   "CCP stays as near",
+                   0.3, 0.0, 100.0, 0.01, {}});
+  specs.push_back({"edge_midpoints", "Edge midpoints as vertices", "",
+                   "1: polygon edge midpoints count as obstacle vertices for DI (Ex4: the wall's end and middle "
+                   "points)",
+                   0, 0, 1, 1, {}});
+  specs.push_back(
+      {"newton_iterations", "Newton iterations", "", "lagrangian: most Newton iterations per step", 20, 1, 200, 1, {}});
+  specs.push_back({"lagrangian_start", "Lagrangian start", "",
+                   "lagrangian, first step: climb = along the self-motion from theta0 to a maximum of DI (minimum "
+                   "of DM), then Newton; theta0 = Newton from theta0 (the nearest stationary point)",
+                   0, 0, 1, 1, {"climb", "theta0"}});
+  return specs;
 }
 std::unique_ptr<Method> make_ccp_voronoi(const MethodContext& ctx) { return std::make_unique<CcpVoronoi>(ctx); }
 

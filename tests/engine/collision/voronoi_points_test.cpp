@@ -93,5 +93,27 @@ TEST(VoronoiPoints, NearestVertexOfTheLShape) {
   EXPECT_TRUE(mid.point.isApprox(Eigen::Vector3d(1.5, 0.8, 0)));
 }
 
+// A vertex named by (obstacle, candidate) is found again, also after the
+// obstacle moved; indices that name nothing give found = false.
+TEST(VoronoiPoints, CandidateByIndexFollowsTheNearestVertex) {
+  Scene scene;
+  scene.obstacles = {polygon({{2.0, 0.0}, {2.0, 0.5}, {1.5, 0.5}, {1.5, 1.1}, {2.6, 1.1}, {2.6, 0.0}}, {0.1, 0, 0})};
+  std::vector<ControlPoint> scratch;
+  const Eigen::Vector3d p(1.2, 0.4, 0);
+  const NearestObstaclePoint nearest = nearest_obstacle_point(scene, p, 0.0, false, scratch);
+  ASSERT_TRUE(nearest.found);
+  EXPECT_EQ(nearest.candidate, 2);  // (1.5, 0.5)
+  const NearestObstaclePoint again = obstacle_candidate(scene, 0, nearest.candidate, p, 0.0, false, scratch);
+  ASSERT_TRUE(again.found);
+  EXPECT_NEAR((again.point - nearest.point).norm(), 0.0, 1e-12);
+  EXPECT_NEAR(again.distance, nearest.distance, 1e-12);
+  const NearestObstaclePoint later = obstacle_candidate(scene, 0, 2, p, 1.0, false, scratch);
+  EXPECT_NEAR((later.point - Eigen::Vector3d(1.6, 0.5, 0)).norm(), 0.0, 1e-12);  // moved 0.1 along x
+  EXPECT_FALSE(obstacle_candidate(scene, 0, 6, p, 0.0, false, scratch).found);
+  EXPECT_TRUE(obstacle_candidate(scene, 0, 11, p, 0.0, true, scratch).found);  // with edge midpoints: 12
+  EXPECT_FALSE(obstacle_candidate(scene, 1, 0, p, 0.0, false, scratch).found);
+  EXPECT_FALSE(obstacle_candidate(scene, -1, -1, p, 0.0, false, scratch).found);
+}
+
 }  // namespace
 }  // namespace rrlab
