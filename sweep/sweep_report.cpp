@@ -49,12 +49,19 @@ RunFacts facts_of(const storage::SweepRunEntry& e) {
   return f;
 }
 
+// The family a group is reported under: a generator family, or for scenario
+// files each file on its own ("file:NAME"), so a sweep over paper scenarios
+// reports per scenario.
+std::string report_family(const storage::SweepRunRow& row) {
+  return row.family == "file" ? row.scenario_key : row.family;
+}
+
 GroupStats group_stats(const std::vector<const RunFacts*>& runs) {
   GroupStats g;
   const storage::SweepRunRow& row = runs.front()->entry->row;
   g.sweep = row.sweep;
   g.config_key = row.config_key;
-  g.family = row.family;
+  g.family = report_family(row);
   g.n = runs.size();
   std::vector<double> distances, errors, p50s, p99s;
   size_t limits = 0, nonfinite = 0;
@@ -106,7 +113,7 @@ SweepReport build_report(const std::vector<storage::SweepRunEntry>& entries) {
   std::map<std::string, std::map<std::pair<std::string, std::uint64_t>, std::map<std::string, const RunFacts*>>> cases;
   for (const RunFacts& f : facts) {
     const storage::SweepRunRow& row = f.entry->row;
-    groups[{row.sweep, row.config_key, row.family}].push_back(&f);
+    groups[{row.sweep, row.config_key, report_family(row)}].push_back(&f);
     by_config[row.sweep][row.config_key].push_back(&f);
     cases[row.sweep][{row.scenario_key, f.entry->seed}][row.config_key] = &f;
   }

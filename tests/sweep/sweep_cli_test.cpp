@@ -32,7 +32,8 @@ TEST(SweepCli, SweepMergeReport) {
 
   const auto md = rrlab("report " + dir.file("all.db") + " --sweep cli --format md");
   ASSERT_EQ(md.code, 0) << md.err;
-  EXPECT_NE(md.out.find("| pinv | file | 4 |"), std::string::npos) << md.out;
+  EXPECT_NE(md.out.find("| pinv | file:01_planar7_obstacles | 2 |"), std::string::npos) << md.out;  // per scenario file
+  EXPECT_NE(md.out.find("| pinv | file:11_sezgin_ex1_box | 2 |"), std::string::npos) << md.out;
   const auto html = rrlab("report " + dir.file("all.db") + " --format html --out " + dir.file("r.html"));
   ASSERT_EQ(html.code, 0) << html.err;
   EXPECT_TRUE(std::filesystem::file_size(dir.file("r.html")) > 1000);

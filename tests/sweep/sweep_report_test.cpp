@@ -51,8 +51,8 @@ std::vector<storage::SweepRunEntry> hand_case() {
     nlohmann::json b = a;
     b["min_distance"] = db;
     b["max_tracking_error"] = 0.5;
-    runs.push_back({{"w", "w/" + scenario + "/a/own", scenario, "a", "file", i <= 6}, 2 * i + 1, 1, a.dump()});
-    runs.push_back({{"w", "w/" + scenario + "/b/own", scenario, "b", "file", i >= 3 && i <= 7}, 2 * i + 2, 1, b.dump()});
+    runs.push_back({{"w", "w/" + scenario + "/a/own", scenario, "a", "hand", i <= 6}, 2 * i + 1, 1, a.dump()});
+    runs.push_back({{"w", "w/" + scenario + "/b/own", scenario, "b", "hand", i >= 3 && i <= 7}, 2 * i + 2, 1, b.dump()});
   }
   return runs;
 }
@@ -62,7 +62,7 @@ TEST(SweepReport, GroupNumbers) {
   ASSERT_EQ(report.groups.size(), 2u);
   const GroupStats& a = report.groups[0];
   EXPECT_EQ(a.config_key, "a");
-  EXPECT_EQ(a.family, "file");
+  EXPECT_EQ(a.family, "hand");
   EXPECT_EQ(a.n, 10u);
   EXPECT_EQ(a.successes, 7u);
   EXPECT_DOUBLE_EQ(a.success_rate, 0.7);
@@ -104,17 +104,33 @@ TEST(SweepReport, RankingBreaksTiesOnTrackingError) {
   EXPECT_EQ(report.ranking[0].config_key, "b");
 }
 
+TEST(SweepReport, ScenarioFilesAreReportedEachOnItsOwn) {
+  std::vector<storage::SweepRunEntry> runs;
+  runs.push_back({{"w", "k1", "file:s1", "a", "file", true}, 1, 1, R"({"max_tracking_error": 0.2})"});
+  runs.push_back({{"w", "k2", "file:s2", "a", "file", false}, 2, 1, R"({"max_tracking_error": 0.1})"});
+  runs.push_back({{"w", "k3", "gen:planar_limits:1:0", "a", "planar_limits", true}, 3, 1, R"({})"});
+  runs.push_back({{"w", "k4", "gen:planar_limits:1:1", "a", "planar_limits", true}, 4, 1, R"({})"});
+  const SweepReport report = build_report(runs);
+  ASSERT_EQ(report.groups.size(), 3u);
+  EXPECT_EQ(report.groups[0].family, "file:s1");
+  EXPECT_EQ(report.groups[0].successes, 1u);
+  EXPECT_EQ(report.groups[1].family, "file:s2");
+  EXPECT_EQ(report.groups[1].successes, 0u);
+  EXPECT_EQ(report.groups[2].family, "planar_limits");
+  EXPECT_EQ(report.groups[2].n, 2u);
+}
+
 TEST(SweepReport, FormatsCarryTheNumbers) {
   const SweepReport report = build_report(hand_case());
   std::ostringstream md, csv, html;
   write_report_markdown(md, report);
   write_report_csv(csv, report);
   write_report_html(html, report);
-  EXPECT_NE(md.str().find("| a | file | 10 | 70.0% | 39.7%–89.2% | 0.55 | 0.19 | 0.055 | 20.0% | 10.0% | 5.5 | 55 |"),
+  EXPECT_NE(md.str().find("| a | hand | 10 | 70.0% | 39.7%–89.2% | 0.55 | 0.19 | 0.055 | 20.0% | 10.0% | 5.5 | 55 |"),
             std::string::npos)
       << md.str();
   EXPECT_NE(md.str().find("| a | b | 10 | 3/1/6 | 3/4/3 |"), std::string::npos) << md.str();
-  EXPECT_NE(csv.str().find("w,a,file,10,7,0.7,0.396"), std::string::npos) << csv.str();
+  EXPECT_NE(csv.str().find("w,a,hand,10,7,0.7,0.396"), std::string::npos) << csv.str();
   const std::string page = html.str();
   EXPECT_NE(page.find("<svg"), std::string::npos);
   EXPECT_EQ(page.find("<script"), std::string::npos);
