@@ -35,16 +35,17 @@ void Controller::detach(std::uint64_t connection) {
 }
 
 void Controller::claim(const std::string& client) {
+  if (client.empty()) return;
   std::lock_guard lock(mutex_);
   if (holder_.empty()) {
-    holder_ = client;  // an anonymous client leaves it empty
+    holder_ = client;
     return;
   }
   if (holder_ == client) return;
   throw ApiError(409, "not_controller",
                  "another client controls this run; you are watching. Take control with "
                  "{\"type\": \"control\", \"action\": \"take\"} (WebSocket) or "
-                 "POST /api/runs/{id}/control {\"action\": \"take\"} with an Rrlab-Client header",
+                 "POST /api/runs/{id}/control {\"action\": \"take\"} with an Rrlab-Client header naming you",
                  "");
 }
 

@@ -6,13 +6,14 @@
 // POST /api/runs/{id}/control {"action": "take"}), which the holder is told
 // about on its WebSockets.
 //
-// Control is held by named clients. A client names itself with the `client`
-// query parameter of its WebSocket (the dashboard sends a per-tab id) and the
-// Rrlab-Client header of its REST requests (the same id, so that a tab's REST
-// and WebSocket inputs are one client): 1 to 64 of [A-Za-z0-9_.-]. An unnamed
-// client (curl, scripts, a WebSocket without `client`) may steer while no
-// named client holds control, and never holds it. Control is released when
-// the holder's last WebSocket to the run closes (a holder that only uses REST
+// Clients are told apart by name: the `client` query parameter of a
+// WebSocket and the Rrlab-Client header of a REST request (1 to 64 of
+// [A-Za-z0-9_.-]; the dashboard sends one random name per tab on both, so a
+// tab's REST controls and its socket are one client). A WebSocket without a
+// name is a client of its own (named after its connection). A REST request
+// without a name (curl, scripts, an operator stopping a run) is not a party
+// to control: it neither holds nor is refused it. Control is released when the
+// holder's last WebSocket to the run closes (a holder that only uses REST
 // keeps it until it releases it or another client takes over).
 #pragma once
 
@@ -36,8 +37,8 @@ class Controller {
   void detach(std::uint64_t connection);
 
   // Before an input or control from `client`: takes control if nobody holds
-  // it (named clients only); throws ApiError 409 "not_controller" if another
-  // client holds it.
+  // it; throws ApiError 409 "not_controller" if another client holds it.
+  // An empty name (an unnamed REST request) passes and holds nothing.
   void claim(const std::string& client);
   // `client` takes control (the previous holder is told); returns state_json.
   nlohmann::json take(const std::string& client);

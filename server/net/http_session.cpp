@@ -191,7 +191,8 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
         state_->access, {std::string(request.method_string()), target, std::string(request[http::field::host]),
                          std::string(request[http::field::origin]), std::string(request[http::field::content_type]),
                          !request.body().empty(), websocket::is_upgrade(request),
-                         std::string(request[http::field::authorization])});
+                         std::string(request[http::field::authorization]),
+                         std::string(request[http::field::access_control_request_headers])});
     access_headers_ = access.headers;
     if (access.status >= 400) return send_api(error_response(ApiError(access.status, access.code, access.message)));
     if (!access.allowed()) return send_api(ApiResponse{access.status, "", "", {}});  // a CORS preflight

@@ -223,7 +223,17 @@ AccessDecision check_access(const AccessConfig& config, const AccessRequest& req
       if (request.method == "OPTIONS") {
         decision.status = 204;
         decision.headers.push_back({"Access-Control-Allow-Methods", "GET, HEAD, POST, PUT, PATCH, DELETE"});
-        decision.headers.push_back({"Access-Control-Allow-Headers", "Content-Type, Authorization, Rrlab-Client"});
+        // Content-Type, and the token and client name headers when the page asks to send them
+        std::string allowed = "Content-Type";
+        const std::string requested = "," + lower(request.request_headers) + ",";
+        for (const char* name : {"Authorization", "Rrlab-Client"}) {
+          std::string token = "," + lower(name) + ",";
+          std::string compact = requested;
+          compact.erase(std::remove_if(compact.begin(), compact.end(), [](char c) { return c == ' ' || c == '\t'; }),
+                        compact.end());
+          if (compact.find(token) != std::string::npos) allowed.append(", ").append(name);
+        }
+        decision.headers.push_back({"Access-Control-Allow-Headers", allowed});
         decision.headers.push_back({"Access-Control-Max-Age", "600"});
         return decision;
       }

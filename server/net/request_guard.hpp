@@ -48,6 +48,7 @@ struct AccessRequest {
   bool has_body = false;
   bool upgrade = false;  // a WebSocket upgrade
   std::string authorization;  // the Authorization header
+  std::string request_headers;  // Access-Control-Request-Headers (a preflight)
 };
 
 struct AccessDecision {

@@ -5,6 +5,7 @@
 // client. Replies to the client's messages go first, one write in flight.
 // Messages steer only from a client with the token (when the server has one)
 // that holds control of the run (app/controller.hpp).
+#include <atomic>
 #include <deque>
 
 #include "app/controller.hpp"
@@ -60,10 +61,14 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
   }
 
  private:
-  // A named client of a live run hears when another client takes control from it.
+  // A client of a live run hears when another client takes control from it.
+  // Without a `client` name the connection is a client of its own ('#' is
+  // not allowed in names, so this one is nobody else's).
   void attach_controller() {
     Controller* controller = source_->controller();
-    if (!controller || client_.name.empty()) return;
+    if (!controller) return;
+    static std::atomic<std::uint64_t> connections{0};
+    if (client_.name.empty()) client_.name = "#" + std::to_string(++connections);
     std::weak_ptr<WebSocketSession> weak = shared_from_this();
     controller_connection_ = controller->attach(client_.name, [weak](const nlohmann::json& message) {
       if (auto session = weak.lock()) {

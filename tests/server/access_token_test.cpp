@@ -3,7 +3,11 @@
 // token=TOKEN in its query) unless --public-read opens reads; /api/health and
 // static files stay open; 401 with a JSON error otherwise. And serve's refusal
 // to bind a non-loopback address without a token.
+#include <sys/wait.h>
+
 #include <cstdio>
+#include <cstdlib>
+#include <fstream>
 
 #include "net/request_guard.hpp"
 #include "server_fixture.hpp"
@@ -77,7 +81,7 @@ TEST_F(TokenServer, ChangesNeedTheToken) {
 TEST_F(TokenServer, ReadsNeedTheTokenButHealthAndStaticFilesAreOpen) {
   expect_unauthorized(request("GET", "/api/runs", {}), "GET /api/runs");
   expect_unauthorized(request("GET", "/api/scenarios", {}), "GET /api/scenarios");
-  expect_unauthorized(request("HEAD", "/api/methods", {}), "HEAD /api/methods");
+  EXPECT_EQ(request("HEAD", "/api/methods", {}).status, 401);  // a HEAD answer has no body to read
   expect_unauthorized(request("GET", "/api/health", {{"Authorization", "Bearer wrong"}}), "a wrong token anywhere");
   EXPECT_EQ(request("GET", "/api/runs", kAuth).status, 200);
   // open: the health check (container HEALTHCHECK) and the dashboard's files (it asks for the token)
@@ -225,6 +229,17 @@ TEST(TokenTable, Decisions) {
   EXPECT_EQ(decide("GET", "/ws/runs/1?tokens=" + kToken, "", true).status, 401);
   EXPECT_EQ(decide("GET", "/ws/runs/1", bearer, true).status, 0);
   EXPECT_TRUE(decide("GET", "/ws/runs/1", bearer, true).may_steer);
+  // a preflight (answered before the token rule) allows the headers the dashboard sends
+  AccessConfig cors = config;
+  cors.allow_origins = {"http://lab.example"};
+  AccessRequest preflight{"OPTIONS", "/api/runs", host, "http://lab.example", "", false, false, ""};
+  preflight.request_headers = "content-type, Authorization,rrlab-client, x-other";
+  const auto allowed = check_access(cors, preflight);
+  EXPECT_EQ(allowed.status, 204);
+  std::string allow_headers;
+  for (const auto& [name, value] : allowed.headers)
+    if (name == "Access-Control-Allow-Headers") allow_headers = value;
+  EXPECT_EQ(allow_headers, "Content-Type, Authorization, Rrlab-Client");
   config.public_read = true;
   EXPECT_EQ(decide("GET", "/api/runs", "").status, 0);
   EXPECT_EQ(decide("POST", "/api/runs", "").status, 401);

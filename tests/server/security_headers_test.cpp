@@ -53,7 +53,7 @@ TEST(ContentSecurityPolicy, HashesOnlyTheImportMap) {
 class SecurityHeaders : public ServerTest {};
 
 TEST_F(SecurityHeaders, StaticFilesCarryThePolicy) {
-  const HttpResult page = get("/");
+  HttpResult page = get("/");
   ASSERT_EQ(page.status, 200);
   const std::string csp = page.headers["content-security-policy"];
   EXPECT_NE(csp.find("default-src 'self'"), std::string::npos) << csp;
@@ -67,13 +67,13 @@ TEST_F(SecurityHeaders, StaticFilesCarryThePolicy) {
   EXPECT_EQ(page.headers["x-content-type-options"], "nosniff");
   EXPECT_EQ(page.headers["x-frame-options"], "DENY");
   EXPECT_EQ(page.headers["referrer-policy"], "no-referrer");
-  const HttpResult script = get("/js/main.js");
+  HttpResult script = get("/js/main.js");
   EXPECT_NE(script.headers["content-security-policy"].find("default-src 'self'"), std::string::npos);
   EXPECT_EQ(script.headers["content-security-policy"].find("sha256"), std::string::npos);
-  const HttpResult head = http(port(), "HEAD", "/index.html");
+  HttpResult head = http(port(), "HEAD", "/index.html");
   EXPECT_EQ(head.headers["content-security-policy"], csp);
   // no CORS by default
-  const HttpResult api = http(port(), "GET", "/api/health", "", "", {{"Origin", "http://lab.example"}});
+  HttpResult api = http(port(), "GET", "/api/health", "", "", {{"Origin", "http://lab.example"}});
   EXPECT_EQ(api.headers.count("access-control-allow-origin"), 0u);
   EXPECT_EQ(page.headers.count("access-control-allow-origin"), 0u);
 }
