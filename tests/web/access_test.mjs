@@ -90,4 +90,27 @@ await suite('access', [
     }
     forgive401(t);
   }],
+
+  ['the policy refuses inline script and style, and says so in the console', async (t) => {
+    await t.page.goto(t.base + '/');
+    await typeToken(t, TOKEN);
+    await until(async () => (await t.page.locator('#scenario option').count()) > 3, 'the scenario list');
+    check(await t.page.evaluate(() => Boolean(window.__rrlab)), 'the page\'s modules ran (import map allowed by its hash)');
+    await t.page.evaluate(() => {
+      const script = document.createElement('script');
+      script.textContent = 'window.inlineRan = true;';
+      document.body.appendChild(script);
+      const div = document.createElement('div');
+      div.innerHTML = '<span id="inline-styled" style="color: rgb(255, 0, 0)">x</span>';
+      document.body.appendChild(div);
+    });
+    await until(() => t.errors.filter((e) => /Content Security Policy/.test(e)).length >= 2, 'two policy violations in the console');
+    check(!(await t.page.evaluate(() => window.inlineRan)), 'the inline script did not run');
+    check((await t.page.evaluate(() => getComputedStyle(document.getElementById('inline-styled')).color)) !== 'rgb(255, 0, 0)', 'the inline style was not applied');
+    // these violations were provoked; any other console error still fails the test
+    const rest = t.errors.filter((e) => !/Content Security Policy/.test(e));
+    t.errors.length = 0;
+    t.errors.push(...rest);
+    forgive401(t);
+  }],
 ], { token: TOKEN });
