@@ -64,7 +64,6 @@ std::string bracketed(const std::string& address) {
   return v6 && address.front() != '[' ? "[" + address + "]" : address;
 }
 
-
 // Rule 1 for an authority; `default_port` when it names none.
 bool names_this_server(const AccessConfig& config, const Authority& a, int default_port) {
   const int port = a.port.value_or(default_port);

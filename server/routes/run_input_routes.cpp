@@ -37,7 +37,8 @@ ApiResponse post_control(RouteContext& c) {
   if (action == "take" || action == "release") {
     if (body.size() != 1) throw ApiError(400, "invalid", "take and release take no other keys", "action");
     Controller& controller = group->controller();
-    return json_response(200, action == "take" ? controller.take(c.request.client) : controller.release(c.request.client));
+    const std::string& client = c.request.client;
+    return json_response(200, action == "take" ? controller.take(client) : controller.release(client));
   }
   group->controller().claim(c.request.client);
   json status = group->control(lane, body);

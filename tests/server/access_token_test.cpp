@@ -23,7 +23,9 @@ const Headers kAuth = {{"Authorization", "Bearer " + kToken}};
 
 class TokenServer : public ::testing::Test {
  protected:
-  static void SetUpTestSuite() { server_ = std::make_unique<ServerProcess>("", std::vector<std::string>{"--token", kToken}); }
+  static void SetUpTestSuite() {
+    server_ = std::make_unique<ServerProcess>("", std::vector<std::string>{"--token", kToken});
+  }
   static void TearDownTestSuite() { server_.reset(); }
   static unsigned short port() { return server_->port(); }
   static HttpResult request(const std::string& method, const std::string& target, const Headers& headers,
