@@ -27,6 +27,9 @@ struct ServeOptions {
   std::size_t body_limit = 1 << 20;
   int ws_stall_ms = 5000;  // a WebSocket write pending this long drops the client
   std::vector<std::string> allow_hosts, allow_origins;  // beyond this server's own (net/request_guard.hpp)
+  std::string token;             // --token or RRLAB_TOKEN: required for changes, WebSocket inputs and reads
+  bool public_read = false;      // reads need no token
+  bool allow_anonymous = false;  // serve a non-loopback address without a token
 };
 
 struct ReplayOptions {

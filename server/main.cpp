@@ -28,6 +28,13 @@ int main(int argc, char** argv) {
   serve_cmd->add_option("--allow-origin", serve.allow_origins,
                         "also accept changes and WebSockets from web pages of ORIGIN, e.g. http://lab.example:3000 "
                         "(repeatable; answers CORS for it)");
+  serve_cmd->add_option("--token", serve.token,
+                        "require Authorization: Bearer TOKEN for changes, WebSocket inputs and reads "
+                        "(default: the RRLAB_TOKEN environment variable, which ps does not show)")
+      ->envname("RRLAB_TOKEN");
+  serve_cmd->add_flag("--public-read", serve.public_read, "with --token: reads and watching need no token");
+  serve_cmd->add_flag("--allow-anonymous", serve.allow_anonymous,
+                      "serve a non-loopback --host without a token (anyone who reaches it may drive it)");
 
   rrlab::cli::RunOptions run;
   CLI::App* run_cmd = app.add_subcommand("run", "simulate a scenario (or a run record) and print a JSON summary");

@@ -20,6 +20,7 @@ struct ApiRequest {
   std::map<std::string, std::string> query;
   std::string body;
   std::string content_type, accept;
+  std::string client;  // the Rrlab-Client header, if a valid name (app/controller.hpp); else empty
 };
 
 struct ApiResponse;

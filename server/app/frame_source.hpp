@@ -15,6 +15,8 @@
 
 namespace rrlab::server {
 
+class Controller;
+
 struct PublishedFrame {
   std::uint64_t version = 0;  // increases with every publication
   std::uint64_t scene_version = 0;
@@ -57,6 +59,8 @@ class FrameSource {
   virtual PublishedFrame latest() = 0;
   // A client message (inputs, control); returns the reply to send. Never throws.
   virtual nlohmann::json handle_message(const nlohmann::json& message) = 0;
+  // Who may steer (app/controller.hpp): a live run's; nullptr for a replay.
+  virtual Controller* controller() { return nullptr; }
 };
 
 }  // namespace rrlab::server

@@ -52,6 +52,7 @@ class RunGroup::LaneSource final : public FrameSource {
       return group_->input(lane_, kind, message.value("payload", json::object()), "payload");
     });
   }
+  Controller* controller() override { return &group_->controller(); }
 
  private:
   std::shared_ptr<RunGroup> group_;

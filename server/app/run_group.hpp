@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "app/controller.hpp"
 #include "app/frame_geometry.hpp"
 #include "app/frame_source.hpp"
 #include "storage/run_store.hpp"
@@ -76,6 +77,7 @@ class RunGroup : public std::enable_shared_from_this<RunGroup> {
   nlohmann::json summary_json(int lane);  // the lane's run summary so far
 
   std::shared_ptr<FrameSource> source(int lane);
+  Controller& controller() { return controller_; }  // one for every lane
 
  private:
   struct Lane {
@@ -124,6 +126,7 @@ class RunGroup : public std::enable_shared_from_this<RunGroup> {
   std::mutex exit_mutex_;
   std::condition_variable exited_cv_;
   bool exited_ = false;
+  Controller controller_;
 };
 
 }  // namespace rrlab::server

@@ -7,8 +7,11 @@
 #include "net/sessions.hpp"
 #include <algorithm>
 #include <array>
+#include <fstream>
+#include <iterator>
 #include <string_view>
 
+#include "app/controller.hpp"
 #include "app/replay_player.hpp"
 #include "net/static_files.hpp"
 
@@ -183,16 +186,24 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
     const auto question = target.find('?');
     const std::string path = target.substr(0, question);
 
-    // Host, Origin and Content-Type rules (net/request_guard.hpp), once per request
+    // Host, Origin, token and Content-Type rules (net/request_guard.hpp), once per request
     const AccessDecision access = check_access(
         state_->access, {std::string(request.method_string()), target, std::string(request[http::field::host]),
                          std::string(request[http::field::origin]), std::string(request[http::field::content_type]),
-                         !request.body().empty(), websocket::is_upgrade(request)});
+                         !request.body().empty(), websocket::is_upgrade(request),
+                         std::string(request[http::field::authorization]),
+                         std::string(request[http::field::access_control_request_headers])});
     access_headers_ = access.headers;
     if (access.status >= 400) return send_api(error_response(ApiError(access.status, access.code, access.message)));
     if (!access.allowed()) return send_api(ApiResponse{access.status, "", "", {}});  // a CORS preflight
 
-    if (websocket::is_upgrade(request)) return upgrade(std::move(request), path);
+    if (websocket::is_upgrade(request)) {
+      const auto query = question == std::string::npos ? std::map<std::string, std::string>{}
+                                                       : parse_query(target.substr(question + 1));
+      const auto client = query.find("client");
+      return upgrade(std::move(request), path, access.may_steer,
+                     client == query.end() ? "" : valid_client_name(client->second));
+    }
     if (path.rfind("/api/", 0) == 0 || path == "/api") return answer_api(request, path, target, question);
     return answer_static(request, path);
   }
@@ -206,6 +217,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
     api.body = request.body();
     api.content_type = std::string(request[http::field::content_type]);
     api.accept = std::string(request[http::field::accept]);
+    api.client = valid_client_name(std::string(request["Rrlab-Client"]));
     ApiResponse response = handle_api(state_->runs, state_->info, api);
     if (response.deferred) {
       stream_.expires_never();  // a batch run may take a while
@@ -246,12 +258,19 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
     if (ec) return send_error(404, "no file " + path);
     const auto size = body.size();
     const bool unchanged = request[http::field::if_none_match] == file->etag;
+    std::string html;  // an HTML page's import map hashes go into its policy
+    if (file->mime_type.rfind("text/html", 0) == 0 && size <= (1u << 20)) {
+      std::ifstream in(file->path, std::ios::binary);
+      html.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    }
+    const auto security = static_security_headers(html);
     if (request.method() == http::verb::head || unchanged) {
       auto response = std::make_shared<http::response<http::empty_body>>(
           unchanged ? http::status::not_modified : http::status::ok, version_);
       response->set(http::field::content_type, file->mime_type);
       response->set(http::field::cache_control, kStaticCacheControl);
       response->set(http::field::etag, file->etag);
+      for (const auto& [name, value] : security) response->set(name, value);
       if (!unchanged) response->content_length(size);
       response->keep_alive(keep_alive_);
       return write(response);
@@ -262,13 +281,16 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
     response->set(http::field::content_type, file->mime_type);
     response->set(http::field::cache_control, kStaticCacheControl);
     response->set(http::field::etag, file->etag);
+    for (const auto& [name, value] : security) response->set(name, value);
     response->content_length(size);
     response->keep_alive(keep_alive_);
     write(response);
   }
 
   // /ws/runs/{id} and /ws/replays/{id}
-  void upgrade(http::request<http::string_body>&& request, const std::string& path) {
+  // `may_steer` false: a tokenless watcher (--public-read); `client`: its name (app/controller.hpp).
+  void upgrade(http::request<http::string_body>&& request, const std::string& path, bool may_steer,
+               const std::string& client) {
     std::shared_ptr<FrameSource> source;
     const auto id_after = [&](std::string_view prefix) {
       return path.rfind(prefix, 0) == 0 ? parse_id(std::string_view(path).substr(prefix.size())) : std::nullopt;
@@ -283,7 +305,8 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
     if (state_->websockets.load() >= state_->limits.max_websockets)
       return send_error(503, "too many WebSocket clients");
     double display_hz = state_->runs.limits().default_display_hz;
-    start_websocket_session(std::move(stream_), state_, std::move(source), std::move(request), display_hz);
+    start_websocket_session(std::move(stream_), state_, std::move(source), std::move(request), display_hz,
+                            {may_steer, client});
   }
 
   template <typename Response>

@@ -64,10 +64,6 @@ std::string bracketed(const std::string& address) {
   return v6 && address.front() != '[' ? "[" + address + "]" : address;
 }
 
-bool loopback_bind(const std::string& host) {
-  return host.rfind("127.", 0) == 0 || host == "::1" || host == "[::1]" || lower(host) == "localhost";
-}
-
 // Rule 1 for an authority; `default_port` when it names none.
 bool names_this_server(const AccessConfig& config, const Authority& a, int default_port) {
   const int port = a.port.value_or(default_port);
@@ -124,7 +120,73 @@ AccessDecision refuse(int status, std::string code, std::string message) {
   return d;
 }
 
+// The value of the query parameter `name` (percent-decoded), if present.
+std::optional<std::string> query_value(const std::string& target, const std::string& name) {
+  const auto question = target.find('?');
+  if (question == std::string::npos) return std::nullopt;
+  const std::string query = target.substr(question + 1);
+  for (std::size_t start = 0; start <= query.size();) {
+    std::size_t end = query.find('&', start);
+    if (end == std::string::npos) end = query.size();
+    const std::string pair = query.substr(start, end - start);
+    const auto eq = pair.find('=');
+    if (pair.substr(0, eq) == name) {
+      const std::string raw = eq == std::string::npos ? "" : pair.substr(eq + 1);
+      std::string value;
+      for (std::size_t i = 0; i < raw.size(); ++i) {
+        if (raw[i] == '%' && i + 2 < raw.size() && std::isxdigit(static_cast<unsigned char>(raw[i + 1])) &&
+            std::isxdigit(static_cast<unsigned char>(raw[i + 2]))) {
+          value.push_back(char(std::stoi(raw.substr(i + 1, 2), nullptr, 16)));
+          i += 2;
+        } else {
+          value.push_back(raw[i] == '+' ? ' ' : raw[i]);
+        }
+      }
+      return value;
+    }
+    start = end + 1;
+  }
+  return std::nullopt;
+}
+
+// The token a request presents: "Bearer TOKEN" (scheme case-insensitive), or
+// for an upgrade the `token` query parameter; nothing if none.
+std::optional<std::string> presented_token(const AccessRequest& request) {
+  const std::string header = trim(request.authorization);
+  if (!header.empty()) {
+    const auto space = header.find(' ');
+    if (space == std::string::npos || lower(header.substr(0, space)) != "bearer") return std::string();  // wrong
+    return trim(header.substr(space + 1));
+  }
+  if (request.upgrade) return query_value(request.target, "token");
+  return std::nullopt;
+}
+
 }  // namespace
+
+bool constant_time_equals(const std::string& a, const std::string& b) {
+  // every byte of the longer string is looked at, whatever the contents
+  const std::size_t n = std::max(a.size(), b.size());
+  volatile unsigned char diff = a.size() == b.size() ? 0 : 1;
+  for (std::size_t i = 0; i < n; ++i) {
+    const unsigned char x = i < a.size() ? static_cast<unsigned char>(a[i]) : 0;
+    const unsigned char y = i < b.size() ? static_cast<unsigned char>(b[i]) : 0;
+    diff = diff | (x ^ y);
+  }
+  return diff == 0;
+}
+
+std::string token_problem(const std::string& token) {
+  if (token.empty()) return "the token is empty";
+  if (token.size() > 512) return "the token is longer than 512 characters";
+  for (char c : token)
+    if (c < 0x21 || c > 0x7e) return "the token may hold visible ASCII characters only (no spaces)";
+  return "";
+}
+
+bool is_loopback_host(const std::string& host) {
+  return host.rfind("127.", 0) == 0 || host == "::1" || host == "[::1]" || lower(host) == "localhost";
+}
 
 std::string normalize_origin(const std::string& origin) {
   const auto o = parse_origin(trim(origin));
@@ -138,7 +200,7 @@ std::string normalize_origin(const std::string& origin) {
 AccessDecision check_access(const AccessConfig& config, const AccessRequest& request) {
   // 1. Host
   if (request.host.empty()) {
-    if (!loopback_bind(config.bind_host))
+    if (!is_loopback_host(config.bind_host))
       return refuse(400, "missing_host", "the request needs a Host header naming this server");
   } else {
     const auto authority = parse_authority(trim(request.host));
@@ -160,7 +222,17 @@ AccessDecision check_access(const AccessConfig& config, const AccessRequest& req
       if (request.method == "OPTIONS") {
         decision.status = 204;
         decision.headers.push_back({"Access-Control-Allow-Methods", "GET, HEAD, POST, PUT, PATCH, DELETE"});
-        decision.headers.push_back({"Access-Control-Allow-Headers", "Content-Type"});
+        // Content-Type, and the token and client name headers when the page asks to send them
+        std::string allowed = "Content-Type";
+        const std::string requested = "," + lower(request.request_headers) + ",";
+        for (const char* name : {"Authorization", "Rrlab-Client"}) {
+          std::string token = "," + lower(name) + ",";
+          std::string compact = requested;
+          compact.erase(std::remove_if(compact.begin(), compact.end(), [](char c) { return c == ' ' || c == '\t'; }),
+                        compact.end());
+          if (compact.find(token) != std::string::npos) allowed.append(", ").append(name);
+        }
+        decision.headers.push_back({"Access-Control-Allow-Headers", allowed});
         decision.headers.push_back({"Access-Control-Max-Age", "600"});
         return decision;
       }
@@ -173,8 +245,38 @@ AccessDecision check_access(const AccessConfig& config, const AccessRequest& req
                         "--allow-origin ORIGIN to accept it");
   }
 
-  // 3. Content-Type of API bodies
   const std::string path = request.target.substr(0, request.target.find('?'));
+
+  // 3. Token
+  if (!config.token.empty()) {
+    const bool safe = request.method == "GET" || request.method == "HEAD" || request.method == "OPTIONS";
+    const bool api = path == "/api" || path.rfind("/api/", 0) == 0;
+    const auto token = presented_token(request);
+    const bool valid = token && constant_time_equals(*token, config.token);
+    const bool open = safe && !request.upgrade && (!api || path == "/api/health" || path == "/api/health/");
+    const bool readable = safe && config.public_read;
+    if (token && !valid) {
+      AccessDecision refused = refuse(401, "unauthorized",
+                                      "the token is wrong: send the token this server was started with "
+                                      "(--token or RRLAB_TOKEN) as Authorization: Bearer TOKEN");
+      refused.headers = decision.headers;
+      refused.headers.push_back({"WWW-Authenticate", "Bearer realm=\"rrlab\", error=\"invalid_token\""});
+      return refused;
+    }
+    if (!valid && !open && !readable) {
+      AccessDecision refused =
+          refuse(401, "unauthorized",
+                 std::string("this server requires a token ") +
+                     (safe ? "to read" : "for changes") +
+                     ": send Authorization: Bearer TOKEN (a WebSocket may pass it as the query parameter token=TOKEN)");
+      refused.headers = decision.headers;
+      refused.headers.push_back({"WWW-Authenticate", "Bearer realm=\"rrlab\""});
+      return refused;
+    }
+    decision.may_steer = valid;
+  }
+
+  // 4. Content-Type of API bodies
   if (request.has_body && (path == "/api" || path.rfind("/api/", 0) == 0)) {
     const std::string media = lower(trim(request.content_type.substr(0, request.content_type.find(';'))));
     if (media != "application/json") {

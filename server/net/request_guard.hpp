@@ -10,7 +10,18 @@
 //    WebSocket upgrade that carries an Origin must come from this server's
 //    own origin (http://HOST where HOST passes rule 1) or an --allow-origin
 //    origin. Else 403 "forbidden_origin". No Origin (curl, scripts): allowed.
-// 3. An /api request with a body needs Content-Type application/json
+// 3. With a token (--token or RRLAB_TOKEN), a request needs
+//    `Authorization: Bearer TOKEN` (a WebSocket upgrade: that header or the
+//    query parameter token=TOKEN, which browsers can send) when it is
+//    - a mutating request (any method but GET, HEAD, OPTIONS), or
+//    - a read of /api (GET, HEAD, OPTIONS) or a WebSocket upgrade, unless
+//      --public-read: then a tokenless WebSocket watches only (may_steer
+//      false: its inputs and control messages are refused).
+//    Open without a token: GET/HEAD /api/health (container health checks) and
+//    static files (the dashboard must load to ask for the token). Else 401
+//    "unauthorized" (a wrong token is 401 even where none is needed). Tokens
+//    are compared in constant time.
+// 4. An /api request with a body needs Content-Type application/json
 //    (parameters allowed). Else 415 "unsupported_media_type".
 // CORS: only for --allow-origin origins, which get Access-Control-Allow-Origin
 // on every answer and a 204 answer to OPTIONS (the preflight).
@@ -27,6 +38,8 @@ struct AccessConfig {
   unsigned short port = 0;                 // the bound port
   std::vector<std::string> allow_hosts;    // --allow-host NAME
   std::vector<std::string> allow_origins;  // --allow-origin ORIGIN (scheme://host[:port])
+  std::string token;                       // --token / RRLAB_TOKEN; empty: no token needed
+  bool public_read = false;                // --public-read: reads need no token
 };
 
 // Header values as received; empty: the header is absent.
@@ -34,16 +47,30 @@ struct AccessRequest {
   std::string method, target, host, origin, content_type;
   bool has_body = false;
   bool upgrade = false;  // a WebSocket upgrade
+  std::string authorization;  // the Authorization header
+  std::string request_headers;  // Access-Control-Request-Headers (a preflight)
 };
 
 struct AccessDecision {
   int status = 0;  // 0: go on; 204: answer the preflight now; >= 400: refuse
   std::string code, message;
   std::vector<std::pair<std::string, std::string>> headers;  // add to the answer (CORS)
+  bool may_steer = true;  // a WebSocket upgrade: its messages may steer (false: watch only)
   bool allowed() const { return status == 0; }
 };
 
 AccessDecision check_access(const AccessConfig& config, const AccessRequest& request);
+
+// Equal strings, in a time that depends on the lengths only, never on where
+// the first difference is (for tokens).
+bool constant_time_equals(const std::string& a, const std::string& b);
+
+// A token as accepted by --token: 1 to 512 visible ASCII characters (it must
+// fit an HTTP header and a URL query unescaped); else the reason it is not.
+std::string token_problem(const std::string& token);
+
+// An address that only this machine reaches: 127.0.0.0/8, ::1, localhost.
+bool is_loopback_host(const std::string& host);
 
 // An --allow-origin value as compared: lower case, no trailing slash; empty if
 // it is not scheme://host[:port].

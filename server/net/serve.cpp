@@ -20,6 +20,14 @@ int serve(const ServeOptions& options) {
     for (const auto& origin : options.allow_origins)
       if (normalize_origin(origin).empty())
         throw std::runtime_error("--allow-origin " + origin + ": expected scheme://host[:port], e.g. http://localhost:3000");
+    if (!options.token.empty() && !token_problem(options.token).empty())
+      throw std::runtime_error("--token / RRLAB_TOKEN: " + token_problem(options.token));
+    if (options.token.empty() && !options.allow_anonymous && !is_loopback_host(options.host))
+      throw std::runtime_error(
+          "refusing to serve " + options.host +
+          " without a token: every machine that reaches it could start, steer and delete runs. Set a token "
+          "(RRLAB_TOKEN=... or --token TOKEN; clients send Authorization: Bearer TOKEN), or pass "
+          "--allow-anonymous if the network is trusted, or bind --host 127.0.0.1");
     const std::filesystem::path db(options.db);
     if (db.has_parent_path()) std::filesystem::create_directories(db.parent_path());
     storage::RunStore store(options.db);
@@ -36,12 +44,15 @@ int serve(const ServeOptions& options) {
     net::io_context ioc(options.threads);
     const unsigned short port = start_listener(ioc, options.host, options.port, state);
     // the listener accepts nothing before ioc.run(): the bound port is known in time
-    state->access = AccessConfig{options.host, port, options.allow_hosts, options.allow_origins};
+    state->access = AccessConfig{options.host,          port,         options.allow_hosts, options.allow_origins,
+                                 options.token,         options.public_read};
     std::cout << "rrlab: serving http://" << options.host << ":" << port << "/ (database " << options.db;
     if (store.interrupted_at_open() > 0) std::cout << ", " << store.interrupted_at_open() << " runs marked interrupted";
     if (store.migrated_from() > 0)
       std::cout << ", migrated from schema version " << store.migrated_from();
-    std::cout << ")" << std::endl;
+    std::cout << ")";
+    if (!options.token.empty()) std::cout << (options.public_read ? "; token required to change" : "; token required");
+    std::cout << std::endl;
 
     net::signal_set signals(ioc, SIGINT, SIGTERM);
     signals.async_wait([&](beast::error_code, int) { ioc.stop(); });

@@ -22,10 +22,17 @@ using tcp = net::ip::tcp;
 // Reads HTTP requests on one connection; upgrades to a WebSocket on /ws/...
 void start_http_session(tcp::socket&& socket, std::shared_ptr<ServerState> state);
 
+// Who is on a WebSocket: whether its messages may steer (false: a tokenless
+// watcher under --public-read) and its client name (app/controller.hpp; empty: unnamed).
+struct WebSocketClient {
+  bool may_steer = true;
+  std::string name;
+};
+
 // Takes over an upgraded connection and streams `source` to it.
 void start_websocket_session(beast::tcp_stream&& stream, std::shared_ptr<ServerState> state,
                              std::shared_ptr<FrameSource> source, http::request<http::string_body>&& request,
-                             double display_hz);
+                             double display_hz, WebSocketClient client);
 
 // Accepts connections on host:port (0: ephemeral); returns the bound port.
 unsigned short start_listener(net::io_context& ioc, const std::string& host, unsigned short port,

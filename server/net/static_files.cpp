@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "net/sha256.hpp"
+
 namespace rrlab::server {
 
 namespace fs = std::filesystem;
@@ -21,6 +23,28 @@ std::string mime_type(std::string_view path) {
   if (ext == ".wasm") return "application/wasm";
   if (ext == ".txt" || ext == ".md") return "text/plain; charset=utf-8";
   return "application/octet-stream";
+}
+
+std::string content_security_policy(std::string_view html) {
+  std::string scripts = "'self'";
+  constexpr std::string_view kOpen = "<script type=\"importmap\">", kClose = "</script>";
+  for (auto open = html.find(kOpen); open != std::string_view::npos; open = html.find(kOpen, open + 1)) {
+    const auto begin = open + kOpen.size();
+    const auto end = html.find(kClose, begin);
+    if (end == std::string_view::npos) break;
+    const auto digest = sha256(html.substr(begin, end - begin));
+    scripts += " 'sha256-" + base64(digest.data(), digest.size()) + "'";
+  }
+  return "default-src 'self'; script-src " + scripts +
+         "; style-src 'self'; img-src 'self' data: blob:; connect-src 'self'; object-src 'none'; base-uri 'none'; "
+         "form-action 'self'; frame-ancestors 'none'";
+}
+
+std::vector<std::pair<std::string, std::string>> static_security_headers(std::string_view html) {
+  return {{"Content-Security-Policy", content_security_policy(html)},
+          {"X-Content-Type-Options", "nosniff"},
+          {"X-Frame-Options", "DENY"},
+          {"Referrer-Policy", "no-referrer"}};
 }
 
 std::optional<StaticFile> resolve_static(const std::string& web_root, std::string_view request_path) {

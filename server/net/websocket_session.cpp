@@ -3,8 +3,12 @@
 // (latest wins: a slow client skips frames and never holds up the run or the
 // other clients); a write pending longer than the stall timeout drops the
 // client. Replies to the client's messages go first, one write in flight.
+// Messages steer only from a client with the token (when the server has one)
+// that holds control of the run (app/controller.hpp).
+#include <atomic>
 #include <deque>
 
+#include "app/controller.hpp"
 #include "net/sessions.hpp"
 
 namespace rrlab::server {
@@ -16,8 +20,9 @@ using Clock = std::chrono::steady_clock;
 class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
  public:
   WebSocketSession(beast::tcp_stream&& stream, std::shared_ptr<ServerState> state,
-                   std::shared_ptr<FrameSource> source, double display_hz)
-      : ws_(std::move(stream)),
+                   std::shared_ptr<FrameSource> source, double display_hz, WebSocketClient client)
+      : client_(std::move(client)),
+        ws_(std::move(stream)),
         state_(std::move(state)),
         source_(std::move(source)),
         tick_(ws_.get_executor()),
@@ -26,6 +31,7 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
   }
   ~WebSocketSession() {
     if (subscription_) source_->subscribers().remove(subscription_);
+    if (controller_connection_) source_->controller()->detach(controller_connection_);
     --state_->websockets;
   }
 
@@ -41,6 +47,7 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
     ws_.async_accept(request, [self = shared_from_this()](beast::error_code ec) {
       if (ec) return;
       self->open_ = true;
+      self->attach_controller();
       self->send_snapshot();
       self->read();
       self->arm_timer();
@@ -54,6 +61,25 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
   }
 
  private:
+  // A client of a live run hears when another client takes control from it.
+  // Without a `client` name the connection is a client of its own ('#' is
+  // not allowed in names, so this one is nobody else's).
+  void attach_controller() {
+    Controller* controller = source_->controller();
+    if (!controller) return;
+    static std::atomic<std::uint64_t> connections{0};
+    if (client_.name.empty()) client_.name = "#" + std::to_string(++connections);
+    std::weak_ptr<WebSocketSession> weak = shared_from_this();
+    controller_connection_ = controller->attach(client_.name, [weak](const nlohmann::json& message) {
+      if (auto session = weak.lock()) {
+        auto text = std::make_shared<const std::string>(safe_dump(message));
+        net::post(session->ws_.get_executor(), [session, text] {
+          if (session->open_) session->queue(text);
+        });
+      }
+    });
+  }
+
   void send_snapshot() {
     const PublishedFrame latest = source_->latest();
     sent_version_ = latest.version;
@@ -140,7 +166,24 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
         throw ApiError(429, "rate_limited",
                        "more than " + std::to_string(state_->limits.ws_messages_per_second) +
                            " messages per second; this one was dropped");
-      return source_->handle_message(parse_client_json(text));
+      const nlohmann::json message = parse_client_json(text);
+      if (!client_.may_steer)
+        throw ApiError(401, "unauthorized",
+                       "this connection watches only: reconnect with the token (query parameter token=TOKEN) to steer");
+      if (Controller* controller = source_->controller()) {
+        const std::string action =
+            message.is_object() && message.value("type", nlohmann::json()) == "control" && message.contains("action") &&
+                    message["action"].is_string()
+                ? message["action"].get<std::string>()
+                : "";
+        if (action == "take" || action == "release") {
+          if (message.size() != 2) throw ApiError(400, "invalid", "take and release take no other keys", "action");
+          return {{"type", "ack"},
+                  {"status", action == "take" ? controller->take(client_.name) : controller->release(client_.name)}};
+        }
+        controller->claim(client_.name);
+      }
+      return source_->handle_message(message);
     } catch (const ApiError& e) {
       return socket_error(e);
     } catch (const std::exception&) {
@@ -167,6 +210,8 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
     beast::get_lowest_layer(ws_).socket().close(ec);
   }
 
+  WebSocketClient client_;
+  std::uint64_t controller_connection_ = 0;
   websocket::stream<beast::tcp_stream> ws_;
   std::shared_ptr<ServerState> state_;
   std::shared_ptr<FrameSource> source_;
@@ -185,8 +230,9 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
 
 void start_websocket_session(beast::tcp_stream&& stream, std::shared_ptr<ServerState> state,
                              std::shared_ptr<FrameSource> source, http::request<http::string_body>&& request,
-                             double display_hz) {
-  std::make_shared<WebSocketSession>(std::move(stream), std::move(state), std::move(source), display_hz)
+                             double display_hz, WebSocketClient client) {
+  std::make_shared<WebSocketSession>(std::move(stream), std::move(state), std::move(source), display_hz,
+                                     std::move(client))
       ->run(std::move(request));
 }
 

@@ -1,6 +1,7 @@
 // Inputs to a live run: control, parameters, obstacles, joystick, method.
-// Each is validated (400 naming the field, 409 in the wrong state) and stored
-// as an event with the step at which it took effect.
+// Each is validated (400 naming the field, 409 in the wrong state or when
+// another client controls the run: app/controller.hpp) and stored as an event
+// with the step at which it took effect.
 #include "routes/routes.hpp"
 
 namespace rrlab::server {
@@ -11,6 +12,7 @@ namespace {
 ApiResponse apply(RouteContext& c, const std::string& kind, const json& payload) {
   int lane = 0;
   auto group = live_group(c, c.id(), lane);
+  group->controller().claim(c.request.client);
   return json_response(200, group->input(lane, kind, payload, ""));
 }
 // An input to the obstacle named in the path: an unknown one is a missing resource (404).
@@ -28,6 +30,17 @@ ApiResponse post_control(RouteContext& c) {
   const json body = parse_body(c.request);
   int lane = 0;
   auto group = live_group(c, c.id(), lane);
+  // {"action": "take" | "release"}: control of the run (app/controller.hpp)
+  const std::string action = body.is_object() && body.contains("action") && body["action"].is_string()
+                                 ? body["action"].get<std::string>()
+                                 : "";
+  if (action == "take" || action == "release") {
+    if (body.size() != 1) throw ApiError(400, "invalid", "take and release take no other keys", "action");
+    Controller& controller = group->controller();
+    const std::string& client = c.request.client;
+    return json_response(200, action == "take" ? controller.take(client) : controller.release(client));
+  }
+  group->controller().claim(c.request.client);
   json status = group->control(lane, body);
   if (body.is_object() && body.value("action", "") == "stop") {
     // answer once the run has ended and its frames are committed

@@ -17,10 +17,12 @@ export const sourceDir = resolve(here, '../..');
 const binary = process.env.RRLAB_BINARY || join(sourceDir, 'build/server/rrlab');
 export const screenshotDir = process.env.RRLAB_SCREENSHOTS || '/tmp/rrlab-screens';
 
-export async function startServer() {
+// `token`: serve with --token and send it on the helpers' requests; `args`: more serve options.
+export async function startServer({ token = '', args = [] } = {}) {
   const dir = mkdtempSync(join(tmpdir(), 'rrlab-web-'));
-  const server = spawn(binary, ['serve', '--port', '0', '--db', join(dir, 'web.db'), '--web', join(sourceDir, 'web')],
-    { stdio: ['ignore', 'pipe', 'inherit'] });
+  const serveArgs = ['serve', '--port', '0', '--db', join(dir, 'web.db'), '--web', join(sourceDir, 'web'), ...args];
+  if (token) serveArgs.push('--token', token);
+  const server = spawn(binary, serveArgs, { stdio: ['ignore', 'pipe', 'inherit'] });
   const base = await new Promise((ok, fail) => {
     const timer = setTimeout(() => fail(new Error('rrlab serve did not start in 20 s')), 20000);
     server.stdout.on('data', (chunk) => {
@@ -30,7 +32,9 @@ export async function startServer() {
     server.on('exit', (code) => fail(new Error(`rrlab serve exited with ${code}`)));
   });
   const request = async (method, path, body) => {
-    const r = await fetch(base + path, { method, headers: body ? { 'Content-Type': 'application/json' } : {}, body: body ? JSON.stringify(body) : undefined });
+    const headers = body ? { 'Content-Type': 'application/json' } : {};
+    if (token) headers.Authorization = `Bearer ${token}`;
+    const r = await fetch(base + path, { method, headers, body: body ? JSON.stringify(body) : undefined });
     const text = await r.text();
     let data;
     try { data = JSON.parse(text); } catch { data = text; }
@@ -75,9 +79,10 @@ export function check(condition, message) {
 
 // Runs the named tests, each in its own page on one server and browser.
 // Prints one line per test and the closing `N passed, M failed`; exits 1 on failure.
-export async function suite(name, tests) {
+// `options`: startServer's ({ token, args }).
+export async function suite(name, tests, options = {}) {
   mkdirSync(screenshotDir, { recursive: true });
-  const server = await startServer();
+  const server = await startServer(options);
   const browser = await launchBrowser();
   const only = process.env.RRLAB_WEB_ONLY;
   let passed = 0, failed = 0;

@@ -1,5 +1,12 @@
 // REST and WebSocket client. REST errors become ApiError with the server's
 // {code, message, path} and the HTTP status; streams reconnect with back-off.
+//
+// Access: when the server requires a token (401), the page asks for it once
+// (setTokenPrompt), keeps it in the tab's session storage and retries; every
+// request then sends Authorization: Bearer TOKEN and a WebSocket the query
+// parameter token=TOKEN (browsers cannot set its headers). Every request also
+// names this tab as a client (Rrlab-Client header, `client` query parameter),
+// so that the server knows which tab holds control of a live run.
 
 export class ApiError extends Error {
   constructor(status, error) {
@@ -10,18 +17,76 @@ export class ApiError extends Error {
   }
 }
 
-// JSON in and out. A body is sent as application/json.
-export async function api(method, path, body) {
-  const options = { method, headers: { Accept: 'application/json' } };
-  if (body !== undefined) {
-    options.headers['Content-Type'] = 'application/json';
-    options.body = typeof body === 'string' ? body : JSON.stringify(body);
+const TOKEN_KEY = 'rrlab.token';
+const CLIENT_KEY = 'rrlab.client';
+
+function stored(key) { try { return sessionStorage.getItem(key) || ''; } catch { return ''; } }
+function store(key, value) {
+  try { if (value) sessionStorage.setItem(key, value); else sessionStorage.removeItem(key); } catch { /* storage off */ }
+}
+
+// This tab's client name: random, kept for the tab's life (session storage).
+export function clientId() {
+  let id = stored(CLIENT_KEY);
+  if (!id) {
+    const bytes = crypto.getRandomValues(new Uint8Array(12));
+    id = `tab-${[...bytes].map((b) => b.toString(16).padStart(2, '0')).join('')}`;
+    store(CLIENT_KEY, id);
   }
-  let response;
-  try {
-    response = await fetch(path, options);
-  } catch (e) {
-    throw new ApiError(0, { code: 'network', message: 'the server cannot be reached' });
+  return id;
+}
+
+// `ask(refused)` resolves to the token the user typed, or '' if they gave none;
+// `refused` is true when the stored token was turned down.
+let askToken = null;
+let asking = null;  // one prompt for every request that got a 401 meanwhile
+export function setTokenPrompt(ask) { askToken = ask; }
+
+async function newToken(refusedToken) {
+  if (!asking) {
+    asking = (async () => {
+      const token = askToken ? (await askToken(Boolean(refusedToken))).trim() : '';
+      if (token) store(TOKEN_KEY, token);
+      return token;
+    })().finally(() => { asking = null; });
+  }
+  return asking;
+}
+
+function headers(extra) {
+  const h = { Accept: 'application/json', 'Rrlab-Client': clientId(), ...extra };
+  const token = stored(TOKEN_KEY);
+  if (token) h.Authorization = `Bearer ${token}`;
+  return h;
+}
+
+// JSON in and out. A body is sent as application/json. A 401 asks for the
+// token (one prompt for all requests waiting), and again while the server
+// refuses what was typed; Cancel gives up with the 401.
+export async function api(method, path, body) {
+  let sent = '';
+  const send = async () => {
+    sent = stored(TOKEN_KEY);
+    const options = { method, headers: headers() };
+    if (body !== undefined) {
+      options.headers['Content-Type'] = 'application/json';
+      options.body = typeof body === 'string' ? body : JSON.stringify(body);
+    }
+    try {
+      return await fetch(path, options);
+    } catch (e) {
+      throw new ApiError(0, { code: 'network', message: 'the server cannot be reached' });
+    }
+  };
+  let response = await send();
+  while (response.status === 401) {
+    // another request may be asking, or may have got a new token meanwhile
+    let token;
+    if (asking) token = await asking;
+    else if (stored(TOKEN_KEY) !== sent) token = stored(TOKEN_KEY);
+    else token = await newToken(sent);
+    if (!token) break;
+    response = await send();
   }
   const data = await response.json().catch(() => ({}));
   if (!response.ok) throw new ApiError(response.status, data.error || { message: response.statusText });
@@ -51,7 +116,11 @@ export class Stream {
 
   open() {
     const scheme = location.protocol === 'https:' ? 'wss' : 'ws';
-    this.socket = new WebSocket(`${scheme}://${location.host}${this.path}`);
+    const query = new URLSearchParams({ client: clientId() });
+    const token = stored(TOKEN_KEY);
+    if (token) query.set('token', token);
+    const separator = this.path.includes('?') ? '&' : '?';
+    this.socket = new WebSocket(`${scheme}://${location.host}${this.path}${separator}${query}`);
     this.state('connecting');
     this.socket.onopen = () => { this.delay = 500; this.state('open'); };
     this.socket.onmessage = (event) => {

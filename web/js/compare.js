@@ -29,10 +29,12 @@ export class CompareSetup {
     const i = rows.childElementCount;
     const row = document.createElement('div');
     row.className = 'compare-row';
-    row.innerHTML = `<span class="swatch" style="background:${LANE_COLOURS[i]}"></span>
+    // colours are set through the DOM, not style="" (the Content-Security-Policy refuses inline styles)
+    row.innerHTML = `<span class="swatch"></span>
       <span class="fields"><select aria-label="method ${i + 1}">${app.methods.map((m) => `<option ${m.name === method ? 'selected' : ''}>${escapeHtml(m.name)}</option>`).join('')}</select>
       <input type="text" aria-label="parameters of method ${i + 1}" placeholder="name=value, …" title="parameters, e.g. lambda=0.05, gain=8 (defaults otherwise)">
       <button type="button" aria-label="remove method ${i + 1}">×</button></span>`;
+    row.querySelector('.swatch').style.background = LANE_COLOURS[i];
     row.querySelector('button').onclick = () => { if (rows.childElementCount > 2) { row.remove(); this.recolour(); } };
     rows.appendChild(row);
     $('compare-add').disabled = rows.childElementCount >= MAX_LANES;
@@ -79,8 +81,9 @@ export async function showCompareSummary(session) {
   const box = $('compare-summary');
   const runs = await Promise.all(session.runIds.map((id) => api('GET', `/api/runs/${id}`)));
   if (runs.some((r) => !r.summary)) return;
-  const head = `<tr><th></th>${session.lanes.map((l) => `<th style="color:${l.colour}">${escapeHtml(l.label)}</th>`).join('')}</tr>`;
+  const head = `<tr><th></th>${session.lanes.map((l) => `<th>${escapeHtml(l.label)}</th>`).join('')}</tr>`;
   const rows = SUMMARY.map(([name, get]) => `<tr><td>${name}</td>${runs.map((r) => `<td class="${get(r.summary) === true ? 'collided' : ''}">${fmt(get(r.summary))}</td>`).join('')}</tr>`);
   box.innerHTML = `<h2>Summary of the compare group</h2><table id="summary-table">${head}${rows.join('')}</table>`;
+  box.querySelectorAll('#summary-table tr:first-child th').forEach((th, i) => { if (i > 0) th.style.color = session.lanes[i - 1].colour; });
   box.hidden = false;
 }

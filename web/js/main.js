@@ -1,7 +1,8 @@
 // The dashboard: wires the panels to the central state (state.js) and the
 // session (session.js). Opens what the address asks for (?run=, ?compare=,
 // ?scenario=&method=), draws at the display rate with requestAnimationFrame.
-import { api, describeError } from './api.js';
+import { api, describeError, setTokenPrompt } from './api.js';
+import { askForToken } from './token_prompt.js';
 import { app, readUrl, writeUrl } from './state.js';
 import { sessionFor } from './session.js';
 import { buildParams, setupMethodSwitch, fmt } from './params.js';
@@ -20,7 +21,13 @@ let session = null;
 let metricsDirty = false;
 
 // ---- messages -----------------------------------------------------------
+setTokenPrompt(askForToken);
 app.signals.message.add((what, kind) => {
+  // another tab or client steers this run: say so plainly and offer to take over
+  if (what && what.code === 'not_controller') {
+    showControlNote(true);
+    what = 'Another client controls this run; you are watching. Press “Take control” to steer it.';
+  }
   const box = $('message');
   box.className = kind === 'info' ? 'info' : '';
   box.querySelector('span').textContent = typeof what === 'string' ? what : describeError(what);
@@ -104,6 +111,7 @@ async function show(next, startFrame) {
   sceneTools.reset();
   $('compare-summary').hidden = true;
   $('controls').hidden = next.kind !== 'live';
+  showControlNote(false);
   for (const el of document.querySelectorAll('#controls button:not(#delete-obstacle), #controls select')) el.disabled = false;
   // a session on screen: its controls come first, the pickers fold away
   $('new-run').open = false;
@@ -181,6 +189,15 @@ for (const button of document.querySelectorAll('[data-action]')) {
     api('POST', `/api/runs/${session.controlRun}/control`, { action: button.dataset.action }).catch(report);
   };
 }
+
+// One client controls a live run: a watcher may take over (the holder is told).
+function showControlNote(show) { $('control-note').hidden = !show; }
+$('take-control').onclick = () => {
+  if (!session || session.kind !== 'live') return;
+  api('POST', `/api/runs/${session.controlRun}/control`, { action: 'take' })
+    .then(() => { showControlNote(false); app.info('You control this run now.'); }, report);
+};
+app.signals.controlTaken.add((text) => { showControlNote(true); app.error(text); });
 
 // ---- stream events -------------------------------------------------------
 app.signals.viewCreated.add((lane) => {

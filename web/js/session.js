@@ -2,7 +2,7 @@
 // session has one lane per run (its stream, snapshot, latest frame and view);
 // views are made when the first snapshot says what the model is (Canvas 2D
 // for planar arms, three.js for every other kind).
-import { api, Stream, describeError } from './api.js';
+import { api, ApiError, Stream } from './api.js';
 import { app, LANE_COLOURS, writeUrl } from './state.js';
 import { View2D } from './view2d.js';
 
@@ -64,7 +64,11 @@ export class Session {
       lane.stream = new Stream(path, {
         onSnapshot: (snapshot) => this.snapshot(lane, snapshot),
         onFrame: (frame) => this.frame(lane, frame),
-        onMessage: (message) => { if (message.type === 'error') app.error(new Error(describeError(message.error))); },
+        onMessage: (message) => {
+          if (message.type === 'error') app.error(new ApiError(message.error.status || 400, message.error));
+          // another client took control of this run from this tab
+          else if (message.type === 'control' && message.event === 'taken') app.signals.controlTaken.dispatch(message.message);
+        },
         onState: (state) => this.streamState(lane, state),
         probe: () => this.probe(lane),
       });

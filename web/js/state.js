@@ -30,6 +30,7 @@ export const app = {
     connection: new Signal(),      // (session) a stream's state changed
     overlaysChanged: new Signal(),
     message: new Signal(),         // (text, kind 'error'|'info')
+    controlTaken: new Signal(),    // (text) another client took control of the live run from this tab
   },
   error(e) { this.signals.message.dispatch(e, 'error'); },
   info(text) { this.signals.message.dispatch(text, 'info'); },

@@ -1,0 +1,91 @@
+#include "app/controller.hpp"
+
+#include <cctype>
+#include <vector>
+
+#include "app/api.hpp"
+
+namespace rrlab::server {
+
+using nlohmann::json;
+
+std::string valid_client_name(const std::string& name) {
+  if (name.empty() || name.size() > 64) return "";
+  for (char c : name)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '.' || c == '-')) return "";
+  return name;
+}
+
+std::uint64_t Controller::attach(const std::string& client, Notify notify) {
+  std::lock_guard lock(mutex_);
+  connections_[++next_] = Connection{client, std::move(notify)};
+  return next_;
+}
+
+void Controller::detach(std::uint64_t connection) {
+  std::lock_guard lock(mutex_);
+  const auto it = connections_.find(connection);
+  if (it == connections_.end()) return;
+  const std::string client = it->second.client;
+  connections_.erase(it);
+  if (client != holder_) return;
+  for (const auto& [id, c] : connections_)
+    if (c.client == client) return;  // the holder has another connection (another lane of a compare)
+  holder_.clear();
+}
+
+void Controller::claim(const std::string& client) {
+  if (client.empty()) return;
+  std::lock_guard lock(mutex_);
+  if (holder_.empty()) {
+    holder_ = client;
+    return;
+  }
+  if (holder_ == client) return;
+  throw ApiError(409, "not_controller",
+                 "another client controls this run; you are watching. Take control with "
+                 "{\"type\": \"control\", \"action\": \"take\"} (WebSocket) or "
+                 "POST /api/runs/{id}/control {\"action\": \"take\"} with an Rrlab-Client header naming you",
+                 "");
+}
+
+json Controller::take(const std::string& client) {
+  if (client.empty())
+    throw ApiError(400, "invalid",
+                   "taking control needs a client name: the Rrlab-Client header (REST) or the client query "
+                   "parameter (WebSocket)",
+                   "action");
+  std::vector<Notify> previous;  // called unlocked: a notification may end its session
+  json state;
+  {
+    std::lock_guard lock(mutex_);
+    if (!holder_.empty() && holder_ != client)
+      for (const auto& [id, c] : connections_)
+        if (c.client == holder_ && c.notify) previous.push_back(c.notify);
+    holder_ = client;
+    state = state_locked(client);
+  }
+  const json taken = {{"type", "control"},
+                      {"event", "taken"},
+                      {"controller", "other"},
+                      {"message", "another client took control of this run; you are watching now"}};
+  for (const Notify& notify : previous) notify(taken);
+  return state;
+}
+
+json Controller::release(const std::string& client) {
+  std::lock_guard lock(mutex_);
+  if (!client.empty() && holder_ == client) holder_.clear();
+  return state_locked(client);
+}
+
+json Controller::state_json(const std::string& client) {
+  std::lock_guard lock(mutex_);
+  return state_locked(client);
+}
+
+json Controller::state_locked(const std::string& client) const {
+  return {{"controller", holder_.empty() ? "none" : holder_ == client ? "you" : "other"}};
+}
+
+}  // namespace rrlab::server

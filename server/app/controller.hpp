@@ -1,0 +1,66 @@
+// Who steers a live run: one controller per run group. The first client that
+// sends an input (or control) holds control; every other client watches and
+// gets 409 "not_controller" when it tries to steer, until the holder releases
+// control, disconnects, or another client takes over explicitly
+// ({"type": "control", "action": "take"} on the WebSocket, or
+// POST /api/runs/{id}/control {"action": "take"}), which the holder is told
+// about on its WebSockets.
+//
+// Clients are told apart by name: the `client` query parameter of a
+// WebSocket and the Rrlab-Client header of a REST request (1 to 64 of
+// [A-Za-z0-9_.-]; the dashboard sends one random name per tab on both, so a
+// tab's REST controls and its socket are one client). A WebSocket without a
+// name is a client of its own (named after its connection). A REST request
+// without a name (curl, scripts, an operator stopping a run) is not a party
+// to control: it neither holds nor is refused it. Control is released when the
+// holder's last WebSocket to the run closes (a holder that only uses REST
+// keeps it until it releases it or another client takes over).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace rrlab::server {
+
+class Controller {
+ public:
+  using Notify = std::function<void(const nlohmann::json&)>;
+
+  // A WebSocket connection of `client`, told of take-overs through `notify`;
+  // returns the handle for detach().
+  std::uint64_t attach(const std::string& client, Notify notify);
+  // The connection closed: control is released when it was the holder's last one.
+  void detach(std::uint64_t connection);
+
+  // Before an input or control from `client`: takes control if nobody holds
+  // it; throws ApiError 409 "not_controller" if another client holds it.
+  // An empty name (an unnamed REST request) passes and holds nothing.
+  void claim(const std::string& client);
+  // `client` takes control (the previous holder is told); returns state_json.
+  nlohmann::json take(const std::string& client);
+  // `client` lets go (nothing if it does not hold control); returns state_json.
+  nlohmann::json release(const std::string& client);
+  // {"controller": "you" | "other" | "none"} as seen by `client`.
+  nlohmann::json state_json(const std::string& client);
+
+ private:
+  nlohmann::json state_locked(const std::string& client) const;
+
+  struct Connection {
+    std::string client;
+    Notify notify;
+  };
+  std::mutex mutex_;
+  std::string holder_;  // empty: nobody
+  std::map<std::uint64_t, Connection> connections_;
+  std::uint64_t next_ = 0;
+};
+
+// A client name as accepted: 1 to 64 of [A-Za-z0-9_.-]; else empty.
+std::string valid_client_name(const std::string& name);
+
+}  // namespace rrlab::server

@@ -1,0 +1,146 @@
+// One controller per live run (app/controller.hpp): the first client to
+// steer holds control, others get 409 "not_controller" until it releases,
+// disconnects, or another client takes over (the holder is told). Unnamed
+// REST requests (scripts) are no party to it.
+#include "app/controller.hpp"
+
+#include "app/api.hpp"
+#include "server_fixture.hpp"
+
+namespace rrlab::testing {
+namespace {
+
+using nlohmann::json;
+
+class Control : public ServerTest {
+ protected:
+  static std::string ws(std::int64_t id, const std::string& client) {
+    return "/ws/runs/" + std::to_string(id) + (client.empty() ? "" : "?client=" + client);
+  }
+  // The reply to a message: ack or error (frames skipped).
+  static json reply(WsClient& c, const std::string& message) {
+    c.send(message);
+    for (int i = 0; i < 2000; ++i) {
+      const auto m = c.read_json();
+      if (!m) break;
+      if ((*m)["type"] == "ack" || (*m)["type"] == "error") return *m;
+    }
+    ADD_FAILURE() << "no reply to " << message;
+    return {};
+  }
+  static HttpResult rest(const std::string& method, const std::string& target, const json& body,
+                         const std::string& client) {
+    std::map<std::string, std::string> headers;
+    if (!client.empty()) headers["Rrlab-Client"] = client;
+    return http(port(), method, target, body.dump(), "", headers);
+  }
+};
+
+const std::string kJoystick = R"({"type":"input","kind":"joystick","payload":{"linear":[0.1,0]}})";
+
+TEST_F(Control, SecondWebSocketClientWatchesUntilItTakesOver) {
+  const std::int64_t id = start_live({{"scenario", small_scenario("joystick", 60)}, {"rate", 1}});
+  WsClient alice(port(), ws(id, "alice")), bob(port(), ws(id, "bob"));
+  ASSERT_TRUE(alice.read_type("snapshot"));
+  ASSERT_TRUE(bob.read_type("snapshot"));
+  EXPECT_EQ(reply(alice, kJoystick)["type"], "ack");  // the first to steer holds control
+  const json refused = reply(bob, kJoystick);
+  ASSERT_EQ(refused["type"], "error") << refused;
+  EXPECT_EQ(refused["error"]["code"], "not_controller");
+  EXPECT_NE(refused["error"]["message"].get<std::string>().find("\"take\""), std::string::npos);
+  EXPECT_EQ(reply(bob, R"({"type":"control","action":"pause"})")["error"]["code"], "not_controller");
+  // REST inputs of another named client are refused too; alice's own pass
+  const std::string base = "/api/runs/" + std::to_string(id);
+  const HttpResult bob_rest = rest("POST", base + "/control", {{"action", "pause"}}, "bob");
+  EXPECT_EQ(bob_rest.status, 409);
+  EXPECT_EQ(error_of(bob_rest)["code"], "not_controller");
+  EXPECT_EQ(rest("POST", base + "/joystick", {{"linear", {0, 0}}}, "alice").status, 200);
+  // an unnamed REST request (a script) is no party to control: it steers and holds nothing
+  EXPECT_EQ(rest("POST", base + "/joystick", {{"linear", {0, 0}}}, "").status, 200);
+  EXPECT_EQ(reply(bob, kJoystick)["error"]["code"], "not_controller");
+  EXPECT_EQ(rest("POST", base + "/control", {{"action", "take"}}, "").status, 400);  // taking needs a name
+
+  // bob takes over: alice is told and now watches
+  const json taken = reply(bob, R"({"type":"control","action":"take"})");
+  EXPECT_EQ(taken["type"], "ack");
+  EXPECT_EQ(taken["status"]["controller"], "you");
+  const auto told = alice.read_type("control");
+  ASSERT_TRUE(told);
+  EXPECT_EQ((*told)["event"], "taken");
+  EXPECT_EQ((*told)["controller"], "other");
+  EXPECT_EQ(reply(bob, kJoystick)["type"], "ack");
+  EXPECT_EQ(reply(alice, kJoystick)["error"]["code"], "not_controller");
+
+  // bob releases: the next to steer holds control
+  EXPECT_EQ(reply(bob, R"({"type":"control","action":"release"})")["status"]["controller"], "none");
+  EXPECT_EQ(reply(alice, kJoystick)["type"], "ack");
+  EXPECT_EQ(reply(bob, kJoystick)["error"]["code"], "not_controller");
+  EXPECT_EQ(reply(bob, R"({"type":"control","action":"take","x":1})")["error"]["code"], "invalid");
+  EXPECT_EQ(rest("POST", base + "/control", {{"action", "stop"}}, "alice").status, 200);
+  wait_ended(id);
+}
+
+TEST_F(Control, DisconnectReleasesControl) {
+  const std::int64_t id = start_live({{"scenario", small_scenario("joystick", 60)}, {"rate", 1}});
+  const std::string base = "/api/runs/" + std::to_string(id);
+  {
+    WsClient alice(port(), ws(id, "alice"));
+    ASSERT_TRUE(alice.read_type("snapshot"));
+    EXPECT_EQ(reply(alice, kJoystick)["type"], "ack");
+    EXPECT_EQ(rest("POST", base + "/joystick", {{"linear", {0, 0}}}, "carol").status, 409);
+  }
+  // alice's socket closed: control is free again (the server sees the close a moment later)
+  int status = 0;
+  for (int i = 0; i < 100 && status != 200; ++i) {
+    status = rest("POST", base + "/joystick", {{"linear", {0, 0}}}, "carol").status;
+    if (status != 200) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  EXPECT_EQ(status, 200);
+  // carol holds control through REST alone until she releases it
+  EXPECT_EQ(rest("POST", base + "/joystick", {{"linear", {0, 0}}}, "dave").status, 409);
+  EXPECT_EQ(rest("POST", base + "/control", {{"action", "release"}}, "carol").json()["controller"], "none");
+  // a WebSocket without a name is a client of its own
+  WsClient first(port(), ws(id, "")), second(port(), ws(id, ""));
+  ASSERT_TRUE(first.read_type("snapshot"));
+  ASSERT_TRUE(second.read_type("snapshot"));
+  EXPECT_EQ(reply(first, kJoystick)["type"], "ack");
+  EXPECT_EQ(reply(second, kJoystick)["error"]["code"], "not_controller");
+  EXPECT_EQ(reply(second, R"({"type":"control","action":"take"})")["status"]["controller"], "you");
+  ASSERT_TRUE(first.read_type("control"));
+  EXPECT_EQ(reply(first, kJoystick)["error"]["code"], "not_controller");
+  EXPECT_EQ(send("POST", base + "/control", {{"action", "stop"}}).status, 200);
+  wait_ended(id);
+}
+
+TEST(ControllerUnit, ClaimTakeRelease) {
+  server::Controller c;
+  std::vector<json> told_a;
+  const auto a1 = c.attach("a", [&](const json& m) { told_a.push_back(m); });
+  c.claim("");  // unnamed: allowed, holds nothing
+  EXPECT_EQ(c.state_json("a")["controller"], "none");
+  c.claim("a");
+  EXPECT_EQ(c.state_json("a")["controller"], "you");
+  EXPECT_EQ(c.state_json("b")["controller"], "other");
+  EXPECT_THROW(c.claim("b"), server::ApiError);
+  EXPECT_NO_THROW(c.claim(""));  // still no party to it
+  EXPECT_EQ(c.take("b")["controller"], "you");
+  ASSERT_EQ(told_a.size(), 1u);
+  EXPECT_EQ(told_a[0]["event"], "taken");
+  EXPECT_EQ(c.take("b")["controller"], "you");  // taking what one holds tells nobody
+  EXPECT_EQ(told_a.size(), 1u);
+  c.release("a");  // not the holder: nothing
+  EXPECT_EQ(c.state_json("b")["controller"], "you");
+  c.detach(a1);
+  const auto b1 = c.attach("b", nullptr), b2 = c.attach("b", nullptr);
+  c.detach(b1);  // b still has a connection
+  EXPECT_EQ(c.state_json("b")["controller"], "you");
+  c.detach(b2);
+  EXPECT_EQ(c.state_json("b")["controller"], "none");
+  EXPECT_THROW(c.take(""), server::ApiError);
+  EXPECT_EQ(server::valid_client_name("tab-0a1b"), "tab-0a1b");
+  EXPECT_EQ(server::valid_client_name("a b"), "");
+  EXPECT_EQ(server::valid_client_name(std::string(65, 'a')), "");
+}
+
+}  // namespace
+}  // namespace rrlab::testing
