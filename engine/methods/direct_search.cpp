@@ -19,7 +19,8 @@
 //    first compensation (eq 3 with eq 6) uses J_b at the current
 //    configuration, the Newton iterations J_b at the option (full Newton:
 //    quadratic convergence even where the block is poorly conditioned); an
-//    option whose residual grows is dropped as infeasible.
+//    option whose residual grows keeps its last better iterate (infeasible
+//    unless that met eq 5).
 //  - the perturbed joints are the set bits of `perturb_mask` (bit i−1:
 //    joint i), at most n − m of them and at most 6 (729 options); default
 //    joints 1, 2, 3, 5 as in the paper's 81-option example.
@@ -27,23 +28,37 @@
 //    itself: it sets q_next, `integrated`).
 //  - option feasibility: Newton converged within `newton_iterations`, every
 //    joint within its range and within its velocity limit over the step (a
-//    near-singular block can otherwise converge on another IK branch). With
-//    no feasible option the one with the smallest residual (≤ 10⁶ε, within
-//    the joint ranges and speeds) is taken, else the arm stays
-//    (feasible_options = 0 reports it).
+//    near-singular block can otherwise converge on another IK branch).
 //  - block switch (`block_switch` > 0, not in the paper's experiment): when
 //    the mask's block gets near singular (σ_min below it), the step uses the
-//    set of as many perturbed joints whose square block has the largest
-//    |det| — the choice §3.1 calls desirable but did not employ.
+//    set of as many perturbed joints whose block has the largest |det J_b|
+//    (det J_b J_bᵀ for a wide block) — the choice §3.1 calls desirable but
+//    did not employ. When no option is feasible the step is generated once
+//    more with that set, restricted to sets that perturb every joint some
+//    option pushed past a limit (perturbed, it moves by 0 or ±Δ only). With
+//    still no feasible option the option nearest the target within the
+//    joint ranges and speeds is taken if it is nearer than the arm is, else
+//    the arm stays (feasible_options = 0 reports it). Without these a
+//    singular block or a block joint at its limit froze the arm for good.
 //  - ψ4 uses the first-order change of each link's distance to its nearest
 //    obstacle, d + nᵀJ_p(θ − θ_curr), from the step's distance table
 //    (exact to O(Δ²); no collision query per option).
 //  - DM mixes lengths and angles: its value depends on the length unit of
-//    the position rows (`dm_length_scale`, 1/m; the paper does not say).
-//  - DM rule (`dm_threshold` > 0): when the current DM reaches it, the
-//    weights of JRA and JVM are scaled by 0.8 and 0.2 (the paper's change
-//    from (1, 1, 1) to (0.8, 0.2, 1.0) at DM = 250) and stay so until the
-//    threshold is changed.
+//    the position rows, which the paper does not give. Here the position
+//    rows are divided by a stated characteristic length L (`dm_length`, m),
+//    so DM values are comparable only at the same L and robot, never with
+//    the paper's numbers.
+//  - DM rule (`dm_rule_fraction` f and `dm_rule_reference` D > 0): when the
+//    current DM reaches f·D, the weights of JRA and JVM are scaled by 0.8
+//    and 0.2 (the paper's change from (1, 1, 1) to (0.8, 0.2, 1.0)) and stay
+//    so until f or D is changed. The threshold is relative because the
+//    paper's 250 is an absolute DM of an unknown length unit: D is the peak
+//    DM of the equal-weight run at the same L, and the paper's threshold was
+//    250 of the more than 300 its equal-weight run reached (f ≈ 0.83).
+//  - defaults for the generated families (chosen on held-out seed 1001):
+//    Δ = 0.02 rad (the paper's 0.002 moves the null space too slowly to keep
+//    joints off their limits), w_dm = 0 (DM pulled options away from
+//    obstacle clearance), block_switch = 0.02.
 #include <algorithm>
 #include <Eigen/LU>
 #include <bitset>
@@ -55,7 +70,10 @@
 namespace rrlab {
 namespace {
 
-enum { kDelta, kMask, kWJra, kWJvm, kWDm, kWObstacle, kDmThreshold, kIterations, kTolerance, kDmScale, kBlockSwitch };
+enum {
+  kDelta, kMask, kWJra, kWJvm, kWDm, kWObstacle, kDmFraction, kDmReference, kIterations, kTolerance, kDmLength,
+  kBlockSwitch
+};
 enum { kJra, kJvm, kDm, kObstacle, kCriteria };
 
 constexpr int kMaxPerturbed = 6;
@@ -132,7 +150,7 @@ class DirectSearch final : public Method {
 
     // the DM rule looks at the current configuration
     const double dm_now = dexterity(in.task_jacobian);
-    if (p(kDmThreshold) > 0 && dm_now >= p(kDmThreshold)) rule_active_ = true;
+    if (p(kDmFraction) > 0 && p(kDmReference) > 0 && dm_now >= p(kDmFraction) * p(kDmReference)) rule_active_ = true;
     out.diag.values[current_dm_diag_] = std::isfinite(dm_now) ? dm_now : -1.0;
 
     // 1. generate options (eq 1–6); when no option meets eq 5 within the
@@ -274,13 +292,13 @@ class DirectSearch final : public Method {
 
   void on_param_changed(int index) override {
     if (index == kMask) choose_joints();
-    if (index == kDmThreshold) rule_active_ = false;
+    if (index == kDmFraction || index == kDmReference) rule_active_ = false;
   }
 
-  // DM = σmax/σmin with the position rows of pose tasks in units of 1/dm_length_scale m.
+  // DM = σmax/σmin with the position rows of pose tasks divided by the characteristic length L.
   double dexterity(const Eigen::MatrixXd& jacobian) {
     scaled_jacobian_ = jacobian;
-    if (space_ == TaskSpace::pose) scaled_jacobian_.topRows(3) *= p(kDmScale);
+    if (space_ == TaskSpace::pose) scaled_jacobian_.topRows(3) /= p(kDmLength);
     jjt_.noalias() = scaled_jacobian_ * scaled_jacobian_.transpose();
     eigenvalues_.compute(jjt_, Eigen::EigenvaluesOnly);
     const double lo = eigenvalues_.eigenvalues()[0], hi = eigenvalues_.eigenvalues()[m_ - 1];
@@ -477,29 +495,33 @@ class DirectSearch final : public Method {
 }  // namespace
 
 std::vector<ParamSpec> direct_search_params() {
-  return {{"delta", "Perturbation Δ", "rad", "step of the perturbed joints: options −Δ, 0, +Δ (§3.1)", 0.002, 0.0,
+  return {{"delta", "Perturbation Δ", "rad", "step of the perturbed joints: options −Δ, 0, +Δ (§3.1; the paper 0.002)", 0.02, 0.0,
            0.5, 0.001, {}},
           {"perturb_mask", "Perturbed joints (bit mask)", "",
            "bit i−1 set: joint i is perturbed (at most n − m and 6 joints; 23 = joints 1, 2, 3, 5)", 23, 0,
            (1 << 20) - 1, 1, {}},
           {"w_jra", "Weight: joint range availability", "", "w1 of eq 7 (JRA)", 1.0, 0.0, 1.0, 0.05, {}},
           {"w_jvm", "Weight: joint velocity measure", "", "w2 of eq 7 (JVM)", 1.0, 0.0, 1.0, 0.05, {}},
-          {"w_dm", "Weight: dexterity measure", "", "w3 of eq 7 (DM = σmax/σmin)", 1.0, 0.0, 1.0, 0.05, {}},
+          {"w_dm", "Weight: dexterity measure", "", "w3 of eq 7 (DM = σmax/σmin; the paper 1)", 0.0, 0.0, 1.0, 0.05, {}},
           {"w_obstacle", "Weight: obstacle clearance", "", "weight of the engine's obstacle distance criterion",
            1.0, 0.0, 1.0, 0.05, {}},
-          {"dm_threshold", "DM rule threshold", "",
-           "when DM reaches it, JRA and JVM weights are scaled by 0.8 and 0.2 (the paper's 250); 0 = off", 0.0,
-           0.0, 1e6, 10, {}},
+          {"dm_rule_fraction", "DM rule: fraction of the reference", "",
+           "when DM reaches dm_rule_fraction x dm_rule_reference, the JRA and JVM weights are scaled by 0.8 and 0.2 "
+           "(the paper: 250 of the more than 300 its equal-weight run reached, about 0.83); 0 = off",
+           0.0, 0.0, 1.0, 0.01, {}},
+          {"dm_rule_reference", "DM rule: reference DM", "",
+           "the peak DM of the same task run with equal weights (1, 1, 1), with the same L; 0 = rule off", 0.0, 0.0,
+           1e9, 1, {}},
           {"newton_iterations", "Newton iterations", "", "most iterations of eq 1–4 per option", 8, 1, 100, 1, {}},
           {"tolerance", "End-effector tolerance ε", "m, rad", "eq 5: an option is feasible below it", 1e-9,
            1e-14, 1e-2, 1e-9, {}},
-          {"dm_length_scale", "DM length unit", "1/m",
-           "position rows of the Jacobian are multiplied by it for DM (1: metres; 39.37: inches)", 1.0, 1e-3,
-           1e4, 1, {}},
+          {"dm_length", "DM characteristic length L", "m",
+           "position rows of a pose task's Jacobian are divided by L for DM (DM = σmax/σmin mixes m and rad; "
+           "its value depends on L)", 1.0, 1e-4, 1e3, 0.01, {}},
           {"block_switch", "Block switch below σ", "",
-           "when the block of the non-perturbed joints has σ_min below it, perturb instead the joints whose "
-           "block has the largest determinant (§3.1) for that step; 0 = never",
-           0.0, 0.0, 10.0, 0.01, {}}};
+           "when the block of the non-perturbed joints has σ_min below it, or no option is feasible, perturb "
+           "instead the joints whose block has the largest determinant (§3.1) for that step; 0 = never",
+           0.02, 0.0, 10.0, 0.01, {}}};
 }
 std::unique_ptr<Method> make_direct_search(const MethodContext& ctx) {
   return std::make_unique<DirectSearch>(ctx);
