@@ -19,7 +19,8 @@
 //    first compensation (eq 3 with eq 6) uses J_b at the current
 //    configuration, the Newton iterations J_b at the option (full Newton:
 //    quadratic convergence even where the block is poorly conditioned); an
-//    option whose residual grows is dropped as infeasible.
+//    option whose residual grows keeps its last better iterate (infeasible
+//    unless that met eq 5).
 //  - the perturbed joints are the set bits of `perturb_mask` (bit i−1:
 //    joint i), at most n − m of them and at most 6 (729 options); default
 //    joints 1, 2, 3, 5 as in the paper's 81-option example.
@@ -27,23 +28,37 @@
 //    itself: it sets q_next, `integrated`).
 //  - option feasibility: Newton converged within `newton_iterations`, every
 //    joint within its range and within its velocity limit over the step (a
-//    near-singular block can otherwise converge on another IK branch). With
-//    no feasible option the one with the smallest residual (≤ 10⁶ε, within
-//    the joint ranges and speeds) is taken, else the arm stays
-//    (feasible_options = 0 reports it).
+//    near-singular block can otherwise converge on another IK branch).
 //  - block switch (`block_switch` > 0, not in the paper's experiment): when
 //    the mask's block gets near singular (σ_min below it), the step uses the
-//    set of as many perturbed joints whose square block has the largest
-//    |det| — the choice §3.1 calls desirable but did not employ.
+//    set of as many perturbed joints whose block has the largest |det J_b|
+//    (det J_b J_bᵀ for a wide block) — the choice §3.1 calls desirable but
+//    did not employ. When no option is feasible the step is generated once
+//    more with that set, restricted to sets that perturb every joint some
+//    option pushed past a limit (perturbed, it moves by 0 or ±Δ only). With
+//    still no feasible option the option nearest the target within the
+//    joint ranges and speeds is taken if it is nearer than the arm is, else
+//    the arm stays (feasible_options = 0 reports it). Without these a
+//    singular block or a block joint at its limit froze the arm for good.
 //  - ψ4 uses the first-order change of each link's distance to its nearest
 //    obstacle, d + nᵀJ_p(θ − θ_curr), from the step's distance table
 //    (exact to O(Δ²); no collision query per option).
 //  - DM mixes lengths and angles: its value depends on the length unit of
-//    the position rows (`dm_length_scale`, 1/m; the paper does not say).
-//  - DM rule (`dm_threshold` > 0): when the current DM reaches it, the
-//    weights of JRA and JVM are scaled by 0.8 and 0.2 (the paper's change
-//    from (1, 1, 1) to (0.8, 0.2, 1.0) at DM = 250) and stay so until the
-//    threshold is changed.
+//    the position rows, which the paper does not give. Here the position
+//    rows are divided by a stated characteristic length L (`dm_length`, m),
+//    so DM values are comparable only at the same L and robot, never with
+//    the paper's numbers.
+//  - DM rule (`dm_rule_fraction` f and `dm_rule_reference` D > 0): when the
+//    current DM reaches f·D, the weights of JRA and JVM are scaled by 0.8
+//    and 0.2 (the paper's change from (1, 1, 1) to (0.8, 0.2, 1.0)) and stay
+//    so until f or D is changed. The threshold is relative because the
+//    paper's 250 is an absolute DM of an unknown length unit: D is the peak
+//    DM of the equal-weight run at the same L, and the paper's threshold was
+//    250 of the more than 300 its equal-weight run reached (f ≈ 0.83).
+//  - defaults for the generated families (chosen on held-out seed 1001):
+//    Δ = 0.02 rad (the paper's 0.002 moves the null space too slowly to keep
+//    joints off their limits), w_dm = 0 (DM pulled options away from
+//    obstacle clearance), block_switch = 0.02.
 #include <algorithm>
 #include <Eigen/LU>
 #include <bitset>
@@ -55,7 +70,10 @@
 namespace rrlab {
 namespace {
 
-enum { kDelta, kMask, kWJra, kWJvm, kWDm, kWObstacle, kDmThreshold, kIterations, kTolerance, kDmScale, kBlockSwitch };
+enum {
+  kDelta, kMask, kWJra, kWJvm, kWDm, kWObstacle, kDmFraction, kDmReference, kIterations, kTolerance, kDmLength,
+  kBlockSwitch
+};
 enum { kJra, kJvm, kDm, kObstacle, kCriteria };
 
 constexpr int kMaxPerturbed = 6;
@@ -91,6 +109,7 @@ class DirectSearch final : public Method {
         point_jacobian_(3, n_),
         square_block_(m_, m_),
         lu_(m_) {
+    theta_previous_ = Eigen::VectorXd::Zero(n_);
     joint_range_weights(ctx.model.limits);
     choose_joints();
     const char* names[] = {"jra", "jvm", "dm", "obstacle_clearance"};
@@ -122,73 +141,40 @@ class DirectSearch final : public Method {
     if (p(kBlockSwitch) > 0 && block_inverse_.sigma_min() < p(kBlockSwitch) && !alternatives_.empty()) {
       // §3.1: "the full rank submatrix with the largest determinant" — only
       // when the chosen block is near singular
-      use_joint_set(largest_determinant_set(in.task_jacobian));
+      use_joint_set(largest_determinant_set(in.task_jacobian, 0));
       for (int c = 0; c < block_count_; ++c) block_jacobian_.col(c) = in.task_jacobian.col(block_[c]);
       block_inverse_.factor_pinv(block_jacobian_);
       switched = true;
     }
-    out.diag.values[block_sigma_diag_] = block_inverse_.sigma_min();
-    out.diag.values[switched_diag_] = switched;
     prepare_distance_rows(in);
 
     // the DM rule looks at the current configuration
     const double dm_now = dexterity(in.task_jacobian);
-    if (p(kDmThreshold) > 0 && dm_now >= p(kDmThreshold)) rule_active_ = true;
+    if (p(kDmFraction) > 0 && p(kDmReference) > 0 && dm_now >= p(kDmFraction) * p(kDmReference)) rule_active_ = true;
     out.diag.values[current_dm_diag_] = std::isfinite(dm_now) ? dm_now : -1.0;
 
-    // 1. generate options (eq 1–6)
-    const int count = option_count();
-    int max_iterations_used = 0;
-    for (int j = 0; j < count; ++j) {
-      theta_ = q;
-      int code = j;
-      rhs_ = error0_;
-      for (int i = 0; i < perturbed_count_; ++i) {
-        const double d = (code % 3 - 1) * p(kDelta);  // −Δ, 0, +Δ
-        code /= 3;
-        theta_[perturbed_[i]] += d;
-        rhs_.noalias() -= in.task_jacobian.col(perturbed_[i]) * d;  // eq 6: −J_p δθ_p
+    // 1. generate options (eq 1–6); when no option meets eq 5 within the
+    // ranges and speeds, once more with the largest-determinant block (§3.1)
+    int feasible = generate_options(in);
+    if (feasible == 0 && p(kBlockSwitch) > 0 && !alternatives_.empty()) {
+      // the block must not hold a joint that its options pushed past a limit:
+      // perturbed, such a joint keeps its value or moves by ±Δ
+      const unsigned long long best = largest_determinant_set(in.task_jacobian, out_of_range_bits(in.model.limits));
+      if (best != current_bits_) {
+        use_joint_set(best);
+        for (int c = 0; c < block_count_; ++c) block_jacobian_.col(c) = in.task_jacobian.col(block_[c]);
+        block_inverse_.factor_pinv(block_jacobian_);
+        switched = true;
+        feasible = generate_options(in);
       }
-      apply_block_step(block_inverse_, rhs_);  // eq 3 with eq 6, J_b at the current configuration
-      int it = 0;
-      double residual = kInf, previous = kInf;
-      while (true) {  // eq 1–5: Newton on the block through the kinematics
-        forward_kinematics(in.model, theta_, probe_);
-        pose_error(probe_, error_);
-        residual = error_.cwiseAbs().maxCoeff();
-        task_jacobian(in.model, probe_, space_, jacobian_);
-        if (residual < p(kTolerance) || it >= static_cast<int>(p(kIterations))) break;
-        if (!(residual < previous)) break;  // diverging: infeasible option
-        previous = residual;
-        // eq 3 with J_b at θ (a full Newton step; the block is often poorly conditioned)
-        for (int c = 0; c < block_count_; ++c) block_jacobian_.col(c) = jacobian_.col(block_[c]);
-        if (block_count_ == m_) {  // the paper's square J_m×m: eq 3 by LU
-          lu_.compute(block_jacobian_);
-          block_step_.noalias() = lu_.solve(error_);
-          for (int c = 0; c < block_count_; ++c) theta_[block_[c]] += block_step_[c];
-        } else {
-          option_inverse_.factor_pinv(block_jacobian_);
-          apply_block_step(option_inverse_, error_);
-        }
-        ++it;
-      }
-      max_iterations_used = std::max(max_iterations_used, it);
-      options_.col(j) = theta_;
-      residual_[j] = residual;
-      feasible_[j] = residual < p(kTolerance) && within_limits(in.model.limits, theta_) &&
-                     within_speed(in.model.limits, theta_, q, in.dt);
-      // criteria at θ^j (probe_ and jacobian_ hold its kinematics)
-      criteria_(j, kJra) = (theta_ - centre_).cwiseAbs2().dot(inv_half_range_);
-      criteria_(j, kJvm) = (theta_ - q).squaredNorm();
-      criteria_(j, kDm) = dexterity(jacobian_);
-      criteria_(j, kObstacle) = -estimated_clearance(q);
     }
+    out.diag.values[block_sigma_diag_] = block_inverse_.sigma_min();
+    out.diag.values[switched_diag_] = switched;
+    const int count = option_count();
 
     // 2. selection (eq 7–8)
     double weights[kCriteria] = {p(kWJra), p(kWJvm), p(kWDm), p(kWObstacle)};
     if (rule_active_) weights[kJra] *= 0.8, weights[kJvm] *= 0.2;
-    int feasible = 0;
-    for (int j = 0; j < count; ++j) feasible += feasible_[j];
     int chosen = -1;
     if (feasible > 0) {
       double lo[kCriteria], hi[kCriteria];
@@ -206,16 +192,15 @@ class DirectSearch final : public Method {
           // normalised ψ̄ (eq 7); a criterion equal on every option counts 0
           if (span > 0 && std::isfinite(span)) r += weights[c] * (criteria_(j, c) - lo[c]) / span;
         }
-        r /= kCriteria;  // R_j = (1/ℓ) Σ w_i ψ̄_i
+        r /= static_cast<double>(kCriteria);  // R_j = (1/ℓ) Σ w_i ψ̄_i
         if (r < best) best = r, chosen = j;  // eq 8 (ties: the first option)
       }
     } else {
-      // no feasible option: the smallest residual within the joint ranges,
-      // or stay where the arm is
-      double best = kInf;
+      // no feasible option: the option nearest the target within the joint
+      // ranges and speeds, if it is nearer than staying; else stay
+      double best = error0_.cwiseAbs().maxCoeff();
       for (int j = 0; j < count; ++j)
-        if (residual_[j] < best && residual_[j] <= 1e6 * p(kTolerance) &&
-            within_limits(in.model.limits, options_.col(j)) &&
+        if (residual_[j] < best && within_limits(in.model.limits, options_.col(j)) &&
             within_speed(in.model.limits, options_.col(j), q, in.dt))
           best = residual_[j], chosen = j;
     }
@@ -237,20 +222,83 @@ class DirectSearch final : public Method {
     out.diag.values[options_diag_] = count;
     out.diag.values[chosen_diag_index_] = chosen;
     out.diag.values[rule_diag_] = rule_active_;
-    out.diag.values[iterations_diag_] = max_iterations_used;
+    out.diag.values[iterations_diag_] = max_iterations_used_;
     out.diag.values[residual_diag_] = chosen >= 0 ? residual_[chosen] : -1.0;
   }
 
  private:
-  void on_param_changed(int index) override {
-    if (index == kMask) choose_joints();
-    if (index == kDmThreshold) rule_active_ = false;
+  // Eq 1–6 for every option with the current joint set; returns the number
+  // of feasible options.
+  int generate_options(const StepInput& in) {
+    const Eigen::VectorXd& q = in.state.q;
+    const int count = option_count();
+    max_iterations_used_ = 0;
+    int feasible = 0;
+    for (int j = 0; j < count; ++j) {
+      theta_ = q;
+      int code = j;
+      rhs_ = error0_;
+      for (int i = 0; i < perturbed_count_; ++i) {
+        const double d = (code % 3 - 1) * p(kDelta);  // −Δ, 0, +Δ
+        code /= 3;
+        theta_[perturbed_[i]] += d;
+        rhs_.noalias() -= in.task_jacobian.col(perturbed_[i]) * d;  // eq 6: −J_p δθ_p
+      }
+      apply_block_step(block_inverse_, rhs_);  // eq 3 with eq 6, J_b at the current configuration
+      int it = 0;
+      double residual = kInf, previous = kInf;
+      while (true) {  // eq 1–5: Newton on the block through the kinematics
+        forward_kinematics(in.model, theta_, probe_);
+        pose_error(probe_, error_);
+        residual = error_.cwiseAbs().maxCoeff();
+        if (!(residual < previous) && it > 0) {
+          // diverging: keep the last better iterate (infeasible unless it met eq 5)
+          theta_ = theta_previous_;
+          forward_kinematics(in.model, theta_, probe_);
+          residual = previous;
+          task_jacobian(in.model, probe_, space_, jacobian_);
+          break;
+        }
+        task_jacobian(in.model, probe_, space_, jacobian_);
+        if (residual < p(kTolerance) || it >= static_cast<int>(p(kIterations))) break;
+        previous = residual;
+        theta_previous_ = theta_;
+        // eq 3 with J_b at θ (a full Newton step; the block is often poorly conditioned)
+        for (int c = 0; c < block_count_; ++c) block_jacobian_.col(c) = jacobian_.col(block_[c]);
+        if (block_count_ == m_) {  // the paper's square J_m×m: eq 3 by LU
+          lu_.compute(block_jacobian_);
+          block_step_.noalias() = lu_.solve(error_);
+          for (int c = 0; c < block_count_; ++c) theta_[block_[c]] += block_step_[c];
+        } else {
+          option_inverse_.factor_pinv(block_jacobian_);
+          apply_block_step(option_inverse_, error_);
+        }
+        ++it;
+      }
+      max_iterations_used_ = std::max(max_iterations_used_, it);
+      options_.col(j) = theta_;
+      residual_[j] = residual;
+      feasible_[j] = residual < p(kTolerance) && within_limits(in.model.limits, theta_) &&
+                     within_speed(in.model.limits, theta_, q, in.dt);
+      feasible += feasible_[j];
+      // criteria at θ^j (probe_ and jacobian_ hold its kinematics)
+      criteria_(j, kJra) = (theta_ - centre_).cwiseAbs2().dot(inv_half_range_);
+      criteria_(j, kJvm) = (theta_ - q).squaredNorm();
+      criteria_(j, kDm) = dexterity(jacobian_);
+      criteria_(j, kObstacle) = -estimated_clearance(q);
+    }
+    return feasible;
   }
 
-  // DM = σmax/σmin with the position rows of pose tasks in units of 1/dm_length_scale m.
+  void on_param_changed(int index) override {
+    if (index == kMask) choose_joints();
+    if (index == kDmFraction || index == kDmReference) rule_active_ = false;
+  }
+
+  // DM = σmax/σmin with the position rows of pose tasks divided by the characteristic length L.
   double dexterity(const Eigen::MatrixXd& jacobian) {
     scaled_jacobian_ = jacobian;
-    if (space_ == TaskSpace::pose) scaled_jacobian_.topRows(3) *= p(kDmScale);
+    if (space_ == TaskSpace::pose) scaled_jacobian_.topRows(3) /= p(kDmLength);
     jjt_.noalias() = scaled_jacobian_ * scaled_jacobian_.transpose();
     eigenvalues_.compute(jjt_, Eigen::EigenvaluesOnly);
     const double lo = eigenvalues_.eigenvalues()[0], hi = eigenvalues_.eigenvalues()[m_ - 1];
@@ -277,15 +325,17 @@ class DirectSearch final : public Method {
     option_inverse_ = RightInverse(m_, std::max(1, block_count_));
     block_jacobian_ = Eigen::MatrixXd::Zero(m_, std::max(1, block_count_));
     block_step_ = Eigen::VectorXd::Zero(std::max(1, block_count_));
+    alternative_block_ = Eigen::MatrixXd::Zero(m_, std::max(1, block_count_));
     // every other set of as many perturbed joints, for the block switch
     alternatives_.clear();
-    if (block_count_ == m_ && n_ <= 20) {
+    if (block_count_ >= m_ && n_ <= 20) {
       for (unsigned long long bits = 0; bits < (1ULL << n_); ++bits)
         if (static_cast<int>(std::bitset<64>(bits).count()) == count) alternatives_.push_back(bits);
     }
   }
 
   void use_joint_set(unsigned long long bits) {
+    current_bits_ = bits;
     perturbed_count_ = 0;
     block_count_ = 0;
     for (int i = 0; i < n_; ++i) {
@@ -296,19 +346,36 @@ class DirectSearch final : public Method {
     }
   }
 
-  // The perturbed set whose m×m block has the largest |det|.
-  unsigned long long largest_determinant_set(const Eigen::MatrixXd& jacobian) {
+  // The perturbed set whose block has the largest |det J_b| (square block,
+  // §3.1) or, for a wide block, the largest det(J_b J_bᵀ) = Π σ² (the same
+  // order for a square one).
+  // Sets whose perturbed joints include `required` come first (any set when none does).
+  unsigned long long largest_determinant_set(const Eigen::MatrixXd& jacobian, unsigned long long required) {
     double best = -1;
+    bool best_has_required = false;
     unsigned long long best_bits = mask_bits_;
     for (unsigned long long bits : alternatives_) {
+      const bool has_required = (bits & required) == required;
+      if (best_has_required && !has_required) continue;
       int c = 0;
       for (int i = 0; i < n_; ++i)
-        if (!((bits >> i) & 1)) square_block_.col(c++) = jacobian.col(i);
+        if (!((bits >> i) & 1)) alternative_block_.col(c++) = jacobian.col(i);
+      square_block_.noalias() = alternative_block_ * alternative_block_.transpose();
       lu_.compute(square_block_);
       const double det = std::abs(lu_.determinant());
-      if (det > best) best = det, best_bits = bits;
+      if (det > best || (has_required && !best_has_required)) best = det, best_bits = bits, best_has_required = has_required;
     }
     return best_bits;
+  }
+
+  // Joints outside their range in some generated option.
+  unsigned long long out_of_range_bits(const JointLimits& limits) const {
+    unsigned long long bits = 0;
+    const int count = option_count();
+    for (int j = 0; j < count; ++j)
+      for (int i = 0; i < n_ && i < 64; ++i)
+        if (options_(i, j) < limits.lower[i] || options_(i, j) > limits.upper[i]) bits |= 1ULL << i;
+    return bits;
   }
 
   void joint_range_weights(const JointLimits& limits) {
@@ -408,7 +475,10 @@ class DirectSearch final : public Method {
   Eigen::VectorXd distances_now_;
   Eigen::MatrixXd point_jacobian_, square_block_;
   Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
-  unsigned long long mask_bits_ = 0;
+  unsigned long long mask_bits_ = 0, current_bits_ = 0;
+  Eigen::MatrixXd alternative_block_;
+  Eigen::VectorXd theta_previous_;
+  int max_iterations_used_ = 0;
   std::vector<unsigned long long> alternatives_;
   Eigen::VectorXd centre_, inv_half_range_;
   Eigen::Vector3d target_position_ = Eigen::Vector3d::Zero();
@@ -425,29 +495,33 @@ class DirectSearch final : public Method {
 }  // namespace
 
 std::vector<ParamSpec> direct_search_params() {
-  return {{"delta", "Perturbation Δ", "rad", "step of the perturbed joints: options −Δ, 0, +Δ (§3.1)", 0.002, 0.0,
+  return {{"delta", "Perturbation Δ", "rad", "step of the perturbed joints: options −Δ, 0, +Δ (§3.1; the paper 0.002)", 0.02, 0.0,
            0.5, 0.001, {}},
           {"perturb_mask", "Perturbed joints (bit mask)", "",
            "bit i−1 set: joint i is perturbed (at most n − m and 6 joints; 23 = joints 1, 2, 3, 5)", 23, 0,
            (1 << 20) - 1, 1, {}},
           {"w_jra", "Weight: joint range availability", "", "w1 of eq 7 (JRA)", 1.0, 0.0, 1.0, 0.05, {}},
           {"w_jvm", "Weight: joint velocity measure", "", "w2 of eq 7 (JVM)", 1.0, 0.0, 1.0, 0.05, {}},
-          {"w_dm", "Weight: dexterity measure", "", "w3 of eq 7 (DM = σmax/σmin)", 1.0, 0.0, 1.0, 0.05, {}},
+          {"w_dm", "Weight: dexterity measure", "", "w3 of eq 7 (DM = σmax/σmin; the paper 1)", 0.0, 0.0, 1.0, 0.05, {}},
           {"w_obstacle", "Weight: obstacle clearance", "", "weight of the engine's obstacle distance criterion",
            1.0, 0.0, 1.0, 0.05, {}},
-          {"dm_threshold", "DM rule threshold", "",
-           "when DM reaches it, JRA and JVM weights are scaled by 0.8 and 0.2 (the paper's 250); 0 = off", 0.0,
-           0.0, 1e6, 10, {}},
+          {"dm_rule_fraction", "DM rule: fraction of the reference", "",
+           "when DM reaches dm_rule_fraction x dm_rule_reference, the JRA and JVM weights are scaled by 0.8 and 0.2 "
+           "(the paper: 250 of the more than 300 its equal-weight run reached, about 0.83); 0 = off",
+           0.0, 0.0, 1.0, 0.01, {}},
+          {"dm_rule_reference", "DM rule: reference DM", "",
+           "the peak DM of the same task run with equal weights (1, 1, 1), with the same L; 0 = rule off", 0.0, 0.0,
+           1e9, 1, {}},
           {"newton_iterations", "Newton iterations", "", "most iterations of eq 1–4 per option", 8, 1, 100, 1, {}},
           {"tolerance", "End-effector tolerance ε", "m, rad", "eq 5: an option is feasible below it", 1e-9,
            1e-14, 1e-2, 1e-9, {}},
-          {"dm_length_scale", "DM length unit", "1/m",
-           "position rows of the Jacobian are multiplied by it for DM (1: metres; 39.37: inches)", 1.0, 1e-3,
-           1e4, 1, {}},
+          {"dm_length", "DM characteristic length L", "m",
+           "position rows of a pose task's Jacobian are divided by L for DM (DM = σmax/σmin mixes m and rad; "
+           "its value depends on L)", 1.0, 1e-4, 1e3, 0.01, {}},
           {"block_switch", "Block switch below σ", "",
-           "when the block of the non-perturbed joints has σ_min below it, perturb instead the joints whose "
-           "block has the largest determinant (§3.1) for that step; 0 = never",
-           0.0, 0.0, 10.0, 0.01, {}}};
+           "when the block of the non-perturbed joints has σ_min below it, or no option is feasible, perturb "
+           "instead the joints whose block has the largest determinant (§3.1) for that step; 0 = never",
+           0.02, 0.0, 10.0, 0.01, {}}};
 }
 std::unique_ptr<Method> make_direct_search(const MethodContext& ctx) {
   return std::make_unique<DirectSearch>(ctx);

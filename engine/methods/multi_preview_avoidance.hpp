@@ -1,4 +1,4 @@
-// Zhang et al. (003) avoidance manipulability: avoidance matrices of the
+// Zhang et al. avoidance manipulability: avoidance matrices of the
 // intermediate link points, their (complete or partial) ellipsoids, the
 // avoidance manipulability shape index AMSI and, with an obstacle potential,
 // AMSIP. Used by the multi_preview method for the actual arm and for every

@@ -1,4 +1,4 @@
-// Zhang et al. (003) future optimal configurations: an imaginary manipulator
+// Zhang et al. future optimal configurations: an imaginary manipulator
 // with its hand on a future trajectory point, scored by AMSIP (eq. 22), and
 // the 1-step genetic algorithm (Minami's real-time GA, the paper's ref. [7])
 // that searches its redundancy for the best one. One population per preview,

@@ -1,4 +1,4 @@
-// Zhang et al. (003): avoidance manipulability, AMSI/AMSIP, the 1-step GA and
+// Zhang et al.: avoidance manipulability, AMSI/AMSIP, the 1-step GA and
 // the multi-preview velocity law; the paper's comparison scenarios.
 #include <gtest/gtest.h>
 
@@ -66,8 +66,9 @@ TEST(MultiPreviewAvoidance, Fig5EllipsoidsMatchADirectSvd) {
               << " axis1 " << e.directions.col(0).head<2>().transpose() << "\n";
     for (int k = 0; k < 2; ++k) {
       EXPECT_NEAR(e.sigma[k], svd.singularValues()[k], 1e-9) << "point " << i << " sigma " << k;
-      if (svd.singularValues()[k] > 1e-6)  // axis direction up to sign
+      if (svd.singularValues()[k] > 1e-6) {  // axis direction up to sign
         EXPECT_NEAR(std::abs(e.directions.col(k).head<2>().dot(svd.matrixU().col(k))), 1.0, 1e-9);
+      }
     }
     EXPECT_EQ(e.centre, Eigen::Vector3d(kin.link_end.col(i)));
     // the paper: ¹P_1 and ¹P_3 are lines (partial), ¹P_2 a whole ellipse (complete)
@@ -310,11 +311,15 @@ TEST(MultiPreviewPaper, SinglePreviewCollidesNearThirtySecondsThreePreviewsDoNot
   const PaperRun multi = run_paper("31_zhang_multi_preview.json");
   // the paper: single preview (t̃ = 10 s) hits the object at t = 30 s
   EXPECT_TRUE(single.result.summary.collided);
-  EXPECT_GT(single.first_collision, 25.0);
-  EXPECT_LT(single.first_collision, 35.0);
+  EXPECT_GT(single.first_collision, 29.0);  // 29.96 s
+  EXPECT_LT(single.first_collision, 31.0);
+  // a shallow collision: 2.3 mm into the object
+  EXPECT_LT(single.result.summary.min_distance, -0.001);  // -0.00230 m
+  EXPECT_GT(single.result.summary.min_distance, -0.005);
   // three previews (t̃ = 5 s, k = 0.3, 0.65, 0.05) track the whole path without collision
   EXPECT_FALSE(multi.result.summary.collided);
-  EXPECT_GT(multi.result.summary.min_distance, 0.01);
+  EXPECT_GT(multi.result.summary.min_distance, 0.018);  // 0.0243 m
+  EXPECT_LT(multi.result.summary.min_distance, 0.03);
   for (const PaperRun* run : {&single, &multi}) {
     EXPECT_LT(run->result.summary.max_tracking_error, 1e-3);
     EXPECT_EQ(run->result.summary.nonfinite_steps, 0);
@@ -325,6 +330,20 @@ TEST(MultiPreviewPaper, SinglePreviewCollidesNearThirtySecondsThreePreviewsDoNot
   std::cout << "[ paper ] single preview: first collision at t = " << single.first_collision
             << " s, min distance " << single.result.summary.min_distance << " m; three previews: min distance "
             << multi.result.summary.min_distance << " m\n";
+}
+
+// The equal-horizon control (scenario 34): one preview at t̃ = 8.75 s, the
+// k-weighted mean horizon of scenario 31's three previews (0.3·5 + 0.65·10 +
+// 0.05·15 s), also avoids the object. So scenario 30 against 31 does not
+// isolate several previews from a shorter horizon (sweeps/zhang-sensitivity.json).
+TEST(MultiPreviewPaper, SinglePreviewAtTheMultiPreviewMeanHorizonAvoidsToo) {
+  const PaperRun control = run_paper("34_zhang_equal_horizon.json");
+  EXPECT_FALSE(control.result.summary.collided);
+  EXPECT_GT(control.result.summary.min_distance, 0.008);  // 0.0122 m
+  EXPECT_LT(control.result.summary.min_distance, 0.018);  // less than the three previews' 0.0243 m
+  EXPECT_LT(control.result.summary.max_tracking_error, 1e-3);
+  std::cout << "[ paper ] equal-horizon single preview (8.75 s): min distance "
+            << control.result.summary.min_distance << " m\n";
 }
 
 TEST(MultiPreviewPaper, PathPlanningTracksWithoutCollisionAndTheMostAmsip) {
