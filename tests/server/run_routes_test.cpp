@@ -107,7 +107,9 @@ TEST_F(RunRoutes, NotWhileItIsResimulated) {
   std::thread resimulation([&] { send("POST", base + "/replay", {{"mode", "resimulate"}}); });
   // the re-simulation's own run appears (status running) once the job has begun
   json target;
-  for (int i = 0; i < 500 && target.is_null(); ++i) {
+  // (a deadline, not a count: on a loaded machine the job may take seconds to begin)
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  while (target.is_null() && std::chrono::steady_clock::now() < deadline) {
     for (const json& run : get("/api/runs?scenario=resimulated").json())
       if (run["source_run"] == id && run["status"] == "running") target = run;
     if (target.is_null()) std::this_thread::sleep_for(std::chrono::milliseconds(5));
