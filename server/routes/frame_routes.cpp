@@ -45,6 +45,9 @@ class FrameExport : public BodyStream {
       next_ = batch_.size() < rows ? to_ + 1 : batch_.back().seq + stride_;
     }
     if (next_ <= to_) return true;
+    // deleted meanwhile (DELETE takes a stored run at any time): its frames
+    // stopped short, so the body must not end as if complete
+    if (!store_.run(run_)) throw ApiError(404, "not_found", "run " + std::to_string(run_) + " was deleted", "id");
     if (!csv_) out += "],\"run\":" + std::to_string(run_) + "}";
     return false;
   }

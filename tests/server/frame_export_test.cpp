@@ -90,7 +90,7 @@ TEST(FrameExport, StalledExportsHoldAChunkEachAndHealthAnswers) {
   // Each export holds one chunk (64 KiB, 128 KiB reserved): 20 of them
   // 2.5 MiB. The bound is below the size of a single document (61.8 MiB),
   // so one export built whole would fail it; the old server grew by ~1.3 GB.
-  // Measured: baseline 27-32 MiB, growth 0.9-2.5 MiB.
+  // Measured: baseline 27-40 MiB, growth 0.9-2.6 MiB.
   EXPECT_LT(peak - baseline, 40 * 1024) << "baseline " << baseline << " KiB, peak " << peak << " KiB";
   std::cout << "[ export  ] baseline " << baseline << " KiB, peak with " << kStalled << " stalled exports " << peak
             << " KiB\n";
@@ -98,6 +98,25 @@ TEST(FrameExport, StalledExportsHoldAChunkEachAndHealthAnswers) {
   stalled.clear();  // the server notices at its next write, and the exports end
   const HttpResult after = http(server.port(), "GET", "/api/health");
   EXPECT_EQ(after.status, 200);
+}
+
+TEST(FrameExport, ARunDeletedWhileExportedCutsTheBodyShort) {
+  ServerProcess server;
+  const HttpResult run =
+      http_json(server.port(), "POST", "/api/runs", {{"scenario", long_chain(64, 20'000)}, {"mode", "batch"}});
+  ASSERT_EQ(run.status, 200) << run.body;
+  const std::string path = "/api/runs/" + std::to_string(run.json().at("id").get<long>());
+  RawConnection connection(server.port());
+  ASSERT_TRUE(connection.write(get_request(server.port(), path + "/frames")));
+  ASSERT_EQ(status_of(connection.read_until("\r\n\r\n", std::chrono::seconds(30))), 200);
+  // the export waits for this client to read; meanwhile the run goes
+  ASSERT_EQ(http(server.port(), "DELETE", path).status, 200);
+  ASSERT_TRUE(connection.read_until_closed(std::chrono::seconds(60)));
+  const std::string& answer = connection.received();
+  // no last chunk ("0\r\n\r\n"): a client sees an incomplete body, not a short document
+  EXPECT_NE(answer.substr(answer.size() - std::min<std::size_t>(answer.size(), 7)), "\r\n0\r\n\r\n");
+  EXPECT_EQ(answer.find("],\"run\":"), std::string::npos);
+  EXPECT_LT(answer.size(), 60u << 20) << "the whole document was written";
 }
 
 TEST(FrameExport, Http10GetsTheBodyUntilTheConnectionCloses) {

@@ -8,7 +8,7 @@
 // round trip (input sent -> its ack) at p50/p99/max. Then stops the server
 // (SIGTERM: exit status 0) and runs `rrlab replay --verify` on every stored
 // run. Fails on a crash, an unexpected answer, memory growth after the
-// warm-up over --rss-growth-mib (default 32), or a run that does not verify.
+// warm-up over --rss-growth-mib (default 16), or a run that does not verify.
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -32,7 +32,7 @@ using Clock = std::chrono::steady_clock;
 namespace {
 
 struct Options {
-  double seconds = 150, warmup = 45, rss_growth_mib = 32;
+  double seconds = 150, warmup = 45, rss_growth_mib = 16;
 };
 
 // Problems seen by any client: each is printed once it happens, and counted.
