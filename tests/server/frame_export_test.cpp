@@ -119,6 +119,34 @@ TEST(FrameExport, ARunDeletedWhileExportedCutsTheBodyShort) {
   EXPECT_LT(answer.size(), 60u << 20) << "the whole document was written";
 }
 
+TEST(FrameExport, OverTheBudgetANewExportIsBusyUntilOthersEnd) {
+  ServerProcess server;
+  const HttpResult run =
+      http_json(server.port(), "POST", "/api/runs", {{"scenario", long_chain(64, 5'000)}, {"mode", "batch"}});
+  ASSERT_EQ(run.status, 200) << run.body;
+  const std::string frames = "/api/runs/" + std::to_string(run.json().at("id").get<long>()) + "/frames";
+  // 64 MiB budget / 128 KiB per export: 512 exports at once (server/net/server_state.hpp)
+  constexpr int kBudgetExports = 512;
+  std::vector<std::unique_ptr<RawConnection>> stalled;
+  for (int i = 0; i < kBudgetExports; ++i) {
+    stalled.push_back(std::make_unique<RawConnection>(server.port(), 4096));  // holds a few KiB, not the body
+    ASSERT_TRUE(stalled.back()->write(get_request(server.port(), frames)));
+    ASSERT_EQ(status_of(stalled.back()->read_until("\r\n\r\n", std::chrono::seconds(30))), 200) << i;
+  }
+  const HttpResult busy = http(server.port(), "GET", frames + "?to=9");
+  EXPECT_EQ(busy.status, 503);
+  EXPECT_EQ(busy.headers.count("retry-after") ? busy.headers.at("retry-after") : "", "1");
+  EXPECT_EQ(busy.json()["error"]["code"], "busy");
+  EXPECT_EQ(http(server.port(), "GET", "/api/health").status, 200);
+  stalled.clear();  // their reservations return as the server's writes fail
+  int status = 0;
+  for (int i = 0; i < 100 && status != 200; ++i) {
+    status = http(server.port(), "GET", frames + "?to=9").status;
+    if (status != 200) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  EXPECT_EQ(status, 200);
+}
+
 TEST(FrameExport, Http10GetsTheBodyUntilTheConnectionCloses) {
   ServerProcess server;
   const HttpResult run =
