@@ -5,12 +5,14 @@
 #include <functional>
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string_view>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace rrlab::server {
 
@@ -24,6 +26,19 @@ struct ApiRequest {
 };
 
 struct ApiResponse;
+
+// A body produced piece by piece (a frame export): the network layer calls
+// next() on an export worker (app/export_pool.hpp), never on an I/O thread,
+// and calls it again only once the previous piece has been written.
+class BodyStream {
+ public:
+  virtual ~BodyStream() = default;
+  // Replaces `out` with the next piece, about `target` bytes (more by at most
+  // one record); false once the body is complete (`out` holds its last piece,
+  // possibly empty). A throw after the first piece aborts the connection: the
+  // client sees a body cut short, never a well-formed partial one.
+  virtual bool next(std::string& out, std::size_t target) = 0;
+};
 // A response that is ready later (a batch run that is waited for): the route
 // hands over a function that will be called once with the response.
 using Responder = std::function<void(ApiResponse)>;
@@ -33,6 +48,8 @@ struct ApiResponse {
   std::string content_type = "application/json";
   std::string body;
   std::function<void(Responder)> deferred;  // set: the body comes later
+  std::shared_ptr<BodyStream> stream;        // set: the body is streamed (chunked), `body` unused
+  std::vector<std::pair<std::string, std::string>> headers;  // extra header fields (Retry-After)
 };
 
 // A 4xx/5xx answer: {"error": {"code", "message", "path"}}.

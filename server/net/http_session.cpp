@@ -3,7 +3,9 @@
 // timeout), answer it (API, static file or WebSocket upgrade), then read the
 // next. A request that cannot be parsed or is over a limit gets its 4xx and
 // the connection closes. Deferred API answers (batch runs waited for) come
-// back onto the connection's strand.
+// back onto the connection's strand. Streamed answers (frame exports) are
+// written chunk by chunk: each chunk is produced on an export worker, and the
+// next one only once the previous one has been written (send_stream).
 #include "net/sessions.hpp"
 #include <algorithm>
 #include <array>
@@ -195,7 +197,12 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
                          std::string(request[http::field::access_control_request_headers])});
     access_headers_ = access.headers;
     if (access.status >= 400) return send_api(error_response(ApiError(access.status, access.code, access.message)));
-    if (!access.allowed()) return send_api(ApiResponse{access.status, "", "", {}});  // a CORS preflight
+    if (!access.allowed()) {  // a CORS preflight
+      ApiResponse preflight;
+      preflight.status = access.status;
+      preflight.content_type.clear();
+      return send_api(preflight);
+    }
 
     if (websocket::is_upgrade(request)) {
       const auto query = question == std::string::npos ? std::map<std::string, std::string>{}
@@ -228,7 +235,104 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
       });
       return;
     }
+    if (response.stream) return send_stream(response);
     send_api(response);
+  }
+
+  // A streamed answer in flight: its body, its reservation of the export
+  // budget, and Beast's serializer over a buffer_body that points at the
+  // current chunk.
+  struct Streamed {
+    std::shared_ptr<BodyStream> body;
+    std::shared_ptr<ExportPool::Ticket> ticket;
+    http::response<http::buffer_body> response;
+    std::optional<http::response_serializer<http::buffer_body>> serializer;
+    std::string chunk;
+    bool more = true, header_sent = false;
+    std::optional<ApiResponse> failure;  // the producer threw
+  };
+
+  // Reserves two chunks of the export budget (503 with Retry-After when it is
+  // full), then produces and writes the body. HTTP/1.1: chunked transfer;
+  // HTTP/1.0: the body ends when the connection closes.
+  void send_stream(const ApiResponse& api) {
+    auto ticket = state_->exports.reserve(2 * state_->limits.export_chunk);
+    if (!ticket) {
+      ApiResponse busy = error_response(ApiError(
+          503, "busy", "too many exports in progress (their memory budget is full); retry in a moment", ""));
+      busy.headers.emplace_back("Retry-After", "1");
+      return send_api(busy);
+    }
+    auto out = std::make_shared<Streamed>();
+    out->body = api.stream;
+    out->ticket = std::move(ticket);
+    auto& response = out->response;
+    response.result(http::status(api.status));
+    response.version(version_);
+    response.set(http::field::server, "rrlab/" + state_->info.version);
+    if (!api.content_type.empty()) response.set(http::field::content_type, api.content_type);
+    response.set(http::field::cache_control, "no-store");
+    for (const auto& [name, value] : access_headers_) response.set(name, value);
+    for (const auto& [name, value] : api.headers) response.set(name, value);
+    if (version_ < 11) keep_alive_ = false;
+    response.keep_alive(keep_alive_);
+    if (version_ >= 11) response.chunked(true);
+    response.body().data = nullptr;
+    response.body().more = true;
+    out->serializer.emplace(response);
+    produce(out);
+  }
+
+  // The next chunk, on an export worker; written on this connection's strand.
+  void produce(std::shared_ptr<Streamed> out) {
+    const std::size_t target = state_->limits.export_chunk;
+    state_->exports.post([self = shared_from_this(), out, target] {
+      try {
+        try {
+          out->more = out->body->next(out->chunk, target);
+        } catch (...) {
+          rethrow_as_api_error("");
+        }
+      } catch (const ApiError& e) {
+        out->failure = error_response(e);
+      }
+      net::post(self->stream_.get_executor(), [self, out] { self->guarded([&] { self->on_produced(out); }); });
+    });
+  }
+
+  void on_produced(const std::shared_ptr<Streamed>& out) {
+    if (out->failure) {
+      if (!out->header_sent) return send_api(*out->failure);  // nothing sent yet: a plain error answer
+      return close();  // cut short: no last chunk, so the client sees an incomplete body
+    }
+    if (out->header_sent) return write_chunk(out);
+    out->header_sent = true;
+    stream_.expires_after(state_->limits.read_timeout);
+    http::async_write_header(stream_, *out->serializer, [self = shared_from_this(), out](beast::error_code ec, std::size_t) {
+      if (ec) return;
+      self->guarded([&] { self->write_chunk(out); });
+    });
+  }
+
+  // Writes the current chunk (and the last chunk once the body is complete);
+  // a client that takes no bytes for the read timeout loses the connection,
+  // and the export its reservation.
+  void write_chunk(const std::shared_ptr<Streamed>& out) {
+    if (out->chunk.empty() && out->more) return produce(out);
+    auto& body = out->response.body();
+    body.data = out->chunk.empty() ? nullptr : out->chunk.data();
+    body.size = out->chunk.size();
+    body.more = out->more;
+    stream_.expires_after(state_->limits.read_timeout);
+    http::async_write(stream_, *out->serializer, [self = shared_from_this(), out](beast::error_code ec, std::size_t) {
+      if (ec == http::error::need_buffer) ec = {};  // the chunk is out: Beast asks for the next
+      if (ec) return;
+      self->guarded([&] {
+        if (!out->serializer->is_done()) return self->produce(out);
+        if (!self->keep_alive_) return self->close();
+        self->read();
+      });
+    });
   }
 
   void send_api(const ApiResponse& api) {
@@ -237,6 +341,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
     if (!api.content_type.empty()) response->set(http::field::content_type, api.content_type);
     response->set(http::field::cache_control, "no-store");
     for (const auto& [name, value] : access_headers_) response->set(name, value);
+    for (const auto& [name, value] : api.headers) response->set(name, value);
     response->keep_alive(keep_alive_);
     response->body() = api.body;
     response->prepare_payload();

@@ -60,6 +60,7 @@ int serve(const ServeOptions& options) {
     for (int i = 1; i < options.threads; ++i) pool.emplace_back([&] { ioc.run(); });
     ioc.run();
     for (auto& t : pool) t.join();
+    state->exports.stop();  // no export worker may read the store once it goes
     runs.stop_all();
     writer.flush();
     std::cout << "rrlab: stopped" << std::endl;

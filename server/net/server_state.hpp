@@ -5,6 +5,7 @@
 #include <chrono>
 #include <string>
 
+#include "app/export_pool.hpp"
 #include "app/run_manager.hpp"
 #include "net/request_guard.hpp"
 #include "routes/routes.hpp"
@@ -20,6 +21,13 @@ struct NetLimits {
   int ws_messages_per_second = 200;                   // incoming, per socket (errors beyond)
   std::chrono::milliseconds ws_stall_timeout{5000};   // a write pending this long drops the client
   int max_websockets = 1024;
+  // Streamed exports (GET /api/runs/{id}/frames): chunks of about this many
+  // bytes; each export reserves twice that (its chunk, and the frame it may
+  // run over by) from a budget shared by all (503 with Retry-After beyond).
+  // 64 MiB / 128 KiB: 512 exports at once.
+  std::size_t export_chunk = 64 << 10;
+  std::size_t export_budget = 64 << 20;
+  int export_threads = 2;
 };
 
 struct ServerState {
@@ -31,6 +39,7 @@ struct ServerState {
   NetLimits limits;
   AccessConfig access;  // Host/Origin/Content-Type rules (net/request_guard.hpp)
   std::atomic<int> websockets{0};
+  ExportPool exports{limits.export_threads, limits.export_budget};
 };
 
 }  // namespace rrlab::server

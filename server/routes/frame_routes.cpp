@@ -1,4 +1,12 @@
-// Stored frames of a run, as JSON (default) or CSV (Accept: text/csv or ?format=csv).
+// Stored frames of a run, as JSON (default) or CSV (Accept: text/csv or
+// ?format=csv), streamed: the request is checked here (404, 400), then the
+// body is produced in chunks of about 64 KiB on an export worker
+// (app/export_pool.hpp), each chunk from its own short query, so that no
+// SQLite statement or lock is held while a client reads slowly. The bytes are
+// those of the whole document built at once: keys in nlohmann::json's
+// (sorted) order, {"diagnostic_names", "frames", "run"}.
+#include <algorithm>
+
 #include "routes/routes.hpp"
 #include "sim/frame_csv.hpp"
 #include "storage/frame_codec.hpp"
@@ -8,9 +16,74 @@ namespace rrlab::server {
 
 using nlohmann::json;
 
+namespace {
+
+class FrameExport : public BodyStream {
+ public:
+  FrameExport(storage::RunStore& store, std::int64_t run, std::int64_t from, std::int64_t to, std::int64_t stride,
+              std::vector<std::string> names, bool csv, int dof)
+      : store_(store), run_(run), next_(from), to_(to), stride_(stride), names_(std::move(names)), csv_(csv) {
+    head_ = csv ? "seq," + frame_csv_header(dof, names_, false)
+                : R"({"diagnostic_names":)" + safe_dump(json(names_)) + R"(,"frames":[)";
+  }
+
+  bool next(std::string& out, std::size_t target) override {
+    out.clear();
+    if (!head_.empty()) out.swap(head_);
+    while (out.size() < target && next_ <= to_) {
+      // rows for the bytes still wanted, at the size of the frames so far
+      const std::size_t per_frame = frames_ > 0 ? std::max<std::size_t>(bytes_ / frames_, 1) : 4096;
+      const std::size_t rows = std::clamp<std::size_t>((target - out.size()) / per_frame + 1, 1, 1024);
+      batch_.clear();
+      store_.frames(run_, next_, to_, stride_, [&](const storage::StoredFrame& f) {
+        batch_.push_back(f);
+        return batch_.size() < rows;
+      });
+      // encoded after the query: the store's read lock is not held meanwhile
+      for (const storage::StoredFrame& f : batch_) append(f, out);
+      // the rows kept their alignment: seq - from is a multiple of stride
+      next_ = batch_.size() < rows ? to_ + 1 : batch_.back().seq + stride_;
+    }
+    if (next_ <= to_) return true;
+    // deleted meanwhile (DELETE takes a stored run at any time): its frames
+    // stopped short, so the body must not end as if complete
+    if (!store_.run(run_)) throw ApiError(404, "not_found", "run " + std::to_string(run_) + " was deleted", "id");
+    if (!csv_) out += "],\"run\":" + std::to_string(run_) + "}";
+    return false;
+  }
+
+ private:
+  void append(const storage::StoredFrame& f, std::string& out) {
+    const std::size_t before = out.size();
+    if (csv_) {
+      out += std::to_string(f.seq) + ',';
+      append_frame_csv(storage::unpack_frame(f.data), false, out);
+    } else {
+      json frame = storage::frame_to_json(storage::unpack_frame(f.data), names_);
+      frame["seq"] = f.seq;
+      if (frames_ > 0) out += ',';
+      out += safe_dump(frame);
+    }
+    bytes_ += out.size() - before;
+    ++frames_;
+  }
+
+  storage::RunStore& store_;
+  const std::int64_t run_;
+  std::int64_t next_;  // the next seq to read
+  const std::int64_t to_, stride_;
+  const std::vector<std::string> names_;
+  const bool csv_;
+  std::string head_;
+  std::vector<storage::StoredFrame> batch_;
+  std::size_t frames_ = 0, bytes_ = 0;  // written so far
+};
+
+}  // namespace
+
 ApiResponse get_frames(RouteContext& c) {
   const storage::RunRecord run = find_run(c, c.id());
-  constexpr std::int64_t kMaxFrames = 20'000;  // per request (bounded memory): page with from/to
+  constexpr std::int64_t kMaxFrames = 20'000;  // per request: page with from/to
   const std::int64_t from = query_int(c, "from", 0, 0, INT64_MAX / 2);
   const std::int64_t stride = query_int(c, "stride", 1, 1, 1'000'000);
   std::int64_t to = query_int(c, "to", std::max<std::int64_t>(run.frames - 1, 0), 0, INT64_MAX / 2);
@@ -23,26 +96,12 @@ ApiResponse get_frames(RouteContext& c) {
   } else if (c.request.accept.find("text/csv") != std::string::npos) {
     format = "csv";
   }
-  const std::vector<std::string> names = json::parse(run.diagnostic_names_json).get<std::vector<std::string>>();
+  std::vector<std::string> names = json::parse(run.diagnostic_names_json).get<std::vector<std::string>>();
   ApiResponse response;
-  if (format == "csv") {
-    response.content_type = "text/csv";
-    response.body = "seq," + frame_csv_header(run.dof, names, false);
-    c.runs.store().frames(run.id, from, to, stride, [&](const storage::StoredFrame& f) {
-      response.body += std::to_string(f.seq) + ',';
-      append_frame_csv(storage::unpack_frame(f.data), false, response.body);
-      return true;
-    });
-    return response;
-  }
-  json frames = json::array();
-  c.runs.store().frames(run.id, from, to, stride, [&](const storage::StoredFrame& f) {
-    json frame = storage::frame_to_json(storage::unpack_frame(f.data), names);
-    frame["seq"] = f.seq;
-    frames.push_back(std::move(frame));
-    return true;
-  });
-  return json_response(200, {{"run", run.id}, {"diagnostic_names", names}, {"frames", frames}});
+  response.content_type = format == "csv" ? "text/csv" : "application/json";
+  response.stream = std::make_shared<FrameExport>(c.runs.store(), run.id, from, to, stride, std::move(names),
+                                                  format == "csv", run.dof);
+  return response;
 }
 
 }  // namespace rrlab::server

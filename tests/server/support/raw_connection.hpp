@@ -19,8 +19,11 @@ class RawConnection {
  public:
   using Clock = std::chrono::steady_clock;
 
-  explicit RawConnection(unsigned short port) : fd_(::socket(AF_INET, SOCK_STREAM, 0)) {
+  // `receive_buffer` > 0: SO_RCVBUF before connecting (a client that reads
+  // nothing then takes little of an answer into its kernel buffer).
+  explicit RawConnection(unsigned short port, int receive_buffer = 0) : fd_(::socket(AF_INET, SOCK_STREAM, 0)) {
     if (fd_ < 0) throw std::runtime_error("socket() failed");
+    if (receive_buffer > 0) ::setsockopt(fd_, SOL_SOCKET, SO_RCVBUF, &receive_buffer, sizeof receive_buffer);
     sockaddr_in address{};
     address.sin_family = AF_INET;
     address.sin_port = htons(port);

@@ -22,6 +22,7 @@ class ServerProcess {
   void kill_hard();       // SIGKILL, as a crash
   int stop();             // SIGTERM and wait; the exit status
   bool running() const { return pid_ > 0; }
+  pid_t pid() const { return pid_; }
 
  private:
   pid_t pid_ = -1;
@@ -37,5 +38,8 @@ struct CommandResult {
 CommandResult run_rrlab(const std::vector<std::string>& args);
 
 std::string temp_dir();  // a fresh directory under /tmp
+
+// A process's resident memory (VmRSS of /proc/PID/status) in KiB; -1 if unknown.
+long resident_kib(pid_t pid);
 
 }  // namespace rrlab::testing

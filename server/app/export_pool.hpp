@@ -1,0 +1,70 @@
+// Where streamed answers (frame exports) are produced: a few worker threads,
+// never the I/O threads, and a budget of bytes in flight shared by every
+// connection. Each export reserves what it may hold at once (one chunk) when
+// it starts; an export that would go over the budget is refused (the caller
+// answers 503 with Retry-After). A connection produces its next chunk only
+// after the previous one was written, so a client that does not read holds
+// one chunk and nothing more.
+#pragma once
+
+#include <condition_variable>
+#include <cstddef>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace rrlab::server {
+
+class ExportPool {
+ public:
+  // `threads` workers; `budget` bytes that all exports together may reserve.
+  ExportPool(int threads, std::size_t budget);
+  ~ExportPool();  // stop()
+  ExportPool(const ExportPool&) = delete;
+  ExportPool& operator=(const ExportPool&) = delete;
+
+  // Bytes reserved by one export until it ends: released when the last copy
+  // of the ticket goes away (a completed export, or a closed connection).
+  class Ticket {
+   public:
+    Ticket(ExportPool& pool, std::size_t bytes) : pool_(pool), bytes_(bytes) {}
+    ~Ticket() { pool_.release(bytes_); }
+    Ticket(const Ticket&) = delete;
+    Ticket& operator=(const Ticket&) = delete;
+
+   private:
+    ExportPool& pool_;
+    std::size_t bytes_;
+  };
+
+  // A reservation of `bytes`, or null when it would take the reserved total
+  // over the budget.
+  std::shared_ptr<Ticket> reserve(std::size_t bytes);
+  std::size_t reserved() const;
+  std::size_t budget() const { return budget_; }
+
+  // Runs `task` on a worker (tasks run in the order posted). After stop(),
+  // tasks are dropped.
+  void post(std::function<void()> task);
+
+  // Drops queued tasks and joins the workers (a task under way finishes
+  // first). Called before the run store goes away.
+  void stop();
+
+ private:
+  void release(std::size_t bytes);
+  void work();
+
+  const std::size_t budget_;
+  mutable std::mutex mutex_;
+  std::condition_variable wake_;
+  std::deque<std::function<void()>> tasks_;
+  std::size_t reserved_ = 0;
+  bool stopping_ = false;
+  std::vector<std::thread> workers_;
+};
+
+}  // namespace rrlab::server
