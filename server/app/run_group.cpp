@@ -311,6 +311,13 @@ void RunGroup::finish(const std::string& requested_status) {
     if (auto error = write_failure()) {  // the last batches may have failed after the loop
       if (failure_.empty()) failure_ = *error;
       status = "failed";
+      // frames_stored: what the store kept (a gap-free prefix), not what was pushed
+      for (Lane& lane : lanes_) {
+        try {
+          if (auto run = services_.store.run(lane.run_id)) lane.frames_stored = run->frames;
+        } catch (const std::exception&) {
+        }
+      }
     }
     for (Lane& lane : lanes_) {
       lane.status = status;
