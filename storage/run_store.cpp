@@ -82,7 +82,8 @@ bool RunStore::probe_write() {
       std::lock_guard lock(mutex_);
       {
         Transaction tx(*db_);
-        db_->exec("INSERT INTO storage_probe(bytes) VALUES (zeroblob(65536))");
+        // room for a batch of the frame writer: 1024 frames of a 64-joint arm (1.1 KB each)
+        db_->exec("INSERT INTO storage_probe(bytes) VALUES (zeroblob(1048576))");
         tx.commit();
       }
       db_->exec("DELETE FROM storage_probe");

@@ -151,7 +151,8 @@ class RunStore {
   // probe_write() succeeds. Every write method records such a failure (and
   // rethrows it as a StorageError whose fault() says which).
   std::optional<WriteFault> write_fault();
-  // Tries a real write (64 KiB committed to table storage_probe, then deleted).
+  // Tries a real write (1 MiB, a frame batch, committed to table
+  // storage_probe, then deleted: a file with less room stays "full").
   // Success clears the recorded fault; failure records it. True when writable.
   bool probe_write();
 

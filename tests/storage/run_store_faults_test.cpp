@@ -97,7 +97,7 @@ TEST_F(RunStoreFaults, AFullDatabaseIsATypedRecordedFaultUntilAProbeSucceeds) {
   store.add_frames(frames(kept, 50, 500));
   store.finish_run(kept, "completed", "{}");
   const std::int64_t filler = store.create_run(new_run());
-  store.add_frames(frames(filler, 200, 500));  // about 25 pages, freed by its deletion below
+  store.add_frames(frames(filler, 2400, 500));  // about 300 pages, freed by its deletion below
   store.set_max_page_count(page_count(path_) + 2);
   EXPECT_FALSE(store.write_fault());
 
@@ -123,10 +123,10 @@ TEST_F(RunStoreFaults, AFullDatabaseIsATypedRecordedFaultUntilAProbeSucceeds) {
     return true;
   });
   EXPECT_EQ(read, 50);
-  EXPECT_EQ(store.total_frame_bytes(), 50 * 500 + 200 * 500);
+  EXPECT_EQ(store.total_frame_bytes(), 50 * 500 + 2400 * 500);
   EXPECT_EQ(store.integrity_check(), "ok");
 
-  ASSERT_TRUE(store.delete_run(filler));  // a delete frees pages (needs none)
+  ASSERT_TRUE(store.delete_run(filler));  // a delete frees pages (needs none): room for the 1 MiB probe
   EXPECT_TRUE(store.probe_write());
   EXPECT_FALSE(store.write_fault());
   store.add_frames(frames(big, 20, 500));
