@@ -313,13 +313,13 @@ std::vector<std::int64_t> RunManager::admit(const std::vector<LaneEstimate>& lan
   }
   if (cost > limits_.max_run_cost) {
     char text[64];
-    std::snprintf(text, sizeof text, "%.3g", cost);
+    std::snprintf(text, sizeof text, "%.6g", cost);
     std::string message = "max_run_cost: the estimate DOF x (obstacles + 1) x steps";
     for (const LaneEstimate& lane : lanes)
       message += (&lane == &lanes.front() ? " = " : " + ") + std::to_string(lane.dof) + " x (" +
                  std::to_string(lane.obstacles) + " + 1) x " + std::to_string(lane.steps);
     char allowed[64];
-    std::snprintf(allowed, sizeof allowed, "%.3g", limits_.max_run_cost);
+    std::snprintf(allowed, sizeof allowed, "%.6g", limits_.max_run_cost);
     throw ApiError(413, "run_too_large",
                    message + " = " + text + " exceeds " + allowed + " (serve --max-run-cost): ask for fewer steps",
                    "steps", {{"limit", "max_run_cost"}, {"requested", cost}, {"allowed", limits_.max_run_cost}});
