@@ -26,6 +26,13 @@ struct ServeOptions {
   double display_hz = 60;
   std::size_t body_limit = 1 << 20;
   int ws_stall_ms = 5000;  // a WebSocket write pending this long drops the client
+  // quotas (server/app/run_manager.hpp ServerLimits has the defaults' reasons)
+  long max_run_frames = 1'000'000;
+  std::int64_t max_run_bytes = 256ll << 20;
+  std::int64_t max_total_bytes = 8ll << 30;
+  double max_run_cost = 2e10;
+  std::int64_t max_scenarios = 1000;
+  std::int64_t test_db_max_pages = 0;  // tests only: PRAGMA max_page_count on the write connection (0: none)
   std::vector<std::string> allow_hosts, allow_origins;  // beyond this server's own (net/request_guard.hpp)
   std::string token;             // --token or RRLAB_TOKEN: required for changes, WebSocket inputs and reads
   bool public_read = false;      // reads need no token

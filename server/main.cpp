@@ -23,6 +23,27 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(std::size_t(1024), std::size_t(64) << 20));
   serve_cmd->add_option("--ws-stall-ms", serve.ws_stall_ms, "drop a WebSocket client whose write is stuck this long")
       ->check(CLI::Range(100, 600000));
+  serve_cmd->add_option("--max-run-frames", serve.max_run_frames,
+                        "frames one run may store (default 1000000; a request for more steps is 413)")
+      ->check(CLI::Range(1L, 100'000'000L));
+  serve_cmd->add_option("--max-run-bytes", serve.max_run_bytes,
+                        "bytes of frames one run may store (default 268435456 = 256 MiB; beyond: 413)")
+      ->check(CLI::Range(std::int64_t(1), std::int64_t(1) << 50));
+  serve_cmd->add_option("--max-total-bytes", serve.max_total_bytes,
+                        "bytes of frames all runs in the database may hold (default 8589934592 = 8 GiB; beyond: 507)")
+      ->check(CLI::Range(std::int64_t(1), std::int64_t(1) << 60));
+  serve_cmd->add_option("--max-run-cost", serve.max_run_cost,
+                        "a request's cost estimate, DOF x (obstacles + 1) x steps summed over its runs (default 2e10, "
+                        "about ten minutes of a core; beyond: 413)")
+      ->check(CLI::Range(1.0, 1e18));
+  serve_cmd->add_option("--max-scenarios", serve.max_scenarios,
+                        "scenarios stored over REST (default 1000; beyond: 507)")
+      ->check(CLI::Range(std::int64_t(0), std::int64_t(1'000'000)));
+  serve_cmd->add_option("--test-db-max-pages", serve.test_db_max_pages,
+                        "TESTS ONLY: cap the database file at this many pages (PRAGMA max_page_count) to simulate a "
+                        "full disk")
+      ->check(CLI::Range(std::int64_t(1), std::int64_t(1) << 40))
+      ->group("");  // hidden from --help
   serve_cmd->add_option("--allow-host", serve.allow_hosts,
                         "also accept requests whose Host names NAME (repeatable; e.g. behind a proxy or on --host 0.0.0.0)");
   serve_cmd->add_option("--allow-origin", serve.allow_origins,

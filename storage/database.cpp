@@ -2,13 +2,35 @@
 
 #include <sqlite3.h>
 
+#include <cerrno>
 #include <ctime>
 
 namespace rrlab::storage {
 
+const char* to_string(StorageFault fault) {
+  switch (fault) {
+    case StorageFault::full: return "full";
+    case StorageFault::readonly: return "readonly";
+    default: return "other";
+  }
+}
+
+StorageFault fault_of(int code, int system_errno) {
+  switch (code & 0xff) {
+    case SQLITE_FULL: return StorageFault::full;
+    case SQLITE_READONLY: return StorageFault::readonly;
+    default: break;
+  }
+  // a write() that hit a full disk can surface as an I/O error
+  if (code == SQLITE_IOERR_WRITE || code == SQLITE_IOERR_FSYNC || code == SQLITE_IOERR_TRUNCATE)
+    return system_errno == ENOSPC ? StorageFault::full : StorageFault::other;
+  return StorageFault::other;
+}
+
 namespace {
 [[noreturn]] void fail(sqlite3* db, const std::string& what) {
-  throw StorageError(what + ": " + (db ? sqlite3_errmsg(db) : "out of memory"));
+  if (!db) throw StorageError(what + ": out of memory");
+  throw StorageError(what + ": " + sqlite3_errmsg(db), fault_of(sqlite3_extended_errcode(db), sqlite3_system_errno(db)));
 }
 }  // namespace
 
@@ -49,8 +71,9 @@ bool Statement::step() {
   if (rc == SQLITE_ROW) return true;
   if (rc == SQLITE_DONE) return false;
   const std::string message = sqlite3_errmsg(db_);
+  const StorageFault fault = fault_of(sqlite3_extended_errcode(db_), sqlite3_system_errno(db_));
   sqlite3_reset(stmt_);
-  throw StorageError("step: " + message);
+  throw StorageError("step: " + message, fault);
 }
 
 void Statement::reset() {
@@ -96,8 +119,9 @@ void Database::exec(std::string_view sql) {
   char* error = nullptr;
   if (sqlite3_exec(db_, std::string(sql).c_str(), nullptr, nullptr, &error) != SQLITE_OK) {
     const std::string message = error ? error : "unknown error";
+    const StorageFault fault = fault_of(sqlite3_extended_errcode(db_), sqlite3_system_errno(db_));
     sqlite3_free(error);
-    throw StorageError(message);
+    throw StorageError(message, fault);
   }
 }
 

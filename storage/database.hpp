@@ -12,10 +12,29 @@ struct sqlite3_stmt;
 
 namespace rrlab::storage {
 
+// What kind of failure a StorageError is. full: the disk (or the file's
+// page limit) is full (SQLITE_FULL, or an I/O error with ENOSPC);
+// readonly: the file or its directory cannot be written (SQLITE_READONLY*,
+// SQLITE_CANTOPEN on a write). Reads keep working in both.
+enum class StorageFault { other, full, readonly };
+
+const char* to_string(StorageFault fault);  // "other" | "full" | "readonly"
+
 class StorageError : public std::runtime_error {
  public:
-  using std::runtime_error::runtime_error;
+  explicit StorageError(const std::string& what, StorageFault fault = StorageFault::other)
+      : std::runtime_error(what), fault_(fault) {}
+  StorageFault fault() const { return fault_; }
+  // full or readonly: the write may succeed once space is freed or permissions fixed
+  bool write_fault() const { return fault_ != StorageFault::other; }
+
+ private:
+  StorageFault fault_;
 };
+
+// The fault a SQLite result code (extended or primary) stands for, with the
+// OS errno of the failed call for I/O errors (ENOSPC: full).
+StorageFault fault_of(int sqlite_code, int system_errno = 0);
 
 // Now in UTC, ISO 8601 (the created columns).
 std::string utc_now();

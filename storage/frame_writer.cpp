@@ -19,6 +19,7 @@ FrameWriter::~FrameWriter() {
 void FrameWriter::push(std::int64_t run, StoredFrame&& frame) {
   std::unique_lock lock(mutex_);
   not_full_.wait(lock, [&] { return queue_.size() < capacity_; });
+  queued_bytes_ += std::int64_t(frame.data.size());
   queue_.emplace_back(run, std::move(frame));
   ++pushed_;
   if (queue_.size() == 1 || queue_.size() >= batch_) not_empty_.notify_one();
@@ -36,16 +37,27 @@ std::string FrameWriter::last_error() {
   return error_;
 }
 
+std::optional<std::string> FrameWriter::run_error(std::int64_t run) {
+  std::lock_guard lock(mutex_);
+  if (auto it = run_errors_.find(run); it != run_errors_.end()) return it->second;
+  return std::nullopt;
+}
+
 void FrameWriter::loop() {
   std::vector<std::pair<std::int64_t, StoredFrame>> batch;
+  size_t taken = 0;  // frames taken off the queue, dropped ones included
   for (;;) {
     {
       std::unique_lock lock(mutex_);
       not_empty_.wait(lock, [&] { return stopping_ || !queue_.empty(); });
       if (queue_.empty()) return;  // stopping and drained
       batch.clear();
-      while (!queue_.empty() && batch.size() < batch_) {
-        batch.push_back(std::move(queue_.front()));
+      taken = 0;
+      while (!queue_.empty() && taken < batch_) {
+        ++taken;
+        // a run whose frames failed before stores no later ones (no gaps)
+        if (!run_errors_.count(queue_.front().first)) batch.push_back(std::move(queue_.front()));
+        else queued_bytes_ -= std::int64_t(queue_.front().second.data.size());
         queue_.pop_front();
       }
     }
@@ -56,10 +68,17 @@ void FrameWriter::loop() {
     } catch (const std::exception& e) {
       error = e.what();
     }
+    std::int64_t bytes = 0;
+    for (const auto& [run, frame] : batch) bytes += std::int64_t(frame.data.size());
+    queued_bytes_ -= bytes;
     {
       std::lock_guard lock(mutex_);
-      committed_ += batch.size();
-      if (!error.empty()) error_ = error;
+      committed_ += taken;
+      if (!error.empty()) {
+        error_ = error;
+        for (const auto& [run, frame] : batch)
+          if (run_errors_.emplace(run, error).second) ++failures_;
+      }
     }
     drained_.notify_all();
   }

@@ -3,10 +3,13 @@
 // back-pressure slows a run down rather than dropping its frames).
 #pragma once
 
+#include <atomic>
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
+#include <map>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <utility>
@@ -27,6 +30,13 @@ class FrameWriter {
   void flush();
   // The last write error ("" if none); frames of a failed batch are lost.
   std::string last_error();
+  // The error of the first failed batch holding a frame of `run`, if any.
+  // Later frames of that run are dropped (not written): its stored frames
+  // stay a gap-free prefix. Bumps failures() when a run first fails.
+  std::optional<std::string> run_error(std::int64_t run);
+  std::uint64_t failures() const { return failures_; }
+  // Bytes of frame data pushed and not yet committed (or dropped).
+  std::int64_t queued_bytes() const { return queued_bytes_; }
 
  private:
   void loop();
@@ -39,6 +49,9 @@ class FrameWriter {
   std::uint64_t pushed_ = 0, committed_ = 0;
   bool stopping_ = false;
   std::string error_;
+  std::map<std::int64_t, std::string> run_errors_;  // runs whose frames failed to be written
+  std::atomic<std::uint64_t> failures_{0};
+  std::atomic<std::int64_t> queued_bytes_{0};
   std::thread thread_;
 };
 

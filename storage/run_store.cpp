@@ -47,6 +47,11 @@ RunStore::RunStore(const std::string& path) : db_(std::make_unique<Database>(pat
   mark.step();
   interrupted_at_open_ = db_->changes();
   tx.commit();
+  {
+    Statement total = db_->prepare("SELECT COALESCE(SUM(frame_bytes), 0) FROM runs");
+    total.step();
+    total_frame_bytes_ = total.column_int(0);
+  }
   // a second connection for reads: in WAL mode readers never wait for the writer
   read_db_ = std::make_unique<Database>(path);
   read_db_->exec("PRAGMA query_only=ON");
@@ -54,7 +59,52 @@ RunStore::RunStore(const std::string& path) : db_(std::make_unique<Database>(pat
 
 RunStore::~RunStore() = default;
 
+void RunStore::recording_faults(const std::function<void()>& write) {
+  try {
+    write();
+  } catch (const StorageError& e) {
+    if (e.write_fault()) {
+      std::lock_guard lock(fault_mutex_);
+      fault_ = WriteFault{e.fault(), e.what()};
+    }
+    throw;
+  }
+}
+
+std::optional<WriteFault> RunStore::write_fault() {
+  std::lock_guard lock(fault_mutex_);
+  return fault_;
+}
+
+bool RunStore::probe_write() {
+  try {
+    recording_faults([&] {
+      std::lock_guard lock(mutex_);
+      {
+        Transaction tx(*db_);
+        // room for a batch of the frame writer: 1024 frames of a 64-joint arm (1.1 KB each)
+        db_->exec("INSERT INTO storage_probe(bytes) VALUES (zeroblob(1048576))");
+        tx.commit();
+      }
+      db_->exec("DELETE FROM storage_probe");
+    });
+  } catch (const StorageError& e) {
+    if (e.write_fault()) return false;
+    throw;
+  }
+  std::lock_guard lock(fault_mutex_);
+  fault_.reset();
+  return true;
+}
+
+void RunStore::set_max_page_count(std::int64_t pages) {
+  std::lock_guard lock(mutex_);
+  db_->exec("PRAGMA max_page_count = " + std::to_string(pages));
+}
+
 std::int64_t RunStore::create_run(const NewRun& run) {
+  std::int64_t id = 0;
+  recording_faults([&] {
   std::lock_guard lock(mutex_);
   Statement s = db_->prepare(
       "INSERT INTO runs(scenario_name, scenario, method, params, seed, mode, created, status, dof, "
@@ -65,48 +115,59 @@ std::int64_t RunStore::create_run(const NewRun& run) {
   if (run.source_run) s.bind(10, *run.source_run); else s.bind_null(10);
   if (run.compare_group) s.bind(11, *run.compare_group); else s.bind_null(11);
   s.step();
-  return db_->last_insert_id();
+  id = db_->last_insert_id();
+  });
+  return id;
 }
 
 void RunStore::set_status(std::int64_t id, std::string_view status) {
-  std::lock_guard lock(mutex_);
-  db_->prepare("UPDATE runs SET status = ? WHERE id = ?").bind(1, status).bind(2, id).step();
+  recording_faults([&] {
+    std::lock_guard lock(mutex_);
+    db_->prepare("UPDATE runs SET status = ? WHERE id = ?").bind(1, status).bind(2, id).step();
+  });
 }
 
 void RunStore::set_compare_group(std::int64_t id, std::int64_t group) {
-  std::lock_guard lock(mutex_);
-  db_->prepare("UPDATE runs SET compare_group = ? WHERE id = ?").bind(1, group).bind(2, id).step();
+  recording_faults([&] {
+    std::lock_guard lock(mutex_);
+    db_->prepare("UPDATE runs SET compare_group = ? WHERE id = ?").bind(1, group).bind(2, id).step();
+  });
 }
 
 void RunStore::finish_run(std::int64_t id, std::string_view status, const std::string& summary_json) {
-  std::lock_guard lock(mutex_);
-  db_->prepare("UPDATE runs SET status = ?, summary = ? WHERE id = ?")
-      .bind(1, status)
-      .bind(2, summary_json)
-      .bind(3, id)
-      .step();
+  recording_faults([&] {
+    std::lock_guard lock(mutex_);
+    db_->prepare("UPDATE runs SET status = ?, summary = ? WHERE id = ?")
+        .bind(1, status)
+        .bind(2, summary_json)
+        .bind(3, id)
+        .step();
+  });
 }
 
 void RunStore::add_event(std::int64_t run, const StoredEvent& e) {
-  std::lock_guard lock(mutex_);
-  db_->prepare("INSERT INTO events(run_id, seq, step, kind, payload) VALUES (?,?,?,?,?)")
-      .bind(1, run)
-      .bind(2, e.seq)
-      .bind(3, e.step)
-      .bind(4, e.kind)
-      .bind(5, e.payload_json)
-      .step();
+  recording_faults([&] {
+    std::lock_guard lock(mutex_);
+    db_->prepare("INSERT INTO events(run_id, seq, step, kind, payload) VALUES (?,?,?,?,?)")
+        .bind(1, run)
+        .bind(2, e.seq)
+        .bind(3, e.step)
+        .bind(4, e.kind)
+        .bind(5, e.payload_json)
+        .step();
+  });
 }
 
 void RunStore::add_frames(const std::vector<std::pair<std::int64_t, StoredFrame>>& frames) {
   if (frames.empty()) return;
+  recording_faults([&] {
   std::lock_guard lock(mutex_);
   Transaction tx(*db_);
   Statement insert = db_->prepare(
       "INSERT INTO frames(run_id, seq, step, t, task_error, min_distance, collided, data) "
       "VALUES (?,?,?,?,?,?,?,?)");
   Statement count = db_->prepare("UPDATE runs SET frames = frames + ?, frame_bytes = frame_bytes + ? WHERE id = ?");
-  std::int64_t run = frames.front().first, in_run = 0, bytes = 0;
+  std::int64_t run = frames.front().first, in_run = 0, bytes = 0, all_bytes = 0;
   const auto flush_count = [&] {
     count.bind(1, in_run).bind(2, bytes).bind(3, run).step();
     count.reset();
@@ -119,6 +180,7 @@ void RunStore::add_frames(const std::vector<std::pair<std::int64_t, StoredFrame>
       bytes = 0;
     }
     bytes += std::int64_t(f.data.size());
+    all_bytes += std::int64_t(f.data.size());
     insert.bind(1, run_id).bind(2, f.seq).bind(3, f.step).bind(4, f.t).bind(5, f.task_error);
     if (std::isfinite(f.min_distance)) insert.bind(6, f.min_distance); else insert.bind_null(6);
     insert.bind(7, f.collided ? 1 : 0).bind_blob(8, f.data);
@@ -128,21 +190,33 @@ void RunStore::add_frames(const std::vector<std::pair<std::int64_t, StoredFrame>
   }
   flush_count();
   tx.commit();
+  total_frame_bytes_ += all_bytes;
+  });
 }
 
 bool RunStore::delete_run(std::int64_t id) {
-  std::lock_guard lock(mutex_);
-  Transaction tx(*db_);
-  db_->prepare("DELETE FROM frames WHERE run_id = ?").bind(1, id).step();
-  db_->prepare("DELETE FROM events WHERE run_id = ?").bind(1, id).step();
-  db_->prepare("DELETE FROM runs WHERE id = ?").bind(1, id).step();
-  const bool deleted = db_->changes() == 1;
-  tx.commit();
+  bool deleted = false;
+  recording_faults([&] {
+    std::lock_guard lock(mutex_);
+    Transaction tx(*db_);
+    std::int64_t bytes = 0;
+    {
+      Statement read = db_->prepare("SELECT frame_bytes FROM runs WHERE id = ?");
+      read.bind(1, id);
+      if (read.step()) bytes = read.column_int(0);
+    }
+    db_->prepare("DELETE FROM frames WHERE run_id = ?").bind(1, id).step();
+    db_->prepare("DELETE FROM events WHERE run_id = ?").bind(1, id).step();
+    db_->prepare("DELETE FROM runs WHERE id = ?").bind(1, id).step();
+    deleted = db_->changes() == 1;
+    tx.commit();
+    total_frame_bytes_ -= bytes;
+  });
   return deleted;
 }
 
 void RunStore::replace_frame_data(std::int64_t run, std::int64_t seq, const std::string& data) {
-  std::lock_guard lock(mutex_);
+  std::lock_guard lock(mutex_);  // tests only: not counted in total_frame_bytes
   db_->prepare("UPDATE frames SET data = ? WHERE run_id = ? AND seq = ?").bind_blob(1, data).bind(2, run).bind(3, seq).step();
 }
 
@@ -198,10 +272,36 @@ void RunStore::frames(std::int64_t run, std::int64_t from, std::int64_t to, std:
 }
 
 bool RunStore::put_scenario(const std::string& name, const std::string& json) {
-  std::lock_guard lock(mutex_);
-  Statement s = db_->prepare("INSERT OR IGNORE INTO scenarios(name, json, created) VALUES (?,?,?)");
-  s.bind(1, name).bind(2, json).bind(3, utc_now()).step();
-  return db_->changes() == 1;
+  return put_scenario(name, json, std::numeric_limits<std::int64_t>::max()) == PutScenario::added;
+}
+
+PutScenario RunStore::put_scenario(const std::string& name, const std::string& json, std::int64_t max_count) {
+  PutScenario result = PutScenario::exists;
+  recording_faults([&] {
+    std::lock_guard lock(mutex_);
+    {
+      Statement exists = db_->prepare("SELECT 1 FROM scenarios WHERE name = ?");
+      exists.bind(1, name);
+      if (exists.step()) return;
+    }
+    Statement count = db_->prepare("SELECT COUNT(*) FROM scenarios");
+    count.step();
+    if (count.column_int(0) >= max_count) {
+      result = PutScenario::full;
+      return;
+    }
+    Statement s = db_->prepare("INSERT OR IGNORE INTO scenarios(name, json, created) VALUES (?,?,?)");
+    s.bind(1, name).bind(2, json).bind(3, utc_now()).step();
+    if (db_->changes() == 1) result = PutScenario::added;
+  });
+  return result;
+}
+
+std::int64_t RunStore::scenario_count() {
+  std::lock_guard lock(read_mutex_);
+  Statement s = read_db_->prepare("SELECT COUNT(*) FROM scenarios");
+  s.step();
+  return s.column_int(0);
 }
 
 std::optional<std::string> RunStore::scenario(const std::string& name) {

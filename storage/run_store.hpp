@@ -4,6 +4,7 @@
 // last uncommitted batch, and readers never block the writer).
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -17,6 +18,16 @@
 namespace rrlab::storage {
 
 class Database;
+enum class StorageFault;
+
+// A write that failed because the disk is full or the file read-only (the
+// condition a new run must wait out): its kind and SQLite's message.
+struct WriteFault {
+  StorageFault fault;
+  std::string message;
+};
+
+enum class PutScenario { added, exists, full };
 
 struct NewRun {
   std::string scenario_name, scenario_json, method, params_json, mode;
@@ -115,6 +126,10 @@ class RunStore {
 
   // User scenarios (validated by the caller).
   bool put_scenario(const std::string& name, const std::string& json);  // false: exists
+  // Adds unless the name exists or `max_count` scenarios are stored (checked
+  // and inserted under the write lock: concurrent adds cannot pass the cap).
+  PutScenario put_scenario(const std::string& name, const std::string& json, std::int64_t max_count);
+  std::int64_t scenario_count();
   std::optional<std::string> scenario(const std::string& name);
   std::vector<std::string> scenario_names();
 
@@ -128,8 +143,30 @@ class RunStore {
 
   std::string integrity_check();  // "ok" when sound
 
+  // Bytes of frame data stored in the file: SUM(runs.frame_bytes) at open,
+  // kept current by every write and delete of this store.
+  std::int64_t total_frame_bytes() const { return total_frame_bytes_; }
+
+  // The last write that failed with a full disk or a read-only file, until a
+  // probe_write() succeeds. Every write method records such a failure (and
+  // rethrows it as a StorageError whose fault() says which).
+  std::optional<WriteFault> write_fault();
+  // Tries a real write (1 MiB, a frame batch, committed to table
+  // storage_probe, then deleted: a file with less room stays "full").
+  // Success clears the recorded fault; failure records it. True when writable.
+  bool probe_write();
+
+  // Tests only: caps the file at `pages` pages on the write connection
+  // (PRAGMA max_page_count), so that tests can fill the "disk".
+  void set_max_page_count(std::int64_t pages);
+
  private:
-  std::mutex mutex_, read_mutex_;
+  // Runs a write; a StorageError with a write fault is recorded, then rethrown.
+  void recording_faults(const std::function<void()>& write);
+
+  std::mutex mutex_, read_mutex_, fault_mutex_;
+  std::atomic<std::int64_t> total_frame_bytes_{0};
+  std::optional<WriteFault> fault_;  // guarded by fault_mutex_
   std::unique_ptr<Database> db_;       // writes (and integrity checks)
   std::unique_ptr<Database> read_db_;  // reads: exports never hold up the frame writer
   int interrupted_at_open_ = 0;

@@ -8,11 +8,13 @@
 namespace rrlab::storage {
 
 std::optional<std::int64_t> RunStore::add_sweep_run(const FinishedRun& finished, const SweepRunRow& row) {
+  std::optional<std::int64_t> added;
+  recording_faults([&] {
   std::lock_guard lock(mutex_);
   Transaction tx(*db_);
   Statement exists = db_->prepare("SELECT 1 FROM sweep_runs WHERE sweep = ? AND key = ?");
   exists.bind(1, row.sweep).bind(2, row.key);
-  if (exists.step()) return std::nullopt;  // rolled back: nothing was written
+  if (exists.step()) return;  // rolled back: nothing was written
 
   const NewRun& run = finished.run;
   Statement insert_run = db_->prepare(
@@ -62,7 +64,10 @@ std::optional<std::int64_t> RunStore::add_sweep_run(const FinishedRun& finished,
       .bind(7, row.success ? 1 : 0)
       .step();
   tx.commit();
-  return id;
+  total_frame_bytes_ += frame_bytes;
+  added = id;
+  });
+  return added;
 }
 
 std::vector<std::string> RunStore::sweep_keys(const std::string& sweep) {

@@ -71,3 +71,8 @@ CREATE TABLE IF NOT EXISTS sweep_runs (
   PRIMARY KEY (sweep, key)
 ) WITHOUT ROWID;
 CREATE INDEX IF NOT EXISTS sweep_runs_run ON sweep_runs(run_id);
+
+-- RunStore::probe_write commits 1 MiB here and deletes it again: whether a
+-- full disk or a read-only file can be written again. Always empty. Added
+-- without a version change (IF NOT EXISTS adds it at open).
+CREATE TABLE IF NOT EXISTS storage_probe (bytes BLOB);

@@ -122,8 +122,19 @@ class Client:
         return self.request("GET", "/api/methods")
 
     def scenarios(self):
-        """The catalogue: [{name, title, description, source, builtin}, ...]."""
-        return self.request("GET", "/api/scenarios")
+        """The whole catalogue as summaries: [{name, title, description (at most
+        200 characters), source, builtin, kind, dof, obstacles, bytes}, ...],
+        fetched a page at a time (scenario_page)."""
+        out = []
+        while True:
+            page = self.scenario_page(limit=1000, offset=len(out))
+            out.extend(page["scenarios"])
+            if not page["scenarios"] or len(out) >= page["total"]:
+                return out
+
+    def scenario_page(self, limit=100, offset=0):
+        """One page of the catalogue: {scenarios: [summary, ...], total, offset, limit}."""
+        return self.request("GET", "/api/scenarios?limit=%d&offset=%d" % (limit, offset))
 
     def scenario(self, name):
         """One scenario's JSON."""

@@ -20,7 +20,10 @@ std::string safe_dump(const nlohmann::json& body) {
 
 namespace {
 nlohmann::json error_json(const ApiError& e) {
-  return {{"code", e.code()}, {"message", e.what()}, {"path", e.path()}};
+  nlohmann::json out = {{"code", e.code()}, {"message", e.what()}, {"path", e.path()}};
+  if (e.detail().is_object())
+    for (const auto& [key, value] : e.detail().items()) out.emplace(key, value);  // never over code/message/path
+  return out;
 }
 }  // namespace
 
@@ -161,6 +164,11 @@ void rethrow_as_api_error(const std::string& prefix, int validation_status) {
   } catch (const InputStateError& e) {
     throw ApiError(409, "wrong_state", e.what(), prefix);
   } catch (const storage::StorageError& e) {
+    // a full disk or read-only file: the request may succeed later (reads still work)
+    if (e.fault() == storage::StorageFault::full)
+      throw ApiError(503, "storage_full", std::string("the database's disk is full: ") + e.what(), "");
+    if (e.fault() == storage::StorageFault::readonly)
+      throw ApiError(503, "storage_readonly", std::string("the database cannot be written: ") + e.what(), "");
     throw ApiError(500, "storage", e.what(), "");
   } catch (const std::exception& e) {
     throw ApiError(500, "internal", e.what(), "");

@@ -52,18 +52,26 @@ struct ApiResponse {
   std::vector<std::pair<std::string, std::string>> headers;  // extra header fields (Retry-After)
 };
 
-// A 4xx/5xx answer: {"error": {"code", "message", "path"}}.
+// A 4xx/5xx answer: {"error": {"code", "message", "path"}}, plus the members
+// of `detail` if any (a refused limit: {"limit", "requested", "allowed", ...}).
 class ApiError : public std::runtime_error {
  public:
-  ApiError(int status, std::string code, const std::string& message, std::string path = "")
-      : std::runtime_error(message), status_(status), code_(std::move(code)), path_(std::move(path)) {}
+  ApiError(int status, std::string code, const std::string& message, std::string path = "",
+           nlohmann::json detail = nullptr)
+      : std::runtime_error(message),
+        status_(status),
+        code_(std::move(code)),
+        path_(std::move(path)),
+        detail_(std::move(detail)) {}
   int status() const { return status_; }
   const std::string& code() const { return code_; }
   const std::string& path() const { return path_; }
+  const nlohmann::json& detail() const { return detail_; }
 
  private:
   int status_;
   std::string code_, path_;
+  nlohmann::json detail_;
 };
 
 ApiResponse json_response(int status, const nlohmann::json& body);

@@ -6,6 +6,7 @@
 #include "methods/registry_json.hpp"
 #include "scenario/json_reader.hpp"
 #include "sim/run_inputs.hpp"
+#include "storage/database.hpp"
 #include "storage/frame_codec.hpp"
 #include "storage/frame_writer.hpp"
 #include "storage/run_store.hpp"
@@ -59,6 +60,10 @@ class RunGroup::LaneSource final : public FrameSource {
   int lane_;
 };
 
+// ---- the storage budget ----
+
+std::int64_t StorageBudget::stored() const { return store_.total_frame_bytes() + writer_.queued_bytes(); }
+
 // ---- construction ----
 
 RunGroup::RunGroup(RunServices services, const std::vector<Scenario>& scenarios, const GroupOptions& options)
@@ -77,16 +82,47 @@ RunGroup::RunGroup(RunServices services, const std::vector<Scenario>& scenarios,
     }
     if (options_.steps) lanes_[i].sim->set_total_steps(*options_.steps);
   }
-  for (size_t i = 0; i < scenarios.size(); ++i) {
-    Lane& lane = lanes_[i];
-    storage::NewRun run = new_run_of(scenarios[i], *lane.sim, options_.mode);
-    run.source_run = options_.source_run;
-    if (options_.compare && i > 0) run.compare_group = lanes_[0].run_id;
-    lane.run_id = services_.store.create_run(run);
-    if (options_.compare && i == 0) services_.store.set_compare_group(lane.run_id, lane.run_id);
-    if (paused_) services_.store.set_status(lane.run_id, "paused");
-    publish(lane);
+  // the request's cost and storage, refused before anything is stored
+  if (services_.admit) {
+    std::vector<LaneEstimate> estimates;
+    for (size_t i = 0; i < scenarios.size(); ++i)
+      estimates.push_back({scenarios[i].model.dof(), std::int64_t(scenarios[i].scene.obstacles.size()),
+                           std::int64_t(lanes_[i].sim->total_steps()),
+                           std::int64_t(storage::pack_frame(lanes_[i].sim->frame()).size())});
+    const std::vector<std::int64_t> reserved = services_.admit(estimates);
+    for (size_t i = 0; i < scenarios.size() && i < reserved.size(); ++i) lanes_[i].reserved = reserved[i];
   }
+  try {
+    for (size_t i = 0; i < scenarios.size(); ++i) {
+      Lane& lane = lanes_[i];
+      storage::NewRun run = new_run_of(scenarios[i], *lane.sim, options_.mode);
+      run.source_run = options_.source_run;
+      if (options_.compare && i > 0) run.compare_group = lanes_[0].run_id;
+      lane.run_id = services_.store.create_run(run);
+      if (options_.compare && i == 0) services_.store.set_compare_group(lane.run_id, lane.run_id);
+      if (paused_) services_.store.set_status(lane.run_id, "paused");
+      publish(lane);
+    }
+  } catch (...) {
+    release_reservations();
+    throw;
+  }
+}
+
+void RunGroup::release_reservations_of(Lane& lane) {
+  if (services_.budget) services_.budget->release(lane.reserved);
+  lane.reserved = 0;
+}
+
+void RunGroup::release_reservations() {
+  for (Lane& lane : lanes_) release_reservations_of(lane);
+}
+
+std::optional<std::string> RunGroup::write_failure() {
+  for (const Lane& lane : lanes_)
+    if (auto error = services_.writer.run_error(lane.run_id))
+      return "storing the frames of run " + std::to_string(lane.run_id) + " failed: " + *error;
+  return std::nullopt;
 }
 
 RunGroup::~RunGroup() = default;
@@ -96,6 +132,7 @@ void RunGroup::start() {
   try {
     std::thread([self = shared_from_this()] { self->loop(); }).detach();
   } catch (const std::exception& e) {
+    release_reservations();
     for (const Lane& lane : lanes_) services_.store.finish_run(lane.run_id, "failed", "{}");
     finished_ = true;
     {
@@ -138,10 +175,47 @@ void RunGroup::step_lanes() {
     if (lane.sim->done()) continue;
     timed_step(*lane.sim);
     const Frame& f = lane.sim->frame();
-    if (lane.seq < services_.max_stored_frames)  // pushed once the lock is released
-      outbox_.emplace_back(lane.run_id, storage::stored_frame(lane.seq, f, storage::pack_frame(f)));
+    if (lane.storage_stopped.empty()) {
+      std::string packed = storage::pack_frame(f);
+      if (store_frame(lane, std::int64_t(packed.size())))  // pushed once the lock is released
+        outbox_.emplace_back(lane.run_id, storage::stored_frame(lane.seq, f, std::move(packed)));
+    }
     ++lane.seq;
   }
+}
+
+// The per-run and total limits, checked frame by frame: they hold even where
+// the estimate did not (a live run's resets, obstacles added, a method
+// switched). A lane that reaches one stores no later frame and says why in
+// its summary ("storage_stopped"); it is still simulated.
+bool RunGroup::store_frame(Lane& lane, std::int64_t bytes) {
+  const auto stop = [&](const std::string& why) {
+    lane.storage_stopped = why + "; later steps were simulated, not stored";
+    release_reservations_of(lane);
+    return false;
+  };
+  if (lane.frames_stored >= services_.max_stored_frames)
+    return stop("max_run_frames: the run stored " + std::to_string(lane.frames_stored) +
+                " frames, the most a run may store (serve --max-run-frames)");
+  if (lane.bytes_stored + bytes > services_.max_run_bytes)
+    return stop("max_run_bytes: the run stored " + std::to_string(lane.bytes_stored) + " bytes of frames and the next " +
+                std::to_string(bytes) + " would pass " + std::to_string(services_.max_run_bytes) +
+                " (serve --max-run-bytes)");
+  if (services_.budget) {
+    if (lane.reserved >= bytes) {
+      lane.reserved -= bytes;
+      services_.budget->release(bytes);
+    } else {
+      release_reservations_of(lane);
+      if (!services_.budget->fits(bytes))
+        return stop("max_total_bytes: the database holds " + std::to_string(services_.budget->used()) +
+                    " bytes of frames (stored, queued or reserved by running runs) of at most " +
+                    std::to_string(services_.budget->max()) + " (serve --max-total-bytes)");
+    }
+  }
+  ++lane.frames_stored;
+  lane.bytes_stored += bytes;
+  return true;
 }
 
 const char* RunGroup::lane_status(const Lane& lane) const {
@@ -192,6 +266,14 @@ void RunGroup::loop() {
       for (auto& [run, frame] : outbox_) services_.writer.push(run, std::move(frame));
       outbox_.clear();
       lock.lock();
+      // a full disk or a read-only file: the run ends as failed, its reason in the summary
+      if (services_.writer.failures() != writer_failures_seen_) {
+        writer_failures_seen_ = services_.writer.failures();
+        if (auto error = write_failure()) {
+          failure_ = *error;
+          break;
+        }
+      }
     }
     ++anchor_steps;
     // publish on a display-rate schedule (deadlines, so that steps of 10 ms
@@ -219,17 +301,35 @@ void RunGroup::loop() {
   finish(!failure_.empty() ? "failed" : stopped ? "stopped" : "completed");
 }
 
-void RunGroup::finish(const std::string& status) {
+void RunGroup::finish(const std::string& requested_status) {
   services_.writer.flush();
   std::vector<std::function<void()>> callbacks;
   {
     std::lock_guard lock(mutex_);
+    release_reservations();
+    std::string status = requested_status;
+    if (auto error = write_failure()) {  // the last batches may have failed after the loop
+      if (failure_.empty()) failure_ = *error;
+      status = "failed";
+      // frames_stored: what the store kept (a gap-free prefix), not what was pushed
+      for (Lane& lane : lanes_) {
+        try {
+          if (auto run = services_.store.run(lane.run_id)) lane.frames_stored = run->frames;
+        } catch (const std::exception&) {
+        }
+      }
+    }
     for (Lane& lane : lanes_) {
       lane.status = status;
       try {
         services_.store.finish_run(lane.run_id, status, summary_locked(lane).dump());
       } catch (const std::exception&) {
+        // no room for the summary: the status alone is a smaller write
         lane.status = "failed";
+        try {
+          services_.store.set_status(lane.run_id, "failed");
+        } catch (const std::exception&) {
+        }
       }
     }
     finished_ = true;
@@ -269,7 +369,8 @@ void RunGroup::when_finished(std::function<void()> callback) {
 json RunGroup::summary_locked(Lane& lane) {
   json s = summary_to_json(lane.sim->summary());
   s["run"] = lane.run_id;
-  s["frames_stored"] = std::min<std::int64_t>(lane.seq, services_.max_stored_frames);
+  s["frames_stored"] = lane.frames_stored;
+  if (!lane.storage_stopped.empty()) s["storage_stopped"] = lane.storage_stopped;
   if (!failure_.empty()) s["failure"] = failure_;
   return s;
 }
@@ -371,6 +472,11 @@ json RunGroup::input(int lane_index, const std::string& kind, const json& payloa
       failure_ = std::string("storing an input event failed: ") + e.what();
       stop_requested_ = true;
       wake_.notify_all();
+      const auto* storage_error = dynamic_cast<const storage::StorageError*>(&e);
+      if (storage_error && storage_error->fault() == storage::StorageFault::full)
+        throw ApiError(503, "storage_full", failure_, prefix);
+      if (storage_error && storage_error->fault() == storage::StorageFault::readonly)
+        throw ApiError(503, "storage_readonly", failure_, prefix);
       throw ApiError(500, "storage", failure_, prefix);
     }
     if (kind != "joystick") ++lane.scene_version;

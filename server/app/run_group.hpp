@@ -31,10 +31,50 @@ class FrameWriter;
 
 namespace rrlab::server {
 
+// Frame bytes against `serve --max-total-bytes`: what the store holds
+// (RunStore::total_frame_bytes), what the writer has queued, and what admitted
+// runs may still store (their estimates, reserved at admission and released
+// as their frames are pushed or when they end).
+class StorageBudget {
+ public:
+  StorageBudget(storage::RunStore& store, storage::FrameWriter& writer, std::int64_t max_total_bytes)
+      : store_(store), writer_(writer), max_(max_total_bytes) {}
+  std::int64_t max() const { return max_; }
+  std::int64_t stored() const;  // in the store or queued for it
+  std::int64_t reserved() const { return reserved_; }
+  std::int64_t used() const { return stored() + reserved(); }
+  void reserve(std::int64_t bytes) { reserved_ += bytes; }
+  void release(std::int64_t bytes) { reserved_ -= bytes; }
+  // A frame beyond its run's reservation: true if it fits under the maximum.
+  bool fits(std::int64_t bytes) const { return used() + bytes <= max_; }
+
+ private:
+  storage::RunStore& store_;
+  storage::FrameWriter& writer_;
+  const std::int64_t max_;
+  std::atomic<std::int64_t> reserved_{0};
+};
+
+// What a lane would store and cost, known before anything is stored: the
+// steps it is asked for (a live run's resets may add more; the per-run limits
+// still hold then) and the bytes of one packed frame.
+struct LaneEstimate {
+  int dof = 0;
+  std::int64_t obstacles = 0;
+  std::int64_t steps = 0;
+  std::int64_t frame_bytes = 0;
+};
+
 struct RunServices {
   storage::RunStore& store;
   storage::FrameWriter& writer;
-  long max_stored_frames = 1'000'000;  // per run; later steps are simulated, not stored
+  long max_stored_frames = 1'000'000;          // per run (serve --max-run-frames)
+  std::int64_t max_run_bytes = 256ll << 20;    // per run (serve --max-run-bytes)
+  StorageBudget* budget = nullptr;             // total (serve --max-total-bytes); null: none
+  // Called with every lane's estimate once the simulators are built and
+  // before any run is stored: throws ApiError to refuse the request; returns
+  // each lane's bytes to reserve from the budget (reserved by the caller).
+  std::function<std::vector<std::int64_t>(const std::vector<LaneEstimate>&)> admit;
 };
 
 // A real-time factor: 0 (as fast as possible) or in [0.001, 1000].
@@ -85,6 +125,9 @@ class RunGroup : public std::enable_shared_from_this<RunGroup> {
     std::unique_ptr<Simulator> sim;
     std::unique_ptr<FrameGeometry> geometry;  // what frames draw beyond the simulator's record
     std::int64_t seq = 0;  // steps taken in this run (over resets)
+    std::int64_t frames_stored = 0, bytes_stored = 0;  // pushed to the writer
+    std::int64_t reserved = 0;  // bytes of the budget reserved for this lane, not yet pushed
+    std::string storage_stopped;  // why later frames are not stored ("": all stored)
     std::uint64_t scene_version = 1;
     std::string status = "running";
     // published for clients (guarded by publish_mutex_)
@@ -101,6 +144,10 @@ class RunGroup : public std::enable_shared_from_this<RunGroup> {
   bool all_done() const;
   void step_lanes();
   void publish(Lane& lane);                 // holds mutex_
+  bool store_frame(Lane& lane, std::int64_t bytes);  // false: a limit stops this lane's storage
+  void release_reservations();
+  void release_reservations_of(Lane& lane);
+  std::optional<std::string> write_failure();  // a lane's frames could not be written
   void finish(const std::string& status);  // holds no lock
   const char* lane_status(const Lane& lane) const;
 
@@ -122,6 +169,7 @@ class RunGroup : public std::enable_shared_from_this<RunGroup> {
   std::mutex done_mutex_;
   std::vector<std::function<void()>> on_finished_;
   std::string failure_;  // an exception from a step ends the run as "failed"
+  std::uint64_t writer_failures_seen_ = 0;
   std::vector<std::pair<std::int64_t, storage::StoredFrame>> outbox_;  // this step's frames
   std::mutex exit_mutex_;
   std::condition_variable exited_cv_;

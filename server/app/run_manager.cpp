@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "app/replay_player.hpp"
+#include "storage/database.hpp"
 #include "storage/run_store.hpp"
 
 namespace rrlab::server {
@@ -19,7 +20,11 @@ using nlohmann::json;
 
 RunManager::RunManager(storage::RunStore& store, storage::FrameWriter& writer, const std::string& scenarios_dir,
                        ServerLimits limits)
-    : store_(store), writer_(writer), limits_(limits), sweeps_(std::make_unique<SweepJobs>(*this, scenarios_dir)) {
+    : store_(store),
+      writer_(writer),
+      limits_(limits),
+      sweeps_(std::make_unique<SweepJobs>(*this, scenarios_dir)),
+      budget_(store, writer, limits.max_total_bytes) {
   namespace fs = std::filesystem;
   std::error_code ec;
   if (scenarios_dir.empty() || !fs::is_directory(scenarios_dir, ec)) return;
@@ -69,7 +74,25 @@ int RunManager::active_locked() const {
   return active;
 }
 
+double run_cost(const LaneEstimate& lane) {
+  return double(lane.dof) * double(lane.obstacles + 1) * double(lane.steps);
+}
+
+void RunManager::check_writable() {
+  if (!store_.write_fault() || store_.probe_write()) return;
+  const auto fault = store_.write_fault();
+  if (!fault) return;
+  const bool full = fault->fault == storage::StorageFault::full;
+  throw ApiError(503, full ? "storage_full" : "storage_readonly",
+                 std::string(full ? "the database's disk is full" : "the database cannot be written") +
+                     " (" + fault->message + "): no new run is started until " +
+                     (full ? "space is freed (delete runs, or free the disk)" : "the file is writable again") +
+                     "; stored runs can still be read",
+                 "");
+}
+
 void RunManager::begin_job(std::int64_t source_run) {
+  check_writable();
   std::lock_guard lock(mutex_);
   if (stopping_ || active_locked() >= limits_.max_active_runs)
     throw ApiError(503, "busy", "at most " + std::to_string(limits_.max_active_runs) +
@@ -89,18 +112,63 @@ void RunManager::end_job(std::int64_t source_run) {
   jobs_done_.notify_all();
 }
 
-json RunManager::scenario_list() {
+json RunManager::scenario_summary(const std::string& name, const json& doc, bool builtin) {
+  constexpr size_t kExcerpt = 200;  // characters of the description
+  std::string description = doc.contains("description") && doc["description"].is_string()
+                                ? doc["description"].get<std::string>()
+                                : "";
+  if (description.size() > kExcerpt) {
+    size_t cut = kExcerpt;
+    while (cut > 0 && (static_cast<unsigned char>(description[cut]) & 0xC0) == 0x80) --cut;  // whole UTF-8 characters
+    description = description.substr(0, cut) + "\u2026";
+  }
+  json summary = {{"name", name},
+                  {"title", doc.contains("name") && doc["name"].is_string() ? doc["name"].get<std::string>() : name},
+                  {"description", description},
+                  {"source", doc.contains("source") && doc["source"].is_string() ? doc["source"].get<std::string>() : ""},
+                  {"builtin", builtin},
+                  {"kind", nullptr},
+                  {"dof", nullptr},
+                  {"obstacles", nullptr},
+                  {"bytes", doc.dump().size()}};
+  try {
+    const Scenario scenario = parse_scenario(doc);
+    summary["kind"] = to_string(scenario.model.kind);
+    summary["dof"] = scenario.model.dof();
+    summary["obstacles"] = scenario.scene.obstacles.size();
+  } catch (const std::exception&) {
+    // stored under older rules: listed, with what the summary cannot say as null
+  }
+  return summary;
+}
+
+json RunManager::scenario_list(std::int64_t limit, std::int64_t offset) {
+  const std::vector<std::string> stored = store_.scenario_names();
+  const std::int64_t builtin = std::int64_t(catalogue_names_.size());
+  const std::int64_t total = builtin + std::int64_t(stored.size());
   json list = json::array();
-  const auto entry = [&](const std::string& name, const json& doc, bool builtin) {
-    list.push_back({{"name", name},
-                    {"title", doc.value("name", name)},
-                    {"description", doc.value("description", "")},
-                    {"source", doc.value("source", "")},
-                    {"builtin", builtin}});
-  };
-  for (const std::string& stem : catalogue_names_) entry(stem, catalogue_.at(stem), true);
-  for (const std::string& name : store_.scenario_names()) entry(name, json::parse(*store_.scenario(name)), false);
-  return list;
+  for (std::int64_t i = offset; i < total && i < offset + limit; ++i) {
+    if (i < builtin) {
+      const std::string& stem = catalogue_names_[size_t(i)];
+      list.push_back(scenario_summary(stem, catalogue_.at(stem), true));
+      continue;
+    }
+    const std::string& name = stored[size_t(i - builtin)];
+    {
+      std::lock_guard lock(summaries_mutex_);
+      if (auto it = stored_summaries_.find(name); it != stored_summaries_.end()) {
+        list.push_back(it->second);
+        continue;
+      }
+    }
+    const auto text = store_.scenario(name);
+    if (!text) continue;  // deleted meanwhile
+    json summary = scenario_summary(name, json::parse(*text), false);
+    std::lock_guard lock(summaries_mutex_);
+    stored_summaries_[name] = summary;
+    list.push_back(std::move(summary));
+  }
+  return {{"scenarios", list}, {"total", total}, {"offset", offset}, {"limit", limit}};
 }
 
 json RunManager::scenario_json(const std::string& name) {
@@ -138,8 +206,21 @@ json RunManager::add_scenario(const json& body) {
     throw ApiError(400, "invalid", "must be 1 to 64 letters, digits, '_', '-' or '.'", "name");
   checked_scenario(body);
   // never replaces: a file of scenarios/ nor one added earlier (runs name their scenario)
-  if (catalogue_.count(name) || !store_.put_scenario(name, body.dump()))
-    throw ApiError(409, "exists", "a scenario \"" + name + "\" exists already; choose another name", "name");
+  const auto exists = [&] {
+    return ApiError(409, "exists", "a scenario \"" + name + "\" exists already; choose another name", "name");
+  };
+  if (catalogue_.count(name)) throw exists();
+  switch (store_.put_scenario(name, body.dump(), limits_.max_scenarios)) {
+    case storage::PutScenario::added: break;
+    case storage::PutScenario::exists: throw exists();
+    case storage::PutScenario::full:
+      throw ApiError(507, "storage_quota",
+                     "max_scenarios: " + std::to_string(limits_.max_scenarios) +
+                         " scenarios are stored, the most this server keeps (serve --max-scenarios); "
+                         "this one is not stored",
+                     "",
+                     {{"limit", "max_scenarios"}, {"stored", store_.scenario_count()}, {"allowed", limits_.max_scenarios}});
+  }
   return {{"name", name}};
 }
 
@@ -195,7 +276,69 @@ void RunManager::prune_locked() {
   }
 }
 
+namespace {
+std::string mib(std::int64_t bytes) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f MiB", double(bytes) / double(1 << 20));
+  return text;
+}
+}  // namespace
+
+// The request's cost and storage against the limits, before anything is
+// stored or started; reserves each lane's estimated bytes from the budget.
+std::vector<std::int64_t> RunManager::admit(const std::vector<LaneEstimate>& lanes) {
+  double cost = 0;
+  std::int64_t bytes = 0;
+  std::vector<std::int64_t> reserve;
+  for (const LaneEstimate& lane : lanes) {
+    if (lane.steps > limits_.max_stored_frames)
+      throw ApiError(413, "run_too_large",
+                     "max_run_frames: " + std::to_string(lane.steps) + " steps would store " +
+                         std::to_string(lane.steps) + " frames; a run may store at most " +
+                         std::to_string(limits_.max_stored_frames) + " (serve --max-run-frames): ask for fewer steps",
+                     "steps", {{"limit", "max_run_frames"}, {"requested", lane.steps}, {"allowed", limits_.max_stored_frames}});
+    const std::int64_t lane_bytes = lane.steps * lane.frame_bytes;
+    if (lane_bytes > limits_.max_run_bytes)
+      throw ApiError(413, "run_too_large",
+                     "max_run_bytes: " + std::to_string(lane.steps) + " frames of " + std::to_string(lane.frame_bytes) +
+                         " bytes (" + std::to_string(lane.dof) + " joints) are " + std::to_string(lane_bytes) + " bytes (" +
+                         mib(lane_bytes) + "); a run may store at most " + std::to_string(limits_.max_run_bytes) +
+                         " (" + mib(limits_.max_run_bytes) + ", serve --max-run-bytes): ask for fewer steps",
+                     "steps",
+                     {{"limit", "max_run_bytes"}, {"requested", lane_bytes}, {"allowed", limits_.max_run_bytes},
+                      {"frames", lane.steps}, {"frame_bytes", lane.frame_bytes}});
+    cost += run_cost(lane);
+    bytes += lane_bytes;
+    reserve.push_back(lane_bytes);
+  }
+  if (cost > limits_.max_run_cost) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%.6g", cost);
+    std::string message = "max_run_cost: the estimate DOF x (obstacles + 1) x steps";
+    for (const LaneEstimate& lane : lanes)
+      message += (&lane == &lanes.front() ? " = " : " + ") + std::to_string(lane.dof) + " x (" +
+                 std::to_string(lane.obstacles) + " + 1) x " + std::to_string(lane.steps);
+    char allowed[64];
+    std::snprintf(allowed, sizeof allowed, "%.6g", limits_.max_run_cost);
+    throw ApiError(413, "run_too_large",
+                   message + " = " + text + " exceeds " + allowed + " (serve --max-run-cost): ask for fewer steps",
+                   "steps", {{"limit", "max_run_cost"}, {"requested", cost}, {"allowed", limits_.max_run_cost}});
+  }
+  const std::int64_t used = budget_.used();
+  if (used + bytes > budget_.max())
+    throw ApiError(507, "storage_quota",
+                   "max_total_bytes: the runs would store " + std::to_string(bytes) + " bytes of frames (" + mib(bytes) +
+                       ") and the database holds " + std::to_string(used) + " (" + mib(used) +
+                       ", stored, queued or reserved by running runs) of at most " + std::to_string(budget_.max()) +
+                       " (" + mib(budget_.max()) + ", serve --max-total-bytes): delete runs or ask for fewer steps",
+                   "",
+                   {{"limit", "max_total_bytes"}, {"requested", bytes}, {"stored", used}, {"allowed", budget_.max()}});
+  budget_.reserve(bytes);
+  return reserve;
+}
+
 std::shared_ptr<RunGroup> RunManager::start_group(const std::vector<Scenario>& lanes, const GroupOptions& options) {
+  check_writable();
   std::lock_guard start_lock(start_mutex_);  // the limit holds under concurrent starts
   {
     std::lock_guard lock(mutex_);
@@ -204,7 +347,8 @@ std::shared_ptr<RunGroup> RunManager::start_group(const std::vector<Scenario>& l
       throw ApiError(503, "busy", "at most " + std::to_string(limits_.max_active_runs) +
                                       " runs may be active at once; stop or wait for some", "");
   }
-  RunServices services{store_, writer_, limits_.max_stored_frames};
+  RunServices services{store_, writer_, limits_.max_stored_frames, limits_.max_run_bytes, &budget_,
+                       [this](const std::vector<LaneEstimate>& estimates) { return admit(estimates); }};
   auto group = std::make_shared<RunGroup>(services, lanes, options);
   group->start();  // registered only once its thread runs
   std::lock_guard lock(mutex_);

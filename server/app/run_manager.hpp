@@ -27,13 +27,28 @@ class SweepJobs;
 
 class ReplayPlayer;
 
+// Every limit is a `serve` option (server/main.cpp). A request beyond a
+// per-run limit is 413 "run_too_large", beyond a total 507 "storage_quota";
+// the error names the limit ("limit") and the numbers ("requested",
+// "allowed", and what is stored).
 struct ServerLimits {
   int max_active_runs = 256;      // unfinished runs at once (503 beyond)
   int max_kept_finished = 64;     // finished groups kept in memory for their WebSocket clients
   int max_replays = 32;
-  long max_stored_frames = 1'000'000;
+  long max_stored_frames = 1'000'000;        // --max-run-frames: frames one run may store
+  std::int64_t max_run_bytes = 256ll << 20;  // --max-run-bytes: frame bytes one run may store
+  std::int64_t max_total_bytes = 8ll << 30;  // --max-total-bytes: frame bytes of every run in the database
+  // --max-run-cost: DOF x (obstacles + 1) x steps, summed over a request's
+  // runs. 2e10 is about ten minutes of one core (a 64-joint, 256-obstacle,
+  // 1e7-step run is 1.6e11, about 80 minutes).
+  double max_run_cost = 2e10;
+  std::int64_t max_scenarios = 1000;         // --max-scenarios: scenarios stored over REST
   double default_display_hz = 60;
 };
+
+// A run's cost estimate: DOF x (obstacles + 1) x steps (the +1: a run without
+// obstacles still costs its kinematics).
+double run_cost(const LaneEstimate& lane);
 
 class RunManager {
  public:
@@ -46,14 +61,22 @@ class RunManager {
   const ServerLimits& limits() const { return limits_; }
 
   // Scenarios: by catalogue name (file stem or its "name"), or inline JSON.
-  nlohmann::json scenario_list();
+  // The list: {"scenarios": [summary...], "total", "offset", "limit"}, files
+  // of scenarios/ first (by stem), then stored ones (by name); a summary is
+  // {name, title, description (at most 200 characters), source, builtin,
+  // kind, dof, obstacles, bytes} (bytes: the scenario's JSON text).
+  nlohmann::json scenario_list(std::int64_t limit, std::int64_t offset);
   nlohmann::json scenario_json(const std::string& name);      // 404 if unknown
   nlohmann::json add_scenario(const nlohmann::json& body);    // 201 body; 409 if it exists
   // {"valid": true, name, dof, ...} for a scenario a run would accept (422 naming the path otherwise).
   nlohmann::json validate_scenario(const nlohmann::json& body);
   Scenario resolve_scenario(const nlohmann::json& value, const std::string& path);
 
-  // A new group, registered and started.
+  // 503 storage_full/storage_readonly while a write fault lasts (a probe
+  // write decides whether it still does).
+  void check_writable();
+  // A new group, registered and started. Refuses (before storing anything)
+  // a request beyond the per-run limits, the cost limit or the total bytes.
   std::shared_ptr<RunGroup> start_group(const std::vector<Scenario>& lanes, const GroupOptions& options);
   // The group holding run `id` (and its lane), or null when it is not in memory.
   std::shared_ptr<RunGroup> group_of(std::int64_t id, int& lane);
@@ -81,6 +104,8 @@ class RunManager {
 
  private:
   void prune_locked();
+  std::vector<std::int64_t> admit(const std::vector<LaneEstimate>& lanes);  // under start_mutex_
+  nlohmann::json scenario_summary(const std::string& name, const nlohmann::json& doc, bool builtin);
   int active_locked() const;  // unfinished runs (lanes) and jobs
 
   storage::RunStore& store_;
@@ -99,6 +124,9 @@ class RunManager {
   std::vector<std::shared_ptr<ReplayPlayer>> retired_;  // evicted, their threads ending
   std::int64_t next_replay_ = 1;
   std::unique_ptr<SweepJobs> sweeps_;
+  StorageBudget budget_;
+  std::mutex summaries_mutex_;
+  std::map<std::string, nlohmann::json> stored_summaries_;  // stored scenarios never change: computed once
 };
 
 }  // namespace rrlab::server

@@ -31,9 +31,15 @@ int serve(const ServeOptions& options) {
     const std::filesystem::path db(options.db);
     if (db.has_parent_path()) std::filesystem::create_directories(db.parent_path());
     storage::RunStore store(options.db);
+    if (options.test_db_max_pages > 0) store.set_max_page_count(options.test_db_max_pages);
     storage::FrameWriter writer(store);
     ServerLimits limits;
     limits.default_display_hz = options.display_hz;
+    limits.max_stored_frames = options.max_run_frames;
+    limits.max_run_bytes = options.max_run_bytes;
+    limits.max_total_bytes = options.max_total_bytes;
+    limits.max_run_cost = options.max_run_cost;
+    limits.max_scenarios = options.max_scenarios;
     RunManager runs(store, writer, find_dir(options.scenarios_dir, "scenarios"), limits);
 
     auto state = std::make_shared<ServerState>(runs, ServerInfo{RRLAB_VERSION, std::chrono::steady_clock::now()},

@@ -2,7 +2,13 @@
 
 namespace rrlab::server {
 
-ApiResponse list_scenarios(RouteContext& c) { return json_response(200, c.runs.scenario_list()); }
+// {"scenarios": [summary...], "total", "offset", "limit"}: summaries, not the
+// scenarios (GET /api/scenarios/{name} has one whole), a page at a time.
+ApiResponse list_scenarios(RouteContext& c) {
+  const std::int64_t limit = query_int(c, "limit", 100, 1, 1000);
+  const std::int64_t offset = query_int(c, "offset", 0, 0, 1'000'000'000);
+  return json_response(200, c.runs.scenario_list(limit, offset));
+}
 
 ApiResponse get_scenario(RouteContext& c) { return json_response(200, c.runs.scenario_json(c.captures.at(0))); }
 

@@ -9,6 +9,10 @@ namespace {
 
 using nlohmann::json;
 
+// The ten-million-step runs below only need to be running when the server is
+// killed or stopped: raise the per-run quotas that would refuse them (413).
+const std::vector<std::string> kLongRuns = {"--max-run-frames", "10000000", "--max-run-bytes", "4000000000"};
+
 class Determinism : public ServerTest {};
 
 TEST_F(Determinism, LiveInputsReSimulateBitForBit) {
@@ -78,7 +82,7 @@ TEST(CrashSafety, KillDuringABatchRunLeavesASoundDatabase) {
   std::int64_t completed = 0, interrupted = 0;
   long completed_frames = 0;
   {
-    ServerProcess server(db);
+    ServerProcess server(db, kLongRuns);
     const HttpResult done = http_json(server.port(), "POST", "/api/runs",
                                       {{"scenario", "01_planar7_obstacles"}, {"mode", "batch"}});
     ASSERT_EQ(done.status, 200);
@@ -165,7 +169,7 @@ TEST(Shutdown, SigtermStopsEverythingAndExitsCleanly) {
   const std::string db = dir + "/shutdown.db";
   std::int64_t live = 0, batch = 0;
   {
-    ServerProcess server(db);
+    ServerProcess server(db, kLongRuns);
     const HttpResult done = http_json(server.port(), "POST", "/api/runs",
                                       {{"scenario", "01_planar7_obstacles"}, {"mode", "batch"}, {"steps", 100}});
     ASSERT_EQ(done.status, 200);

@@ -97,7 +97,7 @@ await suite('scenario editor', [
     check((await t.page.inputValue('.se-textarea')).includes(`"name": "${name}_2"`), 'renamed in the text');
     await button(t, 'Save').click();
     await answer(t, 'ok');
-    check((await t.get('/api/scenarios')).some((s) => s.name === `${name}_2`), 'saved under the new name');
+    check((await t.get('/api/scenarios?limit=1000')).scenarios.some((s) => s.name === `${name}_2`), 'saved under the new name');
 
     // a missing comma: line and column where it belongs, and the caret there
     const broken = text.replace('"dt": 0.01,', '"dt": 0.01');

@@ -60,6 +60,17 @@ function headers(extra) {
   return h;
 }
 
+// Every scenario summary of GET /api/scenarios, fetched a page at a time
+// ({scenarios, total, offset, limit}); `call` is api() or a stand-in.
+export async function listScenarios(call = api) {
+  const all = [];
+  for (;;) {
+    const page = await call('GET', `/api/scenarios?limit=1000&offset=${all.length}`);
+    all.push(...page.scenarios);
+    if (page.scenarios.length === 0 || all.length >= page.total) return all;
+  }
+}
+
 // JSON in and out. A body is sent as application/json. A 401 asks for the
 // token (one prompt for all requests waiting), and again while the server
 // refuses what was typed; Cancel gives up with the 401.

@@ -1,7 +1,7 @@
 // The dashboard: wires the panels to the central state (state.js) and the
 // session (session.js). Opens what the address asks for (?run=, ?compare=,
 // ?scenario=&method=), draws at the display rate with requestAnimationFrame.
-import { api, describeError, setTokenPrompt } from './api.js';
+import { api, describeError, listScenarios, setTokenPrompt } from './api.js';
 import { askForToken } from './token_prompt.js';
 import { app, readUrl, writeUrl } from './state.js';
 import { sessionFor } from './session.js';
@@ -58,7 +58,7 @@ const joystick = new Joystick($('joystick'), {
 const editor = new ScenarioEditor($('editor-host'), {
   api,
   onStart: async (name) => {
-    app.scenarios = await api('GET', '/api/scenarios');
+    app.scenarios = await listScenarios(api);
     fillScenarios(name);
     await startLive();
   },
@@ -80,7 +80,7 @@ $('scenario').onchange = () => { describeScenario(); if (!session) writeUrl({ sc
 $('method').onchange = () => { if (!session) writeUrl({ scenario: $('scenario').value, method: $('method').value }); };
 
 async function loadCatalogue() {
-  [app.scenarios, app.methods] = await Promise.all([api('GET', '/api/scenarios'), api('GET', '/api/methods')]);
+  [app.scenarios, app.methods] = await Promise.all([listScenarios(api), api('GET', '/api/methods')]);
   fillScenarios();
   $('method').innerHTML = '<option value="">(the scenario\'s own)</option>' +
     app.methods.map((m) => `<option value="${escapeHtml(m.name)}" title="${escapeHtml(m.description)}">${escapeHtml(m.name)}</option>`).join('');

@@ -3,6 +3,7 @@
 // (the server's `robot.links[3].length`), located in the text by a small
 // tokenizer, since JSON.parse forgets where values were.
 import { element } from './dom.js';
+import { listScenarios } from './api.js';
 
 const MAX_UPLOAD_BYTES = 1024 * 1024;
 const NAME_PATTERN = /^[A-Za-z0-9_.-]{1,64}$/;  // the server's rule for stored names
@@ -468,7 +469,7 @@ export class ScenarioEditor {
   // A free name like `name_2`, from the list of stored and built-in scenarios.
   async suggestName(name) {
     let taken = new Set();
-    try { taken = new Set((await this.api('GET', '/api/scenarios')).map((s) => s.name)); } catch { /* suggest blindly */ }
+    try { taken = new Set((await listScenarios(this.api)).map((s) => s.name)); } catch { /* suggest blindly */ }
     const numbered = /^(.+)_(\d{1,3})$/.exec(name);  // name_2 is followed by name_3
     const stem = (numbered ? numbered[1] : name).slice(0, 58);
     for (let n = numbered ? Number(numbered[2]) + 1 : 2; n < 10000; ++n) if (!taken.has(`${stem}_${n}`)) return `${stem}_${n}`;
@@ -477,7 +478,7 @@ export class ScenarioEditor {
 
   async nameTaken(name) {
     try {
-      return (await this.api('GET', '/api/scenarios')).some((s) => s.name === name);
+      return (await listScenarios(this.api)).some((s) => s.name === name);
     } catch {
       return false;  // the server's 409 will tell
     }

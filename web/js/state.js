@@ -21,7 +21,7 @@ export const OVERLAYS = [
 export const app = {
   overlays: Object.fromEntries(OVERLAYS.map((o) => [o.key, true])),
   methods: [],        // GET /api/methods
-  scenarios: [],      // GET /api/scenarios
+  scenarios: [],      // GET /api/scenarios: every page's summaries
   signals: {
     sessionChanged: new Signal(),  // (session) lanes opened or closed
     snapshot: new Signal(),        // (lane) a lane got a new snapshot

@@ -43,6 +43,12 @@ class ClientTest(unittest.TestCase):
         names = [s["name"] for s in self.client.scenarios()]
         self.assertIn("01_planar7_obstacles", names)
         self.assertIn("04_planar7_joystick", names)
+        # scenarios() pages through every summary; scenario_page is one page
+        page = self.client.scenario_page(limit=2, offset=1)
+        self.assertEqual(page["total"], len(names))
+        self.assertEqual([s["name"] for s in page["scenarios"]], names[1:3])
+        planar = next(s for s in self.client.scenarios() if s["name"] == "01_planar7_obstacles")
+        self.assertEqual((planar["kind"], planar["dof"]), ("planar", 7))
         methods = {m["name"]: m for m in self.client.methods()}
         self.assertIn("dls", methods)
         self.assertIn("lambda", [p["name"] for p in methods["dls"]["params"]])
