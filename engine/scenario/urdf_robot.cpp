@@ -1,0 +1,109 @@
+#include "scenario/urdf_robot.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "scenario/physical_bounds.hpp"
+#include "scenario/scenario.hpp"
+#include "urdf/urdf_chain.hpp"
+
+namespace rrlab {
+
+namespace fs = std::filesystem;
+
+std::string read_confined_file(const std::string& file, const std::string& dir, const std::string& path) {
+  if (file.empty()) throw ScenarioError(path, "must name a URDF file");
+  const fs::path relative(file);
+  if (relative.is_absolute() || relative.has_root_name())
+    throw ScenarioError(path, "must be a path relative to the scenario's directory, got the absolute path \"" + file + "\"");
+  const std::string root_dir = dir.empty() ? scenario_catalogue_dir() : dir;
+  if (root_dir.empty())
+    throw ScenarioError(path, "has no scenario directory to be resolved in; send the URDF text inline as robot.urdf");
+  std::error_code ec;
+  const fs::path root = fs::weakly_canonical(fs::absolute(root_dir, ec), ec);
+  const fs::path full = fs::weakly_canonical(root / relative, ec);
+  if (ec) throw ScenarioError(path, "cannot resolve \"" + file + "\": " + ec.message());
+  // Confinement: every component of the root must start the resolved path.
+  const auto [root_end, full_end] = std::mismatch(root.begin(), root.end(), full.begin(), full.end());
+  if (root_end != root.end() || full_end == full.end())
+    throw ScenarioError(path, "\"" + file + "\" leads outside the scenario directory");
+  if (!fs::is_regular_file(full, ec)) throw ScenarioError(path, "no URDF file \"" + file + "\" in the scenario directory");
+  if (fs::file_size(full, ec) > std::uintmax_t(ScenarioLimits::max_urdf_bytes))
+    throw ScenarioError(path, "\"" + file + "\" is larger than " + std::to_string(ScenarioLimits::max_urdf_bytes) + " bytes");
+  std::ifstream in(full);
+  if (!in) throw ScenarioError(path, "cannot read \"" + file + "\"");
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+Model parse_urdf_robot(JsonObject& robot, double radians_per_unit, const std::string& dir, std::string& urdf_text) {
+  const bool has_file = robot.has("file"), has_text = robot.has("urdf");
+  if (has_file == has_text)
+    throw ScenarioError(robot.child("file"), "a urdf robot needs exactly one of \"file\" (a path) and \"urdf\" (the text)");
+  std::string source_path;
+  if (has_file) {
+    source_path = robot.child("file");
+    urdf_text = read_confined_file(robot.string("file"), dir, source_path);
+  } else {
+    source_path = robot.child("urdf");
+    urdf_text = robot.string("urdf");
+    if (long(urdf_text.size()) > ScenarioLimits::max_urdf_bytes)
+      throw ScenarioError(source_path, "is longer than " + std::to_string(ScenarioLimits::max_urdf_bytes) + " bytes");
+  }
+  UrdfChain chain;
+  try {
+    chain = read_urdf_chain(urdf_text, robot.string("base_link", ""), robot.string("tip_link", ""));
+  } catch (const UrdfError& e) {
+    throw ScenarioError(source_path, e.what());
+  }
+  if (int(chain.joints.size()) > ScenarioLimits::max_joints)
+    throw ScenarioError(source_path, "has " + std::to_string(chain.joints.size()) + " moving joints, at most " +
+                                         std::to_string(ScenarioLimits::max_joints) + " allowed");
+
+  // Link capsules: robot.link_radius (one number, or one per moving joint)
+  // wins; otherwise the radius fitted to the link's <collision> primitives.
+  const int n = int(chain.joints.size());
+  if (robot.has("link_radius")) {
+    const nlohmann::json& value = robot.raw("link_radius");
+    const std::string path = robot.child("link_radius");
+    std::vector<double> radii;
+    if (value.is_number()) radii.assign(n, json_number(value, path));
+    else radii = json_numbers(value, path, n, n);
+    for (int i = 0; i < n; ++i) {
+      const std::string at = value.is_number() ? path : index_path(path, i);
+      if (radii[i] < 0) throw ScenarioError(at, "must be >= 0");
+      chain.joints[i].radius = check_quantity(radii[i], PhysicalBounds::length, at);
+    }
+  } else {
+    for (int i = 0; i < n; ++i)
+      if (chain.joints[i].radius < 0)
+        throw ScenarioError(robot.child("link_radius"),
+                            "is needed: the link after joint '" + chain.joint_names[i] + "' has no collision " +
+                                "cylinder, sphere or box" +
+                                (chain.mesh_links[i].empty() ? "" : " (link '" + chain.mesh_links[i] + "' has a mesh)"));
+  }
+
+  Eigen::Isometry3d base = Eigen::Isometry3d::Identity();
+  if (robot.has("base")) {
+    const std::vector<double> p = robot.numbers("base", 3, 3);
+    for (size_t i = 0; i < 3; ++i) check_quantity(p[i], PhysicalBounds::length, index_path(robot.child("base"), i));
+    base.translation() = Eigen::Vector3d(p[0], p[1], p[2]);
+  }
+  if (robot.has("base_rpy")) {
+    std::vector<double> rpy = robot.numbers("base_rpy", 3, 3);
+    for (size_t i = 0; i < 3; ++i) {
+      check_quantity(rpy[i], PhysicalBounds::angle, index_path(robot.child("base_rpy"), i), radians_per_unit);
+      rpy[i] *= radians_per_unit;
+    }
+    base.linear() = (Eigen::AngleAxisd(rpy[2], Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(rpy[1], Eigen::Vector3d::UnitY()) *
+                     Eigen::AngleAxisd(rpy[0], Eigen::Vector3d::UnitX()))
+                        .toRotationMatrix();
+  }
+  Model model = make_chain(base, chain.joints, chain.tip);
+  model.limits = chain.limits;  // the file's; robot.limits may override entries
+  return model;
+}
+
+}  // namespace rrlab
