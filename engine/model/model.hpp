@@ -6,10 +6,13 @@
 
 #include <Eigen/Geometry>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace rrlab {
+
+struct TriangleMesh;  // collision/mesh_loader.hpp
 
 enum class ModelKind { planar, spatial_xz, dh, urdf };
 enum class JointType { revolute, prismatic };
@@ -28,9 +31,13 @@ struct Joint {
 
 // A link is the segment from the end of the previous link (or the base) to the
 // origin of the frame after joint `last_joint`; a capsule of `radius`.
+// A URDF link with a collision mesh carries it (vertices in the frame after
+// `last_joint`); distances are then the mesh's, and `radius` bounds the mesh
+// around the segment.
 struct Link {
   int last_joint = 0;
   double radius = 0.0;
+  std::shared_ptr<const TriangleMesh> mesh;
 };
 
 struct JointLimits {

@@ -162,8 +162,8 @@ void parse_robot(JsonObject robot, const Units& units, const std::string& dir, S
     std::string text;
     sc.model = parse_urdf_robot(robot, units.angle, dir, text);
     // The scenario carries its URDF inline from here on, so a stored run
-    // re-simulates without the file.
-    if (sc.json.is_object() && sc.json["robot"].is_object() && sc.json["robot"].contains("file")) {
+    // re-simulates without the file (unless the URDF uses mesh files).
+    if (!text.empty() && sc.json.is_object() && sc.json["robot"].is_object() && sc.json["robot"].contains("file")) {
       sc.json["robot"].erase("file");
       sc.json["robot"]["urdf"] = text;
     }

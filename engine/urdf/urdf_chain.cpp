@@ -128,11 +128,11 @@ UrdfChain read_urdf_chain(const std::string& xml, const std::string& base_link, 
   std::vector<double> lower, upper, velocity;
   Eigen::Isometry3d pending = Eigen::Isometry3d::Identity();  // fixed transforms since the last moving joint
   double radius = -1;                                         // of the current segment's links
-  std::string mesh_link;
+  std::vector<UrdfMesh> meshes;
   auto close_segment = [&] {
     if (chain.joints.empty()) return;
     chain.joints.back().radius = radius;
-    chain.mesh_links.push_back(mesh_link);
+    chain.meshes.push_back(meshes);
   };
   for (const urdf::LinkConstSharedPtr& link : path) {
     const urdf::Joint& j = *link->parent_joint;
@@ -162,14 +162,18 @@ UrdfChain read_urdf_chain(const std::string& xml, const std::string& base_link, 
       velocity.push_back(j.limits && j.limits->velocity > 0 ? j.limits->velocity : inf);
       pending = Eigen::Isometry3d::Identity();
       radius = -1;
-      mesh_link.clear();
+      meshes.clear();
     }
     // Collision primitives of this link count for the segment it belongs to.
     // Fixed links before the first moving joint belong to the pedestal.
     for (const auto& c : link->collision_array) {
       if (!c || !c->geometry) continue;
       const double r = primitive_radius(*c->geometry);
-      if (r < 0 && mesh_link.empty()) mesh_link = link->name;
+      if (c->geometry->type == urdf::Geometry::MESH && !chain.joints.empty()) {
+        const auto& m = static_cast<const urdf::Mesh&>(*c->geometry);
+        meshes.push_back({link->name, m.filename, Eigen::Vector3d(m.scale.x, m.scale.y, m.scale.z),
+                          pending * to_isometry(c->origin)});
+      }
       radius = std::max(radius, r);
     }
   }

@@ -17,16 +17,23 @@ class UrdfError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A <collision><mesh>: its file as written in the URDF, its scale, and its
+// pose in the frame of the moving joint's child link.
+struct UrdfMesh {
+  std::string link, filename;
+  Eigen::Vector3d scale = Eigen::Vector3d::Ones();
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+};
+
 struct UrdfChain {
   std::string base_link, tip_link;
   std::vector<std::string> joint_names;  // the moving joints, base to tip
   std::vector<ChainJointSpec> joints;    // radius: from the <collision> primitives, or -1 when none
   Eigen::Isometry3d tip = Eigen::Isometry3d::Identity();  // tip link in the last joint's child frame
   JointLimits limits;                                      // acceleration unbounded (URDF has none)
-  // Links (child of each moving joint, with the links fixed to it on the
-  // chain) whose collision geometry is a mesh, by joint index; empty names
-  // when none.
-  std::vector<std::string> mesh_links;
+  // Collision meshes of each moving joint's link (and of the links fixed to
+  // it on the chain), by joint index.
+  std::vector<std::vector<UrdfMesh>> meshes;
 };
 
 // `base_link` empty: the URDF's root link; `tip_link` empty: the one leaf of

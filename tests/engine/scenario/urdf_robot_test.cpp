@@ -67,7 +67,7 @@ TEST(UrdfScenario, PathsOutsideTheDirectoryAreRefused) {
   doc["robot"]["file"] = "/etc/passwd";
   EXPECT_NE(error_path(doc, kScenarios).find("robot.file | robot.file: must be a path relative"), std::string::npos);
   doc["robot"]["file"] = "robots/missing.urdf";
-  EXPECT_NE(error_path(doc, kScenarios).find("no URDF file"), std::string::npos);
+  EXPECT_NE(error_path(doc, kScenarios).find("no file \"robots/missing.urdf\" in the scenario directory"), std::string::npos);
   doc["robot"]["file"] = "robots/./iiwa14.urdf";  // inside: accepted
   EXPECT_EQ(error_path(doc, kScenarios), "(accepted)");
 }
