@@ -1,4 +1,5 @@
 #include <chrono>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -44,7 +45,8 @@ RunRecordDoc load_input(const std::string& file) {
   const nlohmann::json doc = read_json_file(file, "scenario file");
   if (is_run_record(doc)) return parse_run_record(doc);
   RunRecordDoc plain;
-  plain.scenario = parse_scenario(doc);
+  const std::string dir = std::filesystem::path(file).parent_path().string();
+  plain.scenario = parse_scenario(doc, dir.empty() ? "." : dir);  // a URDF "file" is next to it
   return plain;
 }
 

@@ -35,6 +35,13 @@
 // analytic there too), and the tests check that both agree on random poses.
 //
 // A zero link radius needs no special case: the segment routines are exact.
+//
+// Links with a collision mesh (URDF robots) are the exception: their
+// distances come from FCL's BVH model (OBBRSS) of the mesh against each
+// obstacle's FCL shape, in compute() as in compute_with_fcl(); walls stay
+// analytic (the lowest vertex). FCL's mesh distance gives no penetration
+// depth: a penetrating mesh link reports -kMeshContact.
+#include "collision/mesh_loader.hpp"
 #include "collision/collision_world.hpp"
 
 #include <fcl/fcl.h>
@@ -562,8 +569,119 @@ int DistanceTable::nearest_obstacle(int link) const {
 
 // --- CollisionWorld ------------------------------------------------------------------
 
+using MeshBvh = fcl::BVHModel<fcl::OBBRSSd>;
+
+constexpr double kMeshContact = 1e-9;
+
+std::shared_ptr<MeshBvh> make_bvh(const TriangleMesh& mesh) {
+  auto bvh = std::make_shared<MeshBvh>();
+  std::vector<fcl::Triangle> triangles;
+  triangles.reserve(mesh.triangles.size());
+  for (const Eigen::Vector3i& t : mesh.triangles) triangles.emplace_back(t[0], t[1], t[2]);
+  bvh->beginModel();
+  bvh->addSubModel(mesh.vertices, triangles);
+  bvh->endModel();
+  return bvh;
+}
+
+// Ericson, "Real-Time Collision Detection", 5.1.5: the point of triangle abc nearest p.
+Vector3d closest_on_triangle(const Vector3d& p, const Vector3d& a, const Vector3d& b, const Vector3d& c) {
+  const Vector3d ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return a;
+  const Vector3d bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + d1 / (d1 - d3) * ab;
+  const Vector3d cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + d2 / (d2 - d6) * ac;
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
+  const double denom = 1.0 / (va + vb + vc);
+  return a + ab * (vb * denom) + ac * (vc * denom);
+}
+
+// One mesh link against one obstacle: FCL BVH distance for boxes and
+// polygon prisms; spheres and points by the nearest triangle (FCL 0.7.0's
+// mesh–sphere distance reported contact at every pose here, with either GJK
+// solver); walls by the lowest vertex.
+void mesh_obstacle(const MeshBvh& bvh, const TriangleMesh& mesh, const fcl::Transform3d& link_pose,
+                   const ObstacleGeometry& g, const FclObstacle& shapes, LinkObstacleDistance& out) {
+  if (g.shape == ShapeKind::wall) {  // the half-space's distance is its lowest vertex's
+    out.distance = kInfinity;
+    const Vector3d normal = g.rotation * g.normal;
+    for (const Vector3d& v : mesh.vertices) {
+      const Vector3d w = link_pose * v;
+      const double h = normal.dot(w - g.position);
+      if (h < out.distance) {
+        out.distance = h;
+        out.on_link = w;
+      }
+    }
+    out.normal = normal;
+    out.on_obstacle = out.on_link - out.distance * normal;
+    return;
+  }
+  if (g.shape == ShapeKind::sphere || g.shape == ShapeKind::point) {
+    // nearest point of the mesh to the centre, in the link's frame; a centre
+    // inside the mesh is not detected (the surface distance is reported)
+    const Vector3d centre = link_pose.inverse() * g.position;
+    double best = kInfinity;
+    Vector3d nearest = Vector3d::Zero();
+    for (const Eigen::Vector3i& t : mesh.triangles) {
+      const Vector3d p = closest_on_triangle(centre, mesh.vertices[size_t(t[0])], mesh.vertices[size_t(t[1])],
+                                             mesh.vertices[size_t(t[2])]);
+      const double d2 = (p - centre).squaredNorm();
+      if (d2 < best) {
+        best = d2;
+        nearest = p;
+      }
+    }
+    const double radius = g.shape == ShapeKind::sphere ? g.radius : 0.0;
+    const double to_centre = std::sqrt(best);
+    out.on_link = link_pose * nearest;
+    out.normal = to_centre > 0 ? Vector3d((out.on_link - g.position) / to_centre) : Vector3d::UnitZ();
+    out.on_obstacle = g.position + radius * out.normal;
+    out.distance = to_centre - radius;
+    return;
+  }
+  fcl::Transform3d obstacle_pose = fcl::Transform3d::Identity();
+  obstacle_pose.linear() = g.rotation;
+  obstacle_pose.translation() = g.position;
+  out.distance = kInfinity;
+  for (const auto& part : shapes.parts) {
+    // FCL's own GJK (GST_INDEP): with libccd's, a mesh against a sphere
+    // reported contact at every pose here (FCL 0.7.0)
+    fcl::DistanceRequestd request(true, false, 0.0, 0.0, 1e-10, fcl::GST_INDEP);
+    fcl::DistanceResultd result;
+    fcl::distance(&bvh, link_pose, part.get(), obstacle_pose, request, result);
+    double d = result.min_distance;
+    if (d >= out.distance) continue;
+    out.on_link = result.nearest_points[0];
+    out.on_obstacle = result.nearest_points[1];
+    if (d <= 0) {  // touching or penetrating: no depth, nor points, from FCL's mesh distance
+      d = -kMeshContact;
+      out.on_link = link_pose.translation();
+      out.on_obstacle = g.position;
+      const Vector3d away = link_pose.translation() - g.position;
+      out.normal = away.norm() > 0 ? Vector3d(away.normalized()) : Vector3d::UnitZ();
+    } else {
+      out.normal = (out.on_link - out.on_obstacle) / d;
+    }
+    out.distance = d;
+  }
+}
+
 struct CollisionWorld::Impl {
   std::vector<double> link_radii;
+  // mesh links: a BVH per link (null for capsules), posed by joint_frames[last_joint]
+  std::vector<std::shared_ptr<MeshBvh>> link_bvh;
+  std::vector<std::shared_ptr<const TriangleMesh>> link_mesh;
+  std::vector<int> last_joint;
   std::vector<ObstacleGeometry> obstacles;
   // reference path
   std::vector<std::shared_ptr<fcl::Capsuled>> fcl_links;
@@ -590,6 +708,9 @@ CollisionWorld::CollisionWorld(const Model& model, const Scene& scene)
     : impl_(std::make_unique<Impl>()) {
   for (const Link& link : model.links) {
     impl_->link_radii.push_back(link.radius);
+    impl_->link_mesh.push_back(link.mesh);
+    impl_->link_bvh.push_back(link.mesh ? make_bvh(*link.mesh) : nullptr);
+    impl_->last_joint.push_back(link.last_joint);
     impl_->fcl_links.push_back(std::make_shared<fcl::Capsuled>(link.radius, 0.0));
   }
   sync(scene, true);
@@ -608,6 +729,10 @@ void CollisionWorld::compute(const KinematicsData& kin, DistanceTable& out) {
   const int obstacle_count = static_cast<int>(impl_->obstacles.size());
   out.resize(link_count, obstacle_count);
   for (int l = 0; l < link_count; ++l) {
+    if (impl_->link_bvh[l]) {
+      mesh_link(kin, l, out);
+      continue;
+    }
     const Vector3d a = kin.link_start.col(l), b = kin.link_end.col(l);
     for (int o = 0; o < obstacle_count; ++o) {
       LinkObstacleDistance& pair = out.at(l, o);
@@ -623,6 +748,10 @@ void CollisionWorld::compute_with_fcl(const KinematicsData& kin, DistanceTable& 
   const int obstacle_count = static_cast<int>(impl_->obstacles.size());
   out.resize(link_count, obstacle_count);
   for (int l = 0; l < link_count; ++l) {
+    if (impl_->link_bvh[l]) {
+      mesh_link(kin, l, out);
+      continue;
+    }
     const Vector3d a = kin.link_start.col(l), b = kin.link_end.col(l);
     const double radius = impl_->link_radii[l];
     // FCL's GJK stops early on a segment (radius ~0) against a box and can be
@@ -652,6 +781,15 @@ void CollisionWorld::compute_with_fcl(const KinematicsData& kin, DistanceTable& 
       }
       track_minimum(out, l, o);
     }
+  }
+}
+
+void CollisionWorld::mesh_link(const KinematicsData& kin, int link, DistanceTable& out) {
+  const fcl::Transform3d pose = kin.joint_frames[size_t(impl_->last_joint[size_t(link)])];
+  for (int o = 0; o < out.obstacles; ++o) {
+    mesh_obstacle(*impl_->link_bvh[size_t(link)], *impl_->link_mesh[size_t(link)], pose, impl_->obstacles[size_t(o)],
+                  impl_->fcl_obstacles[size_t(o)], out.at(link, o));
+    track_minimum(out, link, o);
   }
 }
 

@@ -51,6 +51,7 @@ class CollisionWorld {
   void compute_with_fcl(const KinematicsData& kin, DistanceTable& out);
 
  private:
+  void mesh_link(const KinematicsData& kin, int link, DistanceTable& out);  // a link with a collision mesh
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

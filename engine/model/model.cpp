@@ -25,6 +25,7 @@ const char* to_string(ModelKind kind) {
     case ModelKind::planar: return "planar";
     case ModelKind::spatial_xz: return "spatial_xz";
     case ModelKind::dh: return "dh";
+    case ModelKind::urdf: return "urdf";
   }
   return "?";
 }
@@ -106,6 +107,23 @@ Model make_dh(const std::vector<DhLinkSpec>& links, const Eigen::Isometry3d& bas
     j.post = post;
     m.joints.push_back(j);
     m.links.push_back({m.dof() - 1, l.radius});
+  }
+  m.limits = unbounded_limits(m.dof());
+  return m;
+}
+
+Model make_chain(const Eigen::Isometry3d& base, const std::vector<ChainJointSpec>& joints,
+                 const Eigen::Isometry3d& tip) {
+  Model m;
+  m.kind = ModelKind::urdf;
+  m.base = joints.empty() ? base : base * joints.front().origin;
+  for (size_t k = 0; k < joints.size(); ++k) {
+    Joint j;
+    j.type = joints[k].type;
+    j.axis = joints[k].axis.normalized();
+    j.post = k + 1 < joints.size() ? joints[k + 1].origin : tip;
+    m.joints.push_back(j);
+    m.links.push_back({m.dof() - 1, joints[k].radius});
   }
   m.limits = unbounded_limits(m.dof());
   return m;

@@ -1,17 +1,20 @@
 // Robot models: an immutable description shared by every algorithm.
-// Every kind (planar, spatial_xz, dh) is lowered to one serial chain of
+// Every kind (planar, spatial_xz, dh, urdf) is lowered to one serial chain of
 // joints, each a fixed transform, a motion about/along its local z or x axis,
 // and links (capsules) between consecutive "link frames".
 #pragma once
 
 #include <Eigen/Geometry>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace rrlab {
 
-enum class ModelKind { planar, spatial_xz, dh };
+struct TriangleMesh;  // collision/mesh_loader.hpp
+
+enum class ModelKind { planar, spatial_xz, dh, urdf };
 enum class JointType { revolute, prismatic };
 
 const char* to_string(ModelKind kind);
@@ -28,9 +31,13 @@ struct Joint {
 
 // A link is the segment from the end of the previous link (or the base) to the
 // origin of the frame after joint `last_joint`; a capsule of `radius`.
+// A URDF link with a collision mesh carries it (vertices in the frame after
+// `last_joint`); distances are then the mesh's, and `radius` bounds the mesh
+// around the segment.
 struct Link {
   int last_joint = 0;
   double radius = 0.0;
+  std::shared_ptr<const TriangleMesh> mesh;
 };
 
 struct JointLimits {
@@ -68,6 +75,25 @@ Model make_spatial_xz(const std::vector<PlanarLinkSpec>& links, const Eigen::Vec
 // Standard (distal) DH: T_i = Rz(q_i + theta) Tz(d) Tx(a) Rx(alpha), or for a
 // prismatic joint Rz(theta) Tz(q_i + d) Tx(a) Rx(alpha).
 Model make_dh(const std::vector<DhLinkSpec>& links, const Eigen::Isometry3d& base);
+
+// One moving joint of a general serial chain (a URDF's revolute, continuous or
+// prismatic joint, fixed joints already folded in): `origin` places the joint
+// frame in the frame of the previous joint's child link (for the first joint:
+// in the chain's base frame), `axis` is a unit vector of the joint frame.
+struct ChainJointSpec {
+  JointType type = JointType::revolute;
+  Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
+  double radius = 0;  // capsule from this joint's origin to the next joint's (or the tip)
+};
+
+// A general serial chain (kind urdf). The first joint's origin goes into the
+// base (the pedestal up to it does not move and is not a link); joint k carries
+// the next joint's origin (or `tip`) as its post transform, so the frame after
+// joint k sits on joint k+1's axis and link k is the segment between the two
+// joint origins, moved by joints 0..k. The last frame is the tip link's frame.
+Model make_chain(const Eigen::Isometry3d& base, const std::vector<ChainJointSpec>& joints,
+                 const Eigen::Isometry3d& tip);
 
 // Unbounded limits of the right size; builders call it.
 JointLimits unbounded_limits(int dof);

@@ -3,7 +3,9 @@
 #include "scenario/scenario.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
+#include <mutex>
 #include <set>
 #include <sstream>
 
@@ -11,6 +13,7 @@
 #include "methods/registry.hpp"
 #include "scenario/json_reader.hpp"
 #include "scenario/physical_bounds.hpp"
+#include "scenario/urdf_robot.hpp"
 
 namespace rrlab {
 
@@ -126,10 +129,11 @@ Model parse_links(JsonObject& robot, const std::string& kind, const Units& units
 }
 
 // Limits entries may be null (unbounded); angles of revolute joints are converted.
+// A key not given keeps the model's limits (unbounded, or a URDF's).
 Eigen::VectorXd parse_limit_vector(JsonObject& limits, const std::string& key, const Model& model,
-                                   const Units& units, double unbounded, bool must_be_positive,
-                                   const JointQuantity& quantity) {
-  Eigen::VectorXd out = Eigen::VectorXd::Constant(model.dof(), unbounded);
+                                   const Eigen::VectorXd& current, const Units& units, double unbounded,
+                                   bool must_be_positive, const JointQuantity& quantity) {
+  Eigen::VectorXd out = current;
   if (!limits.has(key)) return out;
   const json& v = limits.raw(key);
   const std::string path = limits.child(key);
@@ -138,7 +142,10 @@ Eigen::VectorXd parse_limit_vector(JsonObject& limits, const std::string& key, c
     throw ScenarioError(path, "must have " + std::to_string(model.dof()) + " entries (one per joint), got " +
                                   std::to_string(v.size()));
   for (int i = 0; i < model.dof(); ++i) {
-    if (v[i].is_null()) continue;
+    if (v[i].is_null()) {
+      out[i] = unbounded;
+      continue;
+    }
     const JointType type = model.joints[i].type;
     const double scale = type == JointType::revolute ? units.angle : 1.0;
     const double value = json_number(v[i], index_path(path, i));
@@ -148,10 +155,22 @@ Eigen::VectorXd parse_limit_vector(JsonObject& limits, const std::string& key, c
   return out;
 }
 
-void parse_robot(JsonObject robot, const Units& units, Scenario& sc) {
-  robot.check_keys({"kind", "base", "base_rpy", "links", "q0", "limits"});
-  const std::string kind = robot.choice("kind", {"planar", "spatial_xz", "dh"});
-  sc.model = parse_links(robot, kind, units);
+void parse_robot(JsonObject robot, const Units& units, const std::string& dir, Scenario& sc) {
+  const std::string kind = robot.choice("kind", {"planar", "spatial_xz", "dh", "urdf"});
+  if (kind == "urdf") {
+    robot.check_keys({"kind", "file", "urdf", "base_link", "tip_link", "link_radius", "base", "base_rpy", "q0", "limits"});
+    std::string text;
+    sc.model = parse_urdf_robot(robot, units.angle, dir, text);
+    // The scenario carries its URDF inline from here on, so a stored run
+    // re-simulates without the file (unless the URDF uses mesh files).
+    if (!text.empty() && sc.json.is_object() && sc.json["robot"].is_object() && sc.json["robot"].contains("file")) {
+      sc.json["robot"].erase("file");
+      sc.json["robot"]["urdf"] = text;
+    }
+  } else {
+    robot.check_keys({"kind", "base", "base_rpy", "links", "q0", "limits"});
+    sc.model = parse_links(robot, kind, units);
+  }
   const int n = sc.model.dof();
 
   sc.q0 = Eigen::VectorXd::Zero(n);
@@ -174,19 +193,22 @@ void parse_robot(JsonObject robot, const Units& units, Scenario& sc) {
     limits.check_keys({"lower", "upper", "velocity", "acceleration"});
     constexpr double inf = std::numeric_limits<double>::infinity();
     JointLimits& l = sc.model.limits;
-    l.lower = parse_limit_vector(limits, "lower", sc.model, units, -inf, false, kPosition);
-    l.upper = parse_limit_vector(limits, "upper", sc.model, units, inf, false, kPosition);
-    l.velocity = parse_limit_vector(limits, "velocity", sc.model, units, inf, true, kVelocity);
-    l.acceleration = parse_limit_vector(limits, "acceleration", sc.model, units, inf, true, kAcceleration);
-    for (int i = 0; i < n; ++i) {
+    l.lower = parse_limit_vector(limits, "lower", sc.model, l.lower, units, -inf, false, kPosition);
+    l.upper = parse_limit_vector(limits, "upper", sc.model, l.upper, units, inf, false, kPosition);
+    l.velocity = parse_limit_vector(limits, "velocity", sc.model, l.velocity, units, inf, true, kVelocity);
+    l.acceleration = parse_limit_vector(limits, "acceleration", sc.model, l.acceleration, units, inf, true, kAcceleration);
+    for (int i = 0; i < n; ++i)
       if (l.lower[i] >= l.upper[i])
         throw ScenarioError(index_path(limits.child("lower"), i), "must be below the upper limit");
-      if (sc.q0[i] < l.lower[i] || sc.q0[i] > l.upper[i]) {
-        std::ostringstream msg;
-        msg << "value " << sc.q0[i] << " rad is outside the joint limits [" << l.lower[i] << ", "
-            << l.upper[i] << "]";
-        throw ScenarioError(index_path(robot.child("q0"), i), msg.str());
-      }
+  }
+  // Also against a URDF's own limits when the scenario gives none.
+  const JointLimits& l = sc.model.limits;
+  for (int i = 0; i < n; ++i) {
+    if (sc.q0[i] < l.lower[i] || sc.q0[i] > l.upper[i]) {
+      std::ostringstream msg;
+      msg << "value " << sc.q0[i] << " rad is outside the joint limits [" << l.lower[i] << ", "
+          << l.upper[i] << "]";
+      throw ScenarioError(index_path(robot.child("q0"), i), msg.str());
     }
   }
 }
@@ -409,7 +431,27 @@ std::pair<std::string, double> resolve_method_param(const std::string& method_na
   return {name, v};
 }
 
-Scenario parse_scenario(const json& doc) {
+namespace {
+
+std::mutex catalogue_mutex;
+std::string& catalogue_dir() {
+  static std::string dir;
+  return dir;
+}
+
+}  // namespace
+
+void set_scenario_catalogue_dir(const std::string& dir) {
+  std::lock_guard lock(catalogue_mutex);
+  catalogue_dir() = dir;
+}
+
+std::string scenario_catalogue_dir() {
+  std::lock_guard lock(catalogue_mutex);
+  return catalogue_dir();
+}
+
+Scenario parse_scenario(const json& doc, const std::string& dir) {
   JsonObject root(doc, "");
   root.check_keys({"name", "description", "source", "dt", "duration", "angle_unit", "seed", "robot",
                    "obstacles", "task", "method"});
@@ -437,7 +479,7 @@ Scenario parse_scenario(const json& doc) {
       throw ScenarioError("seed", "must be a non-negative integer");
     sc.seed = seed.get<std::uint64_t>();
   }
-  parse_robot(root.object("robot"), units, sc);
+  parse_robot(root.object("robot"), units, dir, sc);
   if (root.has("obstacles")) parse_obstacles(root.raw("obstacles"), "obstacles", units, sc);
   parse_task(root.object("task"), units, sc);
   if (root.has("method")) {
@@ -470,6 +512,9 @@ json read_json_file(const std::string& file, const std::string& what) {
   }
 }
 
-Scenario load_scenario_file(const std::string& file) { return parse_scenario(read_json_file(file, "scenario file")); }
+Scenario load_scenario_file(const std::string& file) {
+  const std::string dir = std::filesystem::path(file).parent_path().string();
+  return parse_scenario(read_json_file(file, "scenario file"), dir.empty() ? "." : dir);
+}
 
 }  // namespace rrlab

@@ -23,6 +23,7 @@ struct ScenarioLimits {
   static constexpr int max_polygon_points = 1024;
   static constexpr int max_path_points = 10000;
   static constexpr long max_steps = 10'000'000;
+  static constexpr long max_urdf_bytes = 1 << 20;  // a URDF file or inline text
 };
 
 class ScenarioError : public std::runtime_error {
@@ -54,10 +55,18 @@ struct Scenario {
   long steps() const;
 };
 
-// Throws ScenarioError naming the offending path.
-Scenario parse_scenario(const nlohmann::json& doc);
+// Throws ScenarioError naming the offending path. `dir`: the directory a
+// robot's URDF "file" is resolved in and confined to (the scenario file's
+// directory); empty: the catalogue directory below.
+Scenario parse_scenario(const nlohmann::json& doc, const std::string& dir = {});
 Scenario parse_scenario_text(const std::string& text);
 Scenario load_scenario_file(const std::string& file);
+// The catalogue of scenario files (the server's --scenarios directory): where
+// the URDF "file" of a scenario without a directory of its own (sent over
+// REST, stored, re-simulated) is resolved. Empty until set: such a scenario
+// must then carry its URDF inline ("urdf").
+void set_scenario_catalogue_dir(const std::string& dir);
+std::string scenario_catalogue_dir();
 // A JSON file (`what` names it in errors: "scenario file", "sweep spec"):
 // ScenarioError("", ...) when it cannot be read or is not JSON.
 nlohmann::json read_json_file(const std::string& file, const std::string& what);

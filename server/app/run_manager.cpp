@@ -28,6 +28,7 @@ RunManager::RunManager(storage::RunStore& store, storage::FrameWriter& writer, c
   namespace fs = std::filesystem;
   std::error_code ec;
   if (scenarios_dir.empty() || !fs::is_directory(scenarios_dir, ec)) return;
+  set_scenario_catalogue_dir(scenarios_dir);  // where a URDF robot's "file" is resolved
   for (const auto& entry : fs::directory_iterator(scenarios_dir, ec)) {
     if (entry.path().extension() != ".json") continue;
     std::ifstream in(entry.path());

@@ -40,6 +40,17 @@ inline Model random_model(ModelKind kind, int joints, unsigned seed) {
       base.linear() = Eigen::AngleAxisd(angle(rng), Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
       return make_dh(links, base);
     }
+    case ModelKind::urdf: {  // a general chain: random origins and axes
+      std::vector<ChainJointSpec> specs(joints);
+      for (auto& j : specs) {
+        j.origin.translation() = Eigen::Vector3d(offset(rng), offset(rng), length(rng) * 0.5);
+        j.origin.linear() = Eigen::AngleAxisd(angle(rng), Eigen::Vector3d(offset(rng), offset(rng), 1).normalized()).toRotationMatrix();
+        j.axis = Eigen::Vector3d(offset(rng), offset(rng), offset(rng) + 1.0).normalized();
+      }
+      Eigen::Isometry3d tip = Eigen::Isometry3d::Identity();
+      tip.translation() = Eigen::Vector3d(0, 0, 0.2);
+      return make_chain(Eigen::Isometry3d::Identity(), specs, tip);
+    }
   }
   return {};
 }

@@ -69,7 +69,8 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(KindCase{ModelKind::planar, 2}, KindCase{ModelKind::planar, 7},
                       KindCase{ModelKind::planar, 20}, KindCase{ModelKind::spatial_xz, 2},
                       KindCase{ModelKind::spatial_xz, 8}, KindCase{ModelKind::spatial_xz, 20},
-                      KindCase{ModelKind::dh, 2}, KindCase{ModelKind::dh, 7}, KindCase{ModelKind::dh, 20}));
+                      KindCase{ModelKind::dh, 2}, KindCase{ModelKind::dh, 7}, KindCase{ModelKind::dh, 20},
+                      KindCase{ModelKind::urdf, 7}, KindCase{ModelKind::urdf, 20}));
 
 TEST(TaskJacobian, SelectsRowsOfTheEndEffectorJacobian) {
   const Model model = test::random_model(ModelKind::dh, 7, 3);

@@ -1,0 +1,194 @@
+#include "urdf/urdf_chain.hpp"
+
+#include <tinyxml.h>
+
+#include <cmath>
+#include <limits>
+#include <map>
+#include <set>
+#include <urdf_parser/urdf_parser.h>
+
+namespace rrlab {
+
+namespace {
+
+std::string quoted(const std::string& s) { return "'" + s + "'"; }
+
+// urdfdom reports why it rejects a document only on its console; the checks
+// below find the common faults first so the error can name them: XML that is
+// not well formed, a joint naming a link that is not defined, a link with two
+// parents, and a cycle.
+void check_structure(const std::string& xml) {
+  TiXmlDocument doc;
+  doc.Parse(xml.c_str());
+  if (doc.Error())
+    throw UrdfError("malformed XML at line " + std::to_string(doc.ErrorRow()) + ", column " +
+                    std::to_string(doc.ErrorCol()) + ": " + doc.ErrorDesc());
+  const TiXmlElement* robot = doc.FirstChildElement("robot");
+  if (!robot) throw UrdfError("not a URDF: no <robot> element");
+  std::set<std::string> links;
+  for (const TiXmlElement* l = robot->FirstChildElement("link"); l; l = l->NextSiblingElement("link")) {
+    const char* name = l->Attribute("name");
+    if (!name) throw UrdfError("a <link> has no name (line " + std::to_string(l->Row()) + ")");
+    if (!links.insert(name).second) throw UrdfError("link " + quoted(name) + " is defined twice");
+  }
+  std::map<std::string, std::string> parent_of, joint_of;  // child link -> parent link / joint
+  for (const TiXmlElement* j = robot->FirstChildElement("joint"); j; j = j->NextSiblingElement("joint")) {
+    const char* name = j->Attribute("name");
+    if (!name) throw UrdfError("a <joint> has no name (line " + std::to_string(j->Row()) + ")");
+    const std::string joint = name;
+    auto link_of = [&](const char* element) -> std::string {
+      const TiXmlElement* e = j->FirstChildElement(element);
+      const char* link = e ? e->Attribute("link") : nullptr;
+      if (!link) throw UrdfError("joint " + quoted(joint) + " has no <" + element + " link=\"...\">");
+      if (!links.count(link))
+        throw UrdfError("joint " + quoted(joint) + " names " + element + " link " + quoted(link) +
+                        ", which is not defined");
+      return link;
+    };
+    const std::string parent = link_of("parent"), child = link_of("child");
+    if (parent == child) throw UrdfError("joint " + quoted(joint) + " connects link " + quoted(child) + " to itself");
+    if (joint_of.count(child))
+      throw UrdfError("link " + quoted(child) + " is the child of two joints (" + quoted(joint_of[child]) + " and " +
+                      quoted(joint) + ")");
+    parent_of[child] = parent;
+    joint_of[child] = joint;
+  }
+  for (const std::string& start : links) {
+    std::set<std::string> seen{start};
+    for (auto it = parent_of.find(start); it != parent_of.end(); it = parent_of.find(it->second))
+      if (!seen.insert(it->second).second)
+        throw UrdfError("the joints form a cycle through link " + quoted(it->second) + " (joint " +
+                        quoted(joint_of[it->second]) + ")");
+  }
+}
+
+Eigen::Isometry3d to_isometry(const urdf::Pose& p) {
+  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
+  t.linear() = Eigen::Quaterniond(p.rotation.w, p.rotation.x, p.rotation.y, p.rotation.z).normalized().toRotationMatrix();
+  t.translation() = Eigen::Vector3d(p.position.x, p.position.y, p.position.z);
+  return t;
+}
+
+// The radius of a capsule standing in for one collision primitive: a sphere's
+// or a cylinder's radius; a box, half its middle edge (the capsule runs along
+// the longest edge and the smallest is covered). -1 for a mesh.
+double primitive_radius(const urdf::Geometry& g) {
+  switch (g.type) {
+    case urdf::Geometry::SPHERE: return static_cast<const urdf::Sphere&>(g).radius;
+    case urdf::Geometry::CYLINDER: return static_cast<const urdf::Cylinder&>(g).radius;
+    case urdf::Geometry::BOX: {
+      const urdf::Vector3& d = static_cast<const urdf::Box&>(g).dim;
+      double e[3] = {d.x, d.y, d.z};
+      std::sort(e, e + 3);
+      return e[1] / 2;
+    }
+    default: return -1;
+  }
+}
+
+}  // namespace
+
+UrdfChain read_urdf_chain(const std::string& xml, const std::string& base_link, const std::string& tip_link) {
+  check_structure(xml);
+  const urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(xml);
+  if (!model) throw UrdfError("urdfdom rejected the URDF (a joint without required limits or origin, or a bad number?)");
+  if (!model->getRoot()) throw UrdfError("the URDF has no root link");
+
+  UrdfChain chain;
+  chain.base_link = base_link.empty() ? model->getRoot()->name : base_link;
+  if (!model->getLink(chain.base_link)) throw UrdfError("base_link " + quoted(chain.base_link) + " is not a link of the URDF");
+  chain.tip_link = tip_link;
+  if (tip_link.empty()) {
+    std::vector<urdf::LinkSharedPtr> links;
+    model->getLinks(links);
+    std::vector<std::string> leaves;
+    for (const auto& l : links)
+      if (l->child_joints.empty()) leaves.push_back(l->name);
+    if (leaves.size() != 1) {
+      std::string names;
+      for (const auto& n : leaves) names += (names.empty() ? "" : ", ") + quoted(n);
+      throw UrdfError("the URDF has " + std::to_string(leaves.size()) + " leaf links (" + names + "); name the tip_link");
+    }
+    chain.tip_link = leaves.front();
+  }
+  urdf::LinkConstSharedPtr tip = model->getLink(chain.tip_link);
+  if (!tip) throw UrdfError("tip_link " + quoted(chain.tip_link) + " is not a link of the URDF");
+
+  // Walk up from the tip to the base, then read the joints base to tip.
+  std::vector<urdf::LinkConstSharedPtr> path;  // tip ... (child of base)
+  for (urdf::LinkConstSharedPtr l = tip; l->name != chain.base_link;) {
+    path.push_back(l);
+    l = l->getParent();
+    if (!l) throw UrdfError("tip_link " + quoted(chain.tip_link) + " is not below base_link " + quoted(chain.base_link));
+  }
+  std::reverse(path.begin(), path.end());
+
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  std::vector<double> lower, upper, velocity;
+  Eigen::Isometry3d pending = Eigen::Isometry3d::Identity();  // fixed transforms since the last moving joint
+  double radius = -1;                                         // of the current segment's links
+  std::vector<UrdfMesh> meshes;
+  auto close_segment = [&] {
+    if (chain.joints.empty()) return;
+    chain.joints.back().radius = radius;
+    chain.meshes.push_back(meshes);
+  };
+  for (const urdf::LinkConstSharedPtr& link : path) {
+    const urdf::Joint& j = *link->parent_joint;
+    const std::string name = quoted(j.name);
+    if (j.mimic) throw UrdfError("joint " + name + " is a mimic joint (of " + quoted(j.mimic->joint_name) + "); mimic joints are not supported");
+    if (j.type == urdf::Joint::FLOATING || j.type == urdf::Joint::PLANAR)
+      throw UrdfError("joint " + name + " is a " + (j.type == urdf::Joint::FLOATING ? "floating" : "planar") +
+                      " joint; only revolute, continuous, prismatic and fixed joints are supported");
+    if (j.type == urdf::Joint::UNKNOWN) throw UrdfError("joint " + name + " has an unknown type");
+    pending = pending * to_isometry(j.parent_to_joint_origin_transform);
+    if (j.type != urdf::Joint::FIXED) {
+      close_segment();
+      ChainJointSpec spec;
+      spec.type = j.type == urdf::Joint::PRISMATIC ? JointType::prismatic : JointType::revolute;
+      spec.origin = pending;
+      const Eigen::Vector3d axis(j.axis.x, j.axis.y, j.axis.z);
+      if (!(axis.norm() > 1e-9)) throw UrdfError("joint " + name + " has a zero axis");
+      spec.axis = axis.normalized();
+      chain.joints.push_back(spec);
+      chain.joint_names.push_back(j.name);
+      const bool bounded = j.type != urdf::Joint::CONTINUOUS && j.limits;
+      const double lo = bounded ? j.limits->lower : -inf, hi = bounded ? j.limits->upper : inf;
+      if (bounded && !(lo < hi))
+        throw UrdfError("joint " + name + " has lower limit " + std::to_string(lo) + " not below upper " + std::to_string(hi));
+      lower.push_back(lo);
+      upper.push_back(hi);
+      velocity.push_back(j.limits && j.limits->velocity > 0 ? j.limits->velocity : inf);
+      pending = Eigen::Isometry3d::Identity();
+      radius = -1;
+      meshes.clear();
+    }
+    // Collision primitives of this link count for the segment it belongs to.
+    // Fixed links before the first moving joint belong to the pedestal.
+    for (const auto& c : link->collision_array) {
+      if (!c || !c->geometry) continue;
+      const double r = primitive_radius(*c->geometry);
+      if (c->geometry->type == urdf::Geometry::MESH && !chain.joints.empty()) {
+        const auto& m = static_cast<const urdf::Mesh&>(*c->geometry);
+        meshes.push_back({link->name, m.filename, Eigen::Vector3d(m.scale.x, m.scale.y, m.scale.z),
+                          pending * to_isometry(c->origin)});
+      }
+      radius = std::max(radius, r);
+    }
+  }
+  if (chain.joints.empty())
+    throw UrdfError("no revolute, continuous or prismatic joint between " + quoted(chain.base_link) + " and " + quoted(chain.tip_link));
+  close_segment();
+  chain.tip = pending;
+  const int n = static_cast<int>(chain.joints.size());
+  chain.limits = unbounded_limits(n);
+  for (int i = 0; i < n; ++i) {
+    chain.limits.lower[i] = lower[i];
+    chain.limits.upper[i] = upper[i];
+    chain.limits.velocity[i] = velocity[i];
+  }
+  return chain;
+}
+
+}  // namespace rrlab

@@ -1,0 +1,134 @@
+// The "urdf" robot kind of scenarios: files confined to the scenario's
+// directory, inline text, link radii, limits, and errors naming the path.
+#include "scenario/urdf_robot.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "kinematics/kinematics.hpp"
+#include "scenario/scenario.hpp"
+#include "engine/test_models.hpp"
+
+namespace rrlab {
+namespace {
+
+using nlohmann::json;
+
+const std::string kScenarios = test::source_path("scenarios");
+
+json iiwa_scenario() { return read_json_file(kScenarios + "/40_urdf_iiwa14_pose.json", "scenario file"); }
+
+std::string error_path(const json& doc, const std::string& dir) {
+  try {
+    parse_scenario(doc, dir);
+  } catch (const ScenarioError& e) {
+    return e.path() + " | " + e.what();
+  }
+  return "(accepted)";
+}
+
+TEST(UrdfScenario, ShippedArmsLoadWithTheirLimits) {
+  for (const char* file : {"40_urdf_iiwa14_pose.json", "41_urdf_panda_pose.json", "42_urdf_gen3_pose.json"}) {
+    const Scenario sc = load_scenario_file(kScenarios + "/" + file);
+    EXPECT_EQ(sc.model.kind, ModelKind::urdf) << file;
+    EXPECT_EQ(sc.model.dof(), 7) << file;
+    EXPECT_EQ(sc.model.link_count(), 7) << file;
+    EXPECT_TRUE(sc.model.limits.has_velocity()) << file;
+    // the scenario now carries its URDF inline
+    EXPECT_FALSE(sc.json["robot"].contains("file")) << file;
+    EXPECT_GT(sc.json["robot"]["urdf"].get<std::string>().size(), 1000u) << file;
+    // and re-parses without any directory
+    EXPECT_EQ(parse_scenario(sc.json).model.dof(), 7) << file;
+  }
+}
+
+TEST(UrdfScenario, IiwaUrdfMatchesTheDhScenario) {
+  const Scenario urdf = load_scenario_file(kScenarios + "/40_urdf_iiwa14_pose.json");
+  const Scenario dh = load_scenario_file(kScenarios + "/03_dh7_pose.json");
+  KinematicsData a(urdf.model), b(dh.model);
+  forward_kinematics(urdf.model, urdf.q0, a);
+  forward_kinematics(dh.model, urdf.q0, b);
+  EXPECT_LT((a.end_effector().translation() - b.end_effector().translation()).norm(), 1e-9);
+  EXPECT_NEAR(urdf.model.limits.upper[0], dh.model.limits.upper[0], 1e-9);  // the URDF carries 10 decimals
+}
+
+TEST(UrdfScenario, PathsOutsideTheDirectoryAreRefused) {
+  json doc = iiwa_scenario();
+  doc["robot"]["file"] = "../CMakeLists.txt";
+  EXPECT_NE(error_path(doc, kScenarios).find("robot.file | robot.file: \"../CMakeLists.txt\" leads outside the scenario directory"),
+            std::string::npos)
+      << error_path(doc, kScenarios);
+  doc["robot"]["file"] = "robots/../../README.md";
+  EXPECT_NE(error_path(doc, kScenarios).find("leads outside"), std::string::npos) << error_path(doc, kScenarios);
+  doc["robot"]["file"] = "robots/../../scenarios/robots/iiwa14.urdf";  // resolves inside: accepted
+  EXPECT_EQ(error_path(doc, kScenarios), "(accepted)");
+  doc["robot"]["file"] = "/etc/passwd";
+  EXPECT_NE(error_path(doc, kScenarios).find("robot.file | robot.file: must be a path relative"), std::string::npos);
+  doc["robot"]["file"] = "robots/missing.urdf";
+  EXPECT_NE(error_path(doc, kScenarios).find("no file \"robots/missing.urdf\" in the scenario directory"), std::string::npos);
+  doc["robot"]["file"] = "robots/./iiwa14.urdf";  // inside: accepted
+  EXPECT_EQ(error_path(doc, kScenarios), "(accepted)");
+}
+
+TEST(UrdfScenario, WithoutADirectoryTheCatalogueIsUsed) {
+  json doc = iiwa_scenario();
+  set_scenario_catalogue_dir("");
+  EXPECT_NE(error_path(doc, "").find("robot.file | robot.file: has no scenario directory"), std::string::npos);
+  set_scenario_catalogue_dir(kScenarios);
+  EXPECT_EQ(error_path(doc, ""), "(accepted)");
+  set_scenario_catalogue_dir("");
+}
+
+TEST(UrdfScenario, InlineTextAndItsFaults) {
+  json doc = iiwa_scenario();
+  doc["robot"].erase("file");
+  std::ifstream in(kScenarios + "/robots/iiwa14.urdf");
+  std::stringstream text;
+  text << in.rdbuf();
+  doc["robot"]["urdf"] = text.str();
+  EXPECT_EQ(error_path(doc, ""), "(accepted)");
+  doc["robot"]["urdf"] = "<robot name='x'><link name='a'></robot>";
+  EXPECT_NE(error_path(doc, "").find("robot.urdf | robot.urdf: malformed XML"), std::string::npos) << error_path(doc, "");
+  doc["robot"]["urdf"] = std::string(ScenarioLimits::max_urdf_bytes + 1, ' ');
+  EXPECT_NE(error_path(doc, "").find("is longer than"), std::string::npos);
+  doc["robot"]["file"] = "robots/iiwa14.urdf";
+  EXPECT_NE(error_path(doc, kScenarios).find("exactly one of"), std::string::npos);
+}
+
+TEST(UrdfScenario, MimicJointNamedWithTheRobotPath) {
+  json doc = iiwa_scenario();
+  doc["robot"].erase("file");
+  std::ifstream in(kScenarios + "/robots/iiwa14.urdf");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string urdf = text.str();
+  const std::string axis = "<axis xyz=\"0 0 1\"/>";
+  const size_t at = urdf.find(axis, urdf.find("iiwa_joint_3"));
+  urdf.insert(at + axis.size(), "<mimic joint=\"iiwa_joint_2\"/>");
+  doc["robot"]["urdf"] = urdf;
+  EXPECT_NE(error_path(doc, "").find("robot.urdf | robot.urdf: joint 'iiwa_joint_3' is a mimic joint"), std::string::npos)
+      << error_path(doc, "");
+}
+
+TEST(UrdfScenario, LinkRadiusAndLimitsOverride) {
+  json doc = iiwa_scenario();
+  doc["robot"]["link_radius"] = 0.1;
+  doc["robot"]["limits"] = {{"velocity", {50, 50, 50, 50, 50, 50, nullptr}}};
+  const Scenario sc = parse_scenario(doc, kScenarios);
+  EXPECT_DOUBLE_EQ(sc.model.links[3].radius, 0.1);
+  EXPECT_NEAR(sc.model.limits.velocity[0], 50 * M_PI / 180, 1e-12);
+  EXPECT_TRUE(std::isinf(sc.model.limits.velocity[6]));
+  EXPECT_NEAR(sc.model.limits.upper[0], 170 * M_PI / 180, 1e-9);  // the URDF's, not overridden
+  doc["robot"]["link_radius"] = {0.1, 0.1};
+  EXPECT_NE(error_path(doc, kScenarios).find("robot.link_radius"), std::string::npos);
+  doc["robot"]["link_radius"] = 0.1;
+  doc["robot"]["q0"] = {0, 130, 0, 0, 0, 0, 0};  // beyond the URDF's ±120°
+  EXPECT_NE(error_path(doc, kScenarios).find("robot.q0[1] | robot.q0[1]: value"), std::string::npos) << error_path(doc, kScenarios);
+  doc["robot"]["links"] = json::array();
+  EXPECT_NE(error_path(doc, kScenarios).find("robot.links"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace rrlab
