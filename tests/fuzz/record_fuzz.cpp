@@ -7,8 +7,13 @@
 #include "sim/simulator.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  nlohmann::json doc;
+  try {
+    doc = nlohmann::json::parse(rrlab::fuzz::as_text(data, size));
+  } catch (const nlohmann::json::exception&) {
+    return 0;  // not JSON: read_json_file's ScenarioError
+  }
   rrlab::fuzz::expect_documented("parse_run_record", [&] {
-    const nlohmann::json doc = nlohmann::json::parse(rrlab::fuzz::as_text(data, size));
     rrlab::RunRecordDoc input;
     if (rrlab::is_run_record(doc))
       input = rrlab::parse_run_record(doc);
