@@ -3,7 +3,17 @@ BUILD ?= build
 JOBS ?= 2
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
 
-.PHONY: deps deps-serve configure build serve demo test test-web bench clean
+# The sanitized build (clang, ASan + UBSan, with the fuzz targets) and the ThreadSanitizer build.
+SANITIZE_BUILD ?= build-asan
+TSAN_BUILD ?= build-tsan
+FUZZ_SECONDS ?= 60
+SANITIZE_FLAGS = -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" \
+                 -DRRLAB_WEB_TESTS=OFF -DRRLAB_BUILD_BENCH=OFF
+# Tests that do not run rrlab's code, or test something else than it: the
+# browser (off in these builds), the Dockerfile, the docs and the Slurm cluster.
+SANITIZE_SKIP = ^(Web|Docker|Docs|Slurm)\.
+
+.PHONY: deps deps-serve configure build serve demo test test-web bench clean test-sanitize fuzz test-tsan
 
 deps:
 	./scripts/install-deps
@@ -38,9 +48,31 @@ test-web: deps
 	$(MAKE) build
 	ctest --test-dir $(BUILD) --output-on-failure -R '^Web\.'
 
+# Unit and HTTP tests built with ASan + UBSan (the HTTP tests start the
+# sanitized rrlab); fails on any sanitizer report, in a test or in a server it
+# started (reports go to $(SANITIZE_BUILD)/sanitizer-logs/).
+test-sanitize: deps
+	CC=clang CXX=clang++ cmake -S . -B $(SANITIZE_BUILD) -G Ninja $(SANITIZE_FLAGS) \
+	  -DRRLAB_SANITIZE=address,undefined -DRRLAB_FUZZ=ON
+	cmake --build $(SANITIZE_BUILD) --parallel $(JOBS)
+	./.ci/sanitized-ctest $(SANITIZE_BUILD) -E '$(SANITIZE_SKIP)'
+
+# Every libFuzzer target of tests/fuzz for FUZZ_SECONDS each (two at a time), in the sanitized build.
+fuzz: deps
+	CC=clang CXX=clang++ cmake -S . -B $(SANITIZE_BUILD) -G Ninja $(SANITIZE_FLAGS) \
+	  -DRRLAB_SANITIZE=address,undefined -DRRLAB_FUZZ=ON
+	cmake --build $(SANITIZE_BUILD) --parallel $(JOBS) --target rrlab_fuzz
+	./tests/fuzz/run $(SANITIZE_BUILD) $(FUZZ_SECONDS)
+
+# The server tests under ThreadSanitizer (not part of .ci/run: see the README).
+test-tsan: deps
+	CC=clang CXX=clang++ cmake -S . -B $(TSAN_BUILD) -G Ninja $(SANITIZE_FLAGS) -DRRLAB_SANITIZE=thread
+	cmake --build $(TSAN_BUILD) --parallel $(JOBS) --target rrlab rrlab_server_tests rrlab_storage_tests
+	./.ci/sanitized-ctest $(TSAN_BUILD) -E 'NOT_BUILT|$(SANITIZE_SKIP)'
+
 bench: deps
 	$(MAKE) build
 	$(BUILD)/bench/rrlab_bench
 
 clean:
-	rm -rf $(BUILD)
+	rm -rf $(BUILD) $(SANITIZE_BUILD) $(TSAN_BUILD)

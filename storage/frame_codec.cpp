@@ -89,7 +89,12 @@ Frame unpack_frame(std::string_view in) {
   f.task_error = take<double>(in);
   f.orientation_error = take<double>(in);
   f.min_distance = take<double>(in);
-  f.min_distance_link = int(take<double>(in));
+  // a link index (-1: none) stored as a double: checked before the cast, which
+  // is undefined behaviour for a value beyond int (a corrupt blob)
+  const double link = take<double>(in);
+  if (!(link >= -1 && link <= 1e6) || link != std::floor(link))
+    throw std::runtime_error("frame blob has a bad min_distance_link");
+  f.min_distance_link = int(link);
   f.collided = take<double>(in) != 0.0;
   f.joint_limit_margin = take<double>(in);
   f.manipulability = take<double>(in);

@@ -1,5 +1,7 @@
 #include "sweep/sweep_expansion.hpp"
 
+#include <limits>
+
 namespace rrlab::sweep {
 
 std::vector<SweepCase> expand_sweep(const SweepSpec& spec) {
@@ -30,6 +32,18 @@ std::vector<SweepCase> expand_sweep(const SweepSpec& spec) {
     }
   }
   return cases;
+}
+
+std::uint64_t sweep_case_count(const SweepSpec& spec) {
+  constexpr std::uint64_t kMax = std::numeric_limits<std::uint64_t>::max();
+  const auto times = [&](std::uint64_t a, std::uint64_t b) { return b != 0 && a > kMax / b ? kMax : a * b; };
+  const std::uint64_t per_case = times(spec.configs.size(), spec.seeds.empty() ? 1 : spec.seeds.size());
+  std::uint64_t total = 0;
+  for (const ScenarioEntry& entry : spec.scenarios) {
+    const std::uint64_t cases = times(std::uint64_t(entry.count), per_case);
+    total = cases > kMax - total ? kMax : total + cases;
+  }
+  return total;
 }
 
 std::vector<SweepCase> cases_of_shard(const std::vector<SweepCase>& cases, const Shard& shard) {

@@ -33,6 +33,10 @@ struct Shard {
 };
 
 std::vector<SweepCase> expand_sweep(const SweepSpec& spec);
+// How many cases expand_sweep(spec) makes, without making them (a size limit
+// is checked before the expansion can take the memory); saturates at the
+// largest std::uint64_t.
+std::uint64_t sweep_case_count(const SweepSpec& spec);
 std::vector<SweepCase> cases_of_shard(const std::vector<SweepCase>& cases, const Shard& shard);
 
 }  // namespace rrlab::sweep

@@ -71,7 +71,8 @@ ScenarioEntry generator_entry(const nlohmann::json& value, const std::string& pa
     throw ScenarioError(object.child("generator"), "unknown family \"" + entry.family + "\" (known: " + known + ")");
   }
   const double count = object.number("count");
-  if (count != double(long(count)) || count < 1 || count > kMaxCount)
+  // the range first: casting a double beyond long is undefined behaviour
+  if (!(count >= 1 && count <= kMaxCount) || count != double(long(count)))
     throw ScenarioError(object.child("count"), "must be an integer in [1, " + std::to_string(kMaxCount) + "]");
   entry.count = int(count);
   entry.seed = object.has("seed") ? non_negative_integer(object.raw("seed"), object.child("seed")) : 1;
@@ -168,7 +169,7 @@ SweepSpec parse_sweep_spec(const nlohmann::json& doc, const SpecDirs& dirs) {
   spec.success = parse_success_criteria(root.raw("success"), "success");
   if (root.has("steps")) {
     const double steps = root.number("steps");
-    if (steps != double(long(steps)) || steps < 1 || steps > double(ScenarioLimits::max_steps))
+    if (!(steps >= 1 && steps <= double(ScenarioLimits::max_steps)) || steps != double(long(steps)))
       throw ScenarioError("steps", "must be an integer in [1, " + std::to_string(ScenarioLimits::max_steps) + "]");
     spec.steps = long(steps);
   }

@@ -98,7 +98,13 @@ std::optional<nlohmann::json> place_obstacles(int count, const KeepOut& keep_out
 
 Eigen::Vector3d point_in_ball(const Eigen::Vector3d& center, double radius, bool spatial, Rng& rng) {
   for (;;) {
-    const Eigen::Vector3d u(rng.uniform(-1, 1), rng.uniform(-1, 1), spatial ? rng.uniform(-1, 1) : 0.0);
+    // one draw per statement: as constructor arguments their order was up to the
+    // compiler (gcc drew z, y, x; clang x, y, z: other scenarios). gcc's order
+    // is kept, so that the generated families stay what they were.
+    const double z = spatial ? rng.uniform(-1, 1) : 0.0;
+    const double y = rng.uniform(-1, 1);
+    const double x = rng.uniform(-1, 1);
+    const Eigen::Vector3d u(x, y, z);
     if (u.squaredNorm() <= 1) return center + radius * u;
   }
 }

@@ -494,7 +494,7 @@ Scenario parse_scenario_text(const std::string& text) {
   json doc;
   try {
     doc = json::parse(text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // parse_error, and out_of_range for a number beyond double
     throw ScenarioError("", std::string("invalid JSON: ") + e.what());
   }
   return parse_scenario(doc);
@@ -507,7 +507,7 @@ json read_json_file(const std::string& file, const std::string& what) {
   buffer << in.rdbuf();
   try {
     return json::parse(buffer.str());
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // parse_error, and out_of_range for a number beyond double
     throw ScenarioError("", what + " '" + file + "' is not valid JSON: " + e.what());
   }
 }

@@ -346,6 +346,10 @@ void RunGroup::finish(const std::string& requested_status) {
     } catch (const std::exception&) {
     }
   }
+  // destroyed before exited_: a callback may own what the server tears down
+  // once every run has exited (a deferred reply's HTTP session, whose socket
+  // belongs to the I/O context; ASan caught its use after free at shutdown)
+  callbacks.clear();
   {
     std::lock_guard lock(exit_mutex_);
     exited_ = true;

@@ -64,12 +64,14 @@ json SweepJobs::start(const json& body, int jobs) {
   } catch (...) {
     rethrow_as_api_error("", 422);
   }
-  job->cases = sweep::expand_sweep(job->spec);
-  if (job->cases.size() > kMaxRunsPerSweep)
+  // counted before expanding: a short spec can name billions of runs (memory)
+  const std::uint64_t runs = sweep::sweep_case_count(job->spec);
+  if (runs > kMaxRunsPerSweep)
     throw ApiError(422, "invalid",
-                   "this spec expands to " + std::to_string(job->cases.size()) + " runs; over REST at most " +
+                   "this spec expands to " + std::to_string(runs) + " runs; over REST at most " +
                        std::to_string(kMaxRunsPerSweep) + " (the command line has no limit)",
                    "scenarios");
+  job->cases = sweep::expand_sweep(job->spec);
   // one core stays for live runs
   const int cores = int(std::max(1u, std::thread::hardware_concurrency()));
   job->jobs = std::clamp(jobs, 1, std::max(1, cores - 1));

@@ -9,6 +9,7 @@
 #include <deque>
 
 #include "app/controller.hpp"
+#include "app/socket_message.hpp"
 #include "net/sessions.hpp"
 
 namespace rrlab::server {
@@ -161,34 +162,11 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
   // An ack or an error for every message; the socket stays open whatever the
   // client sent (no exception reaches the I/O loop).
   nlohmann::json reply_to(const std::string& text) {
-    try {
-      if (over_rate_limit())
-        throw ApiError(429, "rate_limited",
-                       "more than " + std::to_string(state_->limits.ws_messages_per_second) +
-                           " messages per second; this one was dropped");
-      const nlohmann::json message = parse_client_json(text);
-      if (!client_.may_steer)
-        throw ApiError(401, "unauthorized",
-                       "this connection watches only: reconnect with the token (query parameter token=TOKEN) to steer");
-      if (Controller* controller = source_->controller()) {
-        const std::string action =
-            message.is_object() && message.value("type", nlohmann::json()) == "control" && message.contains("action") &&
-                    message["action"].is_string()
-                ? message["action"].get<std::string>()
-                : "";
-        if (action == "take" || action == "release") {
-          if (message.size() != 2) throw ApiError(400, "invalid", "take and release take no other keys", "action");
-          return {{"type", "ack"},
-                  {"status", action == "take" ? controller->take(client_.name) : controller->release(client_.name)}};
-        }
-        controller->claim(client_.name);
-      }
-      return source_->handle_message(message);
-    } catch (const ApiError& e) {
-      return socket_error(e);
-    } catch (const std::exception&) {
-      return socket_error(ApiError(500, "internal", "the message could not be handled"));
-    }
+    if (over_rate_limit())
+      return socket_error(ApiError(429, "rate_limited",
+                                   "more than " + std::to_string(state_->limits.ws_messages_per_second) +
+                                       " messages per second; this one was dropped"));
+    return reply_to_socket_message(*source_, client_.name, client_.may_steer, text);
   }
 
   // At most N messages per one-second window.

@@ -22,7 +22,7 @@ ApiResponse resimulate_run(RouteContext& c, const storage::RunRecord& run) {
   runs.begin_job(run.id);  // 503 when too many runs are active
   ApiResponse response;
   response.deferred = [&runs, run](Responder respond) {
-    const auto job = [&runs, run, respond] {
+    const auto job = [&runs, run, respond]() mutable {
       std::int64_t id = 0;
       try {
         storage::NewRun fresh;
@@ -60,6 +60,10 @@ ApiResponse resimulate_run(RouteContext& c, const storage::RunRecord& run) {
         }
         respond(error_response(ApiError(500, "resimulation_failed", e.what(), "")));
       }
+      // released before end_job: it owns the HTTP session, which must be gone
+      // before stop_all() returns and the server destroys its I/O context (ASan
+      // caught the session's socket closed through the freed context at shutdown)
+      respond = nullptr;
       runs.end_job(run.id);
     };
     try {

@@ -31,6 +31,19 @@ class SweepRoutes : public ServerTest {
   }
 };
 
+// Found while fuzzing POST /api/sweeps: the spec was expanded before its size
+// was checked, so 1 KB naming 3 x 10^8 runs made the server take gigabytes
+// (12 million runs: 15 s and 2 GB) before answering 422. Now counted first.
+TEST_F(SweepRoutes, AHugeSpecIsRefusedBeforeItIsExpanded) {
+  json huge = spec("rest-huge", 1);
+  huge["scenarios"] = json::array();
+  for (int i = 0; i < 100; ++i) huge["scenarios"].push_back({{"generator", "planar_clutter"}, {"count", 1000000}, {"seed", i}});
+  const HttpResult refused = send("POST", "/api/sweeps", huge);
+  EXPECT_EQ(refused.status, 422) << refused.body;
+  EXPECT_NE(refused.body.find("expands to 300000000 runs"), std::string::npos) << refused.body;
+  EXPECT_EQ(get("/api/health").status, 200);  // the server is still there
+}
+
 TEST_F(SweepRoutes, RunsToTheEndAndAnswersWithItsReport) {
   const HttpResult started = send("POST", "/api/sweeps", spec("rest-small", 3));
   ASSERT_EQ(started.status, 202) << started.body;

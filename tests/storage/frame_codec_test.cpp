@@ -52,6 +52,22 @@ TEST(FrameCodec, RejectsBlobsOfTheWrongSize) {
   EXPECT_THROW(unpack_frame(packed), std::runtime_error);
 }
 
+// Found by tests/fuzz/frame_fuzz.cpp: a link index beyond int was cast to int
+// (undefined behaviour); a corrupt blob is now an error like a wrong size.
+TEST(FrameCodec, RejectsALinkIndexThatIsNotOne) {
+  const std::string packed = pack_frame(sample_frame());
+  const size_t link_offset = 16 + 8 * (1 + 7 + 7 + 3 + 4 + 3 + 3);  // step, t, q, qdot, ee, quat, target, 3 metrics
+  for (const double bad : {5.04759e+223, -2.0, 0.5, std::numeric_limits<double>::quiet_NaN()}) {
+    std::string corrupt = packed;
+    std::memcpy(corrupt.data() + link_offset, &bad, sizeof bad);
+    EXPECT_THROW(unpack_frame(corrupt), std::runtime_error) << bad;
+  }
+  std::string fine = packed;
+  const double link = 6;
+  std::memcpy(fine.data() + link_offset, &link, sizeof link);
+  EXPECT_EQ(unpack_frame(fine).min_distance_link, 6);
+}
+
 TEST(FrameCodec, JsonNamesDiagnosticsAndNullsNonFinite) {
   const nlohmann::json j = frame_to_json(sample_frame(), {"a", "b"});
   EXPECT_EQ(j["diagnostics"]["a"], 1.0);

@@ -96,5 +96,21 @@ TEST(SweepExpansion, ParsedGeneratorEntryRunsItsCases) {
             generate_scenario("planar_clutter", nlohmann::json::object(), 11, 2));
 }
 
+// The size POST /api/sweeps checks before expanding (a short spec of many
+// large generator entries took seconds and gigabytes to expand, then was refused).
+TEST(SweepExpansion, CaseCountIsTheExpansionsSizeWithoutExpanding) {
+  const SweepSpec small = parse_spec(small_spec());
+  EXPECT_EQ(sweep_case_count(small), expand_sweep(small).size());  // 2 x 3 x 2 = 12
+  nlohmann::json doc = small_spec("gen");
+  doc["scenarios"] = nlohmann::json::parse(R"([{"generator": "planar_clutter", "count": 3, "seed": 11}, "01_planar7_obstacles"])");
+  doc.erase("seeds");
+  const SweepSpec generated = parse_spec(doc);
+  EXPECT_EQ(sweep_case_count(generated), expand_sweep(generated).size());  // (3 + 1) x 3 = 12
+  doc["scenarios"] = nlohmann::json::array();
+  for (int i = 0; i < 50; ++i) doc["scenarios"].push_back({{"generator", "planar_clutter"}, {"count", 1000000}, {"seed", i}});
+  doc["seeds"] = nlohmann::json::array({1, 2});
+  EXPECT_EQ(sweep_case_count(parse_spec(doc)), 50u * 1000000u * 3u * 2u);
+}
+
 }  // namespace
 }  // namespace rrlab::sweep

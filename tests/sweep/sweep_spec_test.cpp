@@ -101,6 +101,19 @@ TEST(SweepSpec, ErrorsNameTheJsonPath) {
                "methods[0]: ");
 }
 
+// Found with tests/fuzz/sweeps_fuzz.cpp: a count or steps beyond long was cast
+// to long before the range check (undefined behaviour; UBSan aborts).
+TEST(SweepSpec, HugeCountsAndStepsAreOutOfRange) {
+  json doc = small_spec();
+  doc["steps"] = 1e300;
+  expect_error(doc, "steps: must be an integer in [1, ");
+  doc["steps"] = -1e300;
+  expect_error(doc, "steps: must be an integer in [1, ");
+  doc = small_spec();
+  doc["scenarios"] = json::parse(R"([{"generator": "planar_clutter", "count": 1e300}])");
+  expect_error(doc, "scenarios[0].count: must be an integer in [1, 1000000]");
+}
+
 TEST(SweepSpec, ScenarioFileErrorsArePrefixedWithTheEntry) {
   testing::TempDir dir;
   json scenario = json::parse(std::ifstream(testing::scenarios_dir() / "01_planar7_obstacles.json"));

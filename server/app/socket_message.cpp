@@ -1,0 +1,35 @@
+#include "app/socket_message.hpp"
+
+#include "app/api.hpp"
+#include "app/controller.hpp"
+
+namespace rrlab::server {
+
+nlohmann::json reply_to_socket_message(FrameSource& source, const std::string& client, bool may_steer,
+                                       const std::string& text) {
+  try {
+    const nlohmann::json message = parse_client_json(text);
+    if (!may_steer)
+      throw ApiError(401, "unauthorized",
+                     "this connection watches only: reconnect with the token (query parameter token=TOKEN) to steer");
+    if (Controller* controller = source.controller()) {
+      const std::string action =
+          message.is_object() && message.value("type", nlohmann::json()) == "control" && message.contains("action") &&
+                  message["action"].is_string()
+              ? message["action"].get<std::string>()
+              : "";
+      if (action == "take" || action == "release") {
+        if (message.size() != 2) throw ApiError(400, "invalid", "take and release take no other keys", "action");
+        return {{"type", "ack"}, {"status", action == "take" ? controller->take(client) : controller->release(client)}};
+      }
+      controller->claim(client);
+    }
+    return source.handle_message(message);
+  } catch (const ApiError& e) {
+    return socket_error(e);
+  } catch (const std::exception&) {
+    return socket_error(ApiError(500, "internal", "the message could not be handled"));
+  }
+}
+
+}  // namespace rrlab::server

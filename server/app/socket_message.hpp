@@ -1,0 +1,20 @@
+// A WebSocket client's message to a live run or replay, answered without a
+// socket (net/websocket_session.cpp sends the reply; the fuzzer of
+// tests/fuzz/ calls it directly).
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "app/frame_source.hpp"
+
+namespace rrlab::server {
+
+// The reply to one message: an ack or an error ({"type": "error", ...}),
+// never an exception. `client` is the connection's client name
+// (app/controller.hpp); `may_steer` is false for a watch-only connection
+// (a server with a token, a client without it).
+nlohmann::json reply_to_socket_message(FrameSource& source, const std::string& client, bool may_steer,
+                                       const std::string& text);
+
+}  // namespace rrlab::server

@@ -1,0 +1,7 @@
+// POST /api/compare: the body parsed and validated (scenario, 2 to 8 methods, options), then refused 503 by a server that starts nothing.
+#include "fuzz_support.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  rrlab::fuzz::Server::get().idle_call("POST", "/api/compare", rrlab::fuzz::as_text(data, size));
+  return 0;
+}

@@ -1,0 +1,7 @@
+// POST /api/sweeps: the sweep spec parsed, validated and expanded, then refused 503 by a server that starts nothing.
+#include "fuzz_support.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  rrlab::fuzz::Server::get().idle_call("POST", "/api/sweeps", rrlab::fuzz::as_text(data, size));
+  return 0;
+}
