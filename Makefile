@@ -11,7 +11,7 @@ SANITIZE_FLAGS = -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEB
                  -DRRLAB_WEB_TESTS=OFF -DRRLAB_BUILD_BENCH=OFF
 # Tests that do not run rrlab's code, or test something else than it: the
 # browser (off in these builds), the Dockerfile, the docs and the Slurm cluster.
-SANITIZE_SKIP = ^(Web|Docker|Docs|Slurm)\.
+SANITIZE_SKIP = ^(Web|Docker|Docs|Slurm|Soak)\.
 
 .PHONY: deps deps-serve configure build serve demo test test-web bench clean test-sanitize fuzz test-tsan
 
