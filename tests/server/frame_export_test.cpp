@@ -9,6 +9,7 @@
 #include <thread>
 #include <vector>
 
+#include "chain_scenario.hpp"
 #include "client.hpp"
 #include "raw_connection.hpp"
 #include "server_process.hpp"
@@ -18,20 +19,7 @@ namespace {
 
 using nlohmann::json;
 
-// A planar chain of `dof` links (2 m long in all) tracing a circle: `steps` frames.
-json long_chain(int dof, int steps) {
-  json links = json::array();
-  for (int i = 0; i < dof; ++i) links.push_back({{"length", 2.0 / dof}, {"radius", 0.005}});
-  return {{"name", "chain" + std::to_string(dof)},
-          {"dt", 0.01},
-          {"duration", steps * 0.01},
-          {"angle_unit", "deg"},
-          {"robot", {{"kind", "planar"}, {"base", {0, 0}}, {"links", links}, {"q0", std::vector<double>(dof, 5.0)}}},
-          {"task",
-           {{"space", "xy"},
-            {"trajectory", {{"type", "circle"}, {"center", {1.2, 0.3}}, {"radius", 0.2}, {"direction", "ccw"}}}}},
-          {"method", {{"name", "pinv"}}}};
-}
+json long_chain(int dof, int steps) { return chain_scenario("chain" + std::to_string(dof), dof, steps); }
 
 std::string get_request(unsigned short port, const std::string& target, const std::string& version = "1.1") {
   return "GET " + target + " HTTP/" + version + "\r\nHost: 127.0.0.1:" + std::to_string(port) + "\r\n\r\n";

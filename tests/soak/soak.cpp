@@ -21,6 +21,7 @@
 #include <thread>
 #include <vector>
 
+#include "chain_scenario.hpp"
 #include "client.hpp"
 #include "raw_connection.hpp"
 #include "server_process.hpp"
@@ -212,20 +213,7 @@ void replay_client(unsigned short port) {
   }
 }
 
-// A planar chain of `dof` links tracing a circle, `steps` frames.
-json long_chain(int dof, int steps) {
-  json links = json::array();
-  for (int i = 0; i < dof; ++i) links.push_back({{"length", 2.0 / dof}, {"radius", 0.005}});
-  return {{"name", "soak_chain" + std::to_string(dof)},
-          {"dt", 0.01},
-          {"duration", steps * 0.01},
-          {"angle_unit", "deg"},
-          {"robot", {{"kind", "planar"}, {"base", {0, 0}}, {"links", links}, {"q0", std::vector<double>(dof, 5.0)}}},
-          {"task",
-           {{"space", "xy"},
-            {"trajectory", {{"type", "circle"}, {"center", {1.2, 0.3}}, {"radius", 0.2}, {"direction", "ccw"}}}}},
-          {"method", {{"name", "pinv"}}}};
-}
+json long_chain(int dof, int steps) { return chain_scenario("soak_chain" + std::to_string(dof), dof, steps); }
 
 // 20 exports of the large run that are never read past their header; the
 // server drops a connection whose write makes no progress for 30 s, so a

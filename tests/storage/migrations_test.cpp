@@ -10,6 +10,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "temp_store_test.hpp"
 #include "storage/database.hpp"
 #include "storage/frame_codec.hpp"
 #include "storage/run_store.hpp"
@@ -17,15 +18,8 @@
 namespace rrlab::storage {
 namespace {
 
-class MigrationsTest : public ::testing::Test {
+class MigrationsTest : public TempStoreTest {
  protected:
-  void SetUp() override {
-    std::string pattern = "/tmp/rrlab-migrate-XXXXXX";
-    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
-    dir_ = pattern;
-    path_ = dir_ + "/old.db";
-  }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
 
   void write_fixture(const std::string& name) {
     std::ifstream in(std::string(RRLAB_SOURCE_DIR) + "/tests/storage/fixtures/" + name);
@@ -41,7 +35,6 @@ class MigrationsTest : public ::testing::Test {
     EXPECT_TRUE(s.step()) << sql;
     return s.column_int(0);
   }
-  std::string dir_, path_;
 };
 
 TEST_F(MigrationsTest, AVersionOneDatabaseOpensWithEveryRunIntact) {
@@ -74,14 +67,7 @@ TEST_F(MigrationsTest, AVersionOneDatabaseOpensWithEveryRunIntact) {
     EXPECT_EQ(store.events(5).size(), 2u);  // the live run's joystick and params
     EXPECT_EQ(store.sweep_runs("v1-fixture").size(), 2u);
     // and it takes new runs with the new column
-    NewRun r;
-    r.scenario_name = "after";
-    r.scenario_json = "{}";
-    r.method = "pinv";
-    r.params_json = "{}";
-    r.mode = "batch";
-    r.dof = 3;
-    EXPECT_GT(store.create_run(r), 5);
+    EXPECT_GT(store.create_run(new_run()), 5);
   }
   EXPECT_EQ(scalar("SELECT version FROM schema_version"), current_schema_version());
   RunStore again(path_);  // a second open has nothing to migrate

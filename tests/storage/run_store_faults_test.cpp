@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <string>
 
+#include "temp_store_test.hpp"
 #include "storage/database.hpp"
 #include "storage/frame_writer.hpp"
 #include "storage/run_store.hpp"
@@ -15,25 +16,8 @@
 namespace rrlab::storage {
 namespace {
 
-class RunStoreFaults : public ::testing::Test {
+class RunStoreFaults : public TempStoreTest {
  protected:
-  void SetUp() override {
-    std::string pattern = "/tmp/rrlab-faults-XXXXXX";
-    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
-    dir_ = pattern;
-    path_ = dir_ + "/test.db";
-  }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
-  static NewRun new_run() {
-    NewRun r;
-    r.scenario_name = "demo";
-    r.scenario_json = "{}";
-    r.method = "pinv";
-    r.params_json = "{}";
-    r.mode = "batch";
-    r.dof = 3;
-    return r;
-  }
   // `count` frames of `bytes` bytes each for run `run`, from seq `first`.
   static std::vector<std::pair<std::int64_t, StoredFrame>> frames(std::int64_t run, int count, size_t bytes,
                                                                    std::int64_t first = 0) {
@@ -53,7 +37,6 @@ class RunStoreFaults : public ::testing::Test {
     s.step();
     return s.column_int(0);
   }
-  std::string dir_, path_;
 };
 
 TEST_F(RunStoreFaults, SqliteCodesMapToFaults) {

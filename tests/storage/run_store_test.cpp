@@ -9,31 +9,12 @@
 
 #include "storage/database.hpp"
 #include "storage/frame_writer.hpp"
+#include "temp_store_test.hpp"
 
 namespace rrlab::storage {
 namespace {
 
-class RunStoreTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    std::string pattern = "/tmp/rrlab-store-XXXXXX";
-    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
-    dir_ = pattern;
-    path_ = dir_ + "/test.db";
-  }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
-  NewRun new_run(const std::string& method = "pinv") {
-    NewRun r;
-    r.scenario_name = "demo";
-    r.scenario_json = "{}";
-    r.method = method;
-    r.params_json = "{}";
-    r.mode = "batch";
-    r.dof = 3;
-    return r;
-  }
-  std::string dir_, path_;
-};
+using RunStoreTest = TempStoreTest;
 
 TEST_F(RunStoreTest, CreatesRunsAndFilters) {
   RunStore store(path_);
