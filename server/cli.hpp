@@ -26,6 +26,7 @@ struct ServeOptions {
   double display_hz = 60;
   std::size_t body_limit = 1 << 20;
   int ws_stall_ms = 5000;  // a WebSocket write pending this long drops the client
+  std::size_t export_memory = 64 << 20;  // bytes all streamed exports may hold at once (128 KiB each)
   // quotas (server/app/run_manager.hpp ServerLimits has the defaults' reasons)
   long max_run_frames = 1'000'000;
   std::int64_t max_run_bytes = 256ll << 20;

@@ -23,6 +23,10 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(std::size_t(1024), std::size_t(64) << 20));
   serve_cmd->add_option("--ws-stall-ms", serve.ws_stall_ms, "drop a WebSocket client whose write is stuck this long")
       ->check(CLI::Range(100, 600000));
+  serve_cmd->add_option("--export-memory", serve.export_memory,
+                        "bytes all streamed frame exports may hold at once, 128 KiB each (default 67108864 = 64 MiB, "
+                        "512 exports; beyond: 503 busy)")
+      ->check(CLI::Range(std::size_t(128) << 10, std::size_t(1) << 40));
   serve_cmd->add_option("--max-run-frames", serve.max_run_frames,
                         "frames one run may store (default 1000000; a request for more steps is 413)")
       ->check(CLI::Range(1L, 100'000'000L));

@@ -42,10 +42,12 @@ int serve(const ServeOptions& options) {
     limits.max_scenarios = options.max_scenarios;
     RunManager runs(store, writer, find_dir(options.scenarios_dir, "scenarios"), limits);
 
+    NetLimits net_limits;
+    net_limits.body_limit = options.body_limit;
+    net_limits.ws_stall_timeout = std::chrono::milliseconds(options.ws_stall_ms);
+    net_limits.export_budget = options.export_memory;
     auto state = std::make_shared<ServerState>(runs, ServerInfo{RRLAB_VERSION, std::chrono::steady_clock::now()},
-                                               find_dir(options.web_dir, "web"));
-    state->limits.body_limit = options.body_limit;
-    state->limits.ws_stall_timeout = std::chrono::milliseconds(options.ws_stall_ms);
+                                               find_dir(options.web_dir, "web"), net_limits);
     state->info.websockets = &state->websockets;
     net::io_context ioc(options.threads);
     const unsigned short port = start_listener(ioc, options.host, options.port, state);

@@ -26,13 +26,13 @@ struct NetLimits {
   // run over by) from a budget shared by all (503 with Retry-After beyond).
   // 64 MiB / 128 KiB: 512 exports at once.
   std::size_t export_chunk = 64 << 10;
-  std::size_t export_budget = 64 << 20;
+  std::size_t export_budget = 64 << 20;  // serve --export-memory
   int export_threads = 2;
 };
 
 struct ServerState {
-  ServerState(RunManager& runs, ServerInfo info, std::string web_root)
-      : runs(runs), info(std::move(info)), web_root(std::move(web_root)) {}
+  ServerState(RunManager& runs, ServerInfo info, std::string web_root, NetLimits limits = {})
+      : runs(runs), info(std::move(info)), web_root(std::move(web_root)), limits(limits) {}
   RunManager& runs;
   ServerInfo info;
   std::string web_root;
