@@ -16,32 +16,72 @@ std::string valid_client_name(const std::string& name) {
   return name;
 }
 
+Controller::Notices Controller::state_notices_locked() const {
+  Notices notices;
+  for (const auto& [id, c] : connections_) {
+    if (!c.notify) continue;
+    json message = state_locked(c.client);
+    message["type"] = "control";
+    message["event"] = "state";
+    notices.emplace_back(c.notify, std::move(message));
+  }
+  return notices;
+}
+
+void Controller::send(const Notices& notices) {
+  for (const auto& [notify, message] : notices) notify(message);
+}
+
 std::uint64_t Controller::attach(const std::string& client, Notify notify) {
-  std::lock_guard lock(mutex_);
-  connections_[++next_] = Connection{client, std::move(notify)};
-  return next_;
+  Notices notices;
+  std::uint64_t handle = 0;
+  {
+    std::lock_guard lock(mutex_);
+    handle = ++next_;
+    connections_[handle] = Connection{client, notify};
+    json message = state_locked(client);
+    message["type"] = "control";
+    message["event"] = "state";
+    if (notify) notices.emplace_back(std::move(notify), std::move(message));
+  }
+  send(notices);
+  return handle;
 }
 
 void Controller::detach(std::uint64_t connection) {
-  std::lock_guard lock(mutex_);
-  const auto it = connections_.find(connection);
-  if (it == connections_.end()) return;
-  const std::string client = it->second.client;
-  connections_.erase(it);
-  if (client != holder_) return;
-  for (const auto& [id, c] : connections_)
-    if (c.client == client) return;  // the holder has another connection (another lane of a compare)
-  holder_.clear();
+  Notices notices;
+  {
+    std::lock_guard lock(mutex_);
+    const auto it = connections_.find(connection);
+    if (it == connections_.end()) return;
+    const std::string client = it->second.client;
+    connections_.erase(it);
+    if (client != holder_) return;
+    for (const auto& [id, c] : connections_)
+      if (c.client == client) return;  // the holder has another connection (another lane of a compare)
+    holder_.clear();
+    notices = state_notices_locked();
+  }
+  send(notices);
 }
 
 void Controller::claim(const std::string& client) {
   if (client.empty()) return;
-  std::lock_guard lock(mutex_);
-  if (holder_.empty()) {
-    holder_ = client;
+  Notices notices;
+  bool claimed = false;
+  {
+    std::lock_guard lock(mutex_);
+    if (holder_ == client) return;
+    if (holder_.empty()) {
+      holder_ = client;
+      claimed = true;
+      notices = state_notices_locked();
+    }
+  }
+  if (claimed) {
+    send(notices);
     return;
   }
-  if (holder_ == client) return;
   throw ApiError(409, "not_controller",
                  "another client controls this run; you are watching. Take control with "
                  "{\"type\": \"control\", \"action\": \"take\"} (WebSocket) or "
@@ -56,13 +96,16 @@ json Controller::take(const std::string& client) {
                    "parameter (WebSocket)",
                    "action");
   std::vector<Notify> previous;  // called unlocked: a notification may end its session
+  Notices notices;
   json state;
   {
     std::lock_guard lock(mutex_);
     if (!holder_.empty() && holder_ != client)
       for (const auto& [id, c] : connections_)
         if (c.client == holder_ && c.notify) previous.push_back(c.notify);
+    const bool changed = holder_ != client;
     holder_ = client;
+    if (changed) notices = state_notices_locked();
     state = state_locked(client);
   }
   const json taken = {{"type", "control"},
@@ -70,13 +113,23 @@ json Controller::take(const std::string& client) {
                       {"controller", "other"},
                       {"message", "another client took control of this run; you are watching now"}};
   for (const Notify& notify : previous) notify(taken);
+  send(notices);
   return state;
 }
 
 json Controller::release(const std::string& client) {
-  std::lock_guard lock(mutex_);
-  if (!client.empty() && holder_ == client) holder_.clear();
-  return state_locked(client);
+  Notices notices;
+  json state;
+  {
+    std::lock_guard lock(mutex_);
+    if (!client.empty() && holder_ == client) {
+      holder_.clear();
+      notices = state_notices_locked();
+    }
+    state = state_locked(client);
+  }
+  send(notices);
+  return state;
 }
 
 json Controller::state_json(const std::string& client) {

@@ -4,7 +4,9 @@
 // control, disconnects, or another client takes over explicitly
 // ({"type": "control", "action": "take"} on the WebSocket, or
 // POST /api/runs/{id}/control {"action": "take"}), which the holder is told
-// about on its WebSockets.
+// about on its WebSockets. Every WebSocket of the run hears who holds control
+// when it connects and whenever that changes:
+// {"type": "control", "event": "state", "controller": "you" | "other" | "none"}.
 //
 // Clients are told apart by name: the `client` query parameter of a
 // WebSocket and the Rrlab-Client header of a REST request (1 to 64 of
@@ -23,6 +25,8 @@
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace rrlab::server {
 
@@ -30,8 +34,9 @@ class Controller {
  public:
   using Notify = std::function<void(const nlohmann::json&)>;
 
-  // A WebSocket connection of `client`, told of take-overs through `notify`;
-  // returns the handle for detach().
+  // A WebSocket connection of `client`, told the control state now and at
+  // every change through `notify` (called without the lock held, from the
+  // thread that made the change); returns the handle for detach().
   std::uint64_t attach(const std::string& client, Notify notify);
   // The connection closed: control is released when it was the holder's last one.
   void detach(std::uint64_t connection);
@@ -49,6 +54,10 @@ class Controller {
 
  private:
   nlohmann::json state_locked(const std::string& client) const;
+  using Notices = std::vector<std::pair<Notify, nlohmann::json>>;
+  // Each connection's view of the state, to send once the lock is released.
+  Notices state_notices_locked() const;
+  static void send(const Notices& notices);
 
   struct Connection {
     std::string client;

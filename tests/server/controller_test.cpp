@@ -28,6 +28,15 @@ class Control : public ServerTest {
     ADD_FAILURE() << "no reply to " << message;
     return {};
   }
+  // The next control message with this event ("taken", "state"), others skipped.
+  static std::optional<json> control_event(WsClient& c, const std::string& event) {
+    for (int i = 0; i < 20; ++i) {
+      const auto m = c.read_type("control");
+      if (!m) return std::nullopt;
+      if ((*m)["event"] == event) return m;
+    }
+    return std::nullopt;
+  }
   static HttpResult rest(const std::string& method, const std::string& target, const json& body,
                          const std::string& client) {
     std::map<std::string, std::string> headers;
@@ -64,7 +73,7 @@ TEST_F(Control, SecondWebSocketClientWatchesUntilItTakesOver) {
   const json taken = reply(bob, R"({"type":"control","action":"take"})");
   EXPECT_EQ(taken["type"], "ack");
   EXPECT_EQ(taken["status"]["controller"], "you");
-  const auto told = alice.read_type("control");
+  const auto told = control_event(alice, "taken");
   ASSERT_TRUE(told);
   EXPECT_EQ((*told)["event"], "taken");
   EXPECT_EQ((*told)["controller"], "other");
@@ -106,9 +115,35 @@ TEST_F(Control, DisconnectReleasesControl) {
   EXPECT_EQ(reply(first, kJoystick)["type"], "ack");
   EXPECT_EQ(reply(second, kJoystick)["error"]["code"], "not_controller");
   EXPECT_EQ(reply(second, R"({"type":"control","action":"take"})")["status"]["controller"], "you");
-  ASSERT_TRUE(first.read_type("control"));
+  ASSERT_TRUE(control_event(first, "taken"));
   EXPECT_EQ(reply(first, kJoystick)["error"]["code"], "not_controller");
   EXPECT_EQ(send("POST", base + "/control", {{"action", "stop"}}).status, 200);
+  wait_ended(id);
+}
+
+TEST_F(Control, EveryClientHearsWhoHoldsControl) {
+  const std::int64_t id = start_live({{"scenario", small_scenario("joystick", 60)}, {"rate", 1}});
+  auto alice = std::make_unique<WsClient>(port(), ws(id, "alice"));
+  WsClient bob(port(), ws(id, "bob"));
+  // on connecting: nobody holds it
+  const auto alice_first = control_event(*alice, "state");
+  const auto bob_first = control_event(bob, "state");
+  ASSERT_TRUE(alice_first && bob_first);
+  EXPECT_EQ((*alice_first)["controller"], "none");
+  EXPECT_EQ((*bob_first)["controller"], "none");
+  // alice steers: each hears it from its side, before anyone tries to steer
+  EXPECT_EQ(reply(*alice, kJoystick)["type"], "ack");
+  EXPECT_EQ((*control_event(bob, "state"))["controller"], "other");
+  EXPECT_EQ((*control_event(*alice, "state"))["controller"], "you");
+  // alice lets go: bob hears that nobody holds it
+  EXPECT_EQ(reply(*alice, R"({"type":"control","action":"release"})")["status"]["controller"], "none");
+  EXPECT_EQ((*control_event(bob, "state"))["controller"], "none");
+  // alice steers again and leaves: bob hears it is free
+  EXPECT_EQ(reply(*alice, kJoystick)["type"], "ack");
+  EXPECT_EQ((*control_event(bob, "state"))["controller"], "other");
+  alice.reset();
+  EXPECT_EQ((*control_event(bob, "state"))["controller"], "none");
+  EXPECT_EQ(send("POST", "/api/runs/" + std::to_string(id) + "/control", {{"action", "stop"}}).status, 200);
   wait_ended(id);
 }
 
@@ -124,14 +159,19 @@ TEST(ControllerUnit, ClaimTakeRelease) {
   EXPECT_THROW(c.claim("b"), server::ApiError);
   EXPECT_NO_THROW(c.claim(""));  // still no party to it
   EXPECT_EQ(c.take("b")["controller"], "you");
-  ASSERT_EQ(told_a.size(), 1u);
-  EXPECT_EQ(told_a[0]["event"], "taken");
+  // a: the state when attached (none), when it claimed (you), taken, the state after (other)
+  ASSERT_EQ(told_a.size(), 4u);
+  EXPECT_EQ(told_a[0]["controller"], "none");
+  EXPECT_EQ(told_a[1]["controller"], "you");
+  EXPECT_EQ(told_a[2]["event"], "taken");
+  EXPECT_EQ(told_a[3]["event"], "state");
+  EXPECT_EQ(told_a[3]["controller"], "other");
   EXPECT_EQ(c.take("b")["controller"], "you");  // taking what one holds tells nobody
-  EXPECT_EQ(told_a.size(), 1u);
+  EXPECT_EQ(told_a.size(), 4u);
   c.release("a");  // not the holder: nothing
   EXPECT_EQ(c.state_json("b")["controller"], "you");
   c.detach(a1);
-  const auto b1 = c.attach("b", nullptr), b2 = c.attach("b", nullptr);
+  const auto b1 = c.attach("b", nullptr), b2 = c.attach("b", nullptr);  // no notify: nothing sent
   c.detach(b1);  // b still has a connection
   EXPECT_EQ(c.state_json("b")["controller"], "you");
   c.detach(b2);

@@ -6,6 +6,7 @@
 import { suite, until, check, pageState } from './harness.mjs';
 
 const TOKEN = 'lab-Token_4711';
+const controllerOf = (page) => page.getAttribute('#control-note', 'data-controller');
 
 // Chromium logs every 401 answer as "Failed to load resource": those are the
 // answers the page is expected to get before it has the token.
@@ -73,16 +74,24 @@ await suite('access', [
       }
       await t.page.click('#controls button[data-action="pause"]');
       await until(async () => (await t.get(`/api/runs/${run.id}`)).status === 'paused', 'the run to pause');
+      // each tab hears who holds control before anyone else tries to steer
+      await until(async () => (await controllerOf(t.page)) === 'you', 'the first tab is told it controls');
+      check(await t.page.isVisible('#release-control'), 'the holder is offered Release');
+      await until(async () => (await controllerOf(other)) === 'other', 'the second tab is told it watches');
+      check(await other.isVisible('#control-note') && await other.isVisible('#take-control'), 'the watcher is offered Take control');
       await other.click('#controls button[data-action="start"]');
-      await until(() => other.isVisible('#control-note'), 'the second tab is told it watches');
       check((await other.textContent('#message')).includes('Another client controls this run'), 'a plain message');
       check((await t.get(`/api/runs/${run.id}`)).status === 'paused', 'the watcher did not steer');
       await t.screenshot('first-tab');
       await other.click('#take-control');
-      await until(() => t.page.isVisible('#control-note'), 'the first tab is told control was taken');
+      await until(async () => (await controllerOf(t.page)) === 'other', 'the first tab is told control was taken');
+      check(await t.page.isVisible('#take-control'), 'the first tab may take it back');
       await other.click('#controls button[data-action="start"]');
       await until(async () => (await t.get(`/api/runs/${run.id}`)).status === 'running', 'the new holder starts it');
       await t.screenshot('taken');
+      await other.click('#release-control');
+      await until(async () => (await controllerOf(t.page)) === 'none', 'the first tab is told nobody holds control');
+      check(!(await t.page.isVisible('#control-note')), 'nothing to say when nobody holds control');
       await other.click('#controls button[data-action="stop"]');
       await until(async () => (await t.get(`/api/runs/${run.id}`)).status === 'stopped', 'the run to stop');
     } finally {

@@ -190,14 +190,32 @@ for (const button of document.querySelectorAll('[data-action]')) {
   };
 }
 
-// One client controls a live run: a watcher may take over (the holder is told).
-function showControlNote(show) { $('control-note').hidden = !show; }
-$('take-control').onclick = () => {
-  if (!session || session.kind !== 'live') return;
-  api('POST', `/api/runs/${session.controlRun}/control`, { action: 'take' })
-    .then(() => { showControlNote(false); app.info('You control this run now.'); }, report);
+// One client controls a live run: the line under the controls says who
+// ('you': Release; 'other': Take control, the holder is told; 'none': hidden,
+// the next input takes it). The server tells every socket at each change.
+const controlText = {
+  you: 'You control this run.',
+  other: 'Another client controls this run; you are watching.',
 };
-app.signals.controlTaken.add((text) => { showControlNote(true); app.error(text); });
+function showControl(controller) {
+  const note = $('control-note');
+  note.dataset.controller = controller;
+  note.hidden = !(controller in controlText);
+  if (note.hidden) return;
+  note.querySelector('span').textContent = controlText[controller];
+  $('take-control').hidden = controller !== 'other';
+  $('release-control').hidden = controller !== 'you';
+}
+function showControlNote(show) { showControl(show ? 'other' : 'none'); }
+function controlAction(action, done) {
+  if (!session || session.kind !== 'live') return;
+  api('POST', `/api/runs/${session.controlRun}/control`, { action })
+    .then((state) => { showControl(state.controller || 'none'); done(); }, report);
+}
+$('take-control').onclick = () => controlAction('take', () => app.info('You control this run now.'));
+$('release-control').onclick = () => controlAction('release', () => app.info('You let go of this run; another client may steer it.'));
+app.signals.control.add((controller) => { if (session && session.kind === 'live') showControl(controller); });
+app.signals.controlTaken.add((text) => { showControl('other'); app.error(text); });
 
 // ---- stream events -------------------------------------------------------
 app.signals.viewCreated.add((lane) => {

@@ -66,6 +66,8 @@ export class Session {
         onFrame: (frame) => this.frame(lane, frame),
         onMessage: (message) => {
           if (message.type === 'error') app.error(new ApiError(message.error.status || 400, message.error));
+          // who holds control of this run: on connecting, and at every change
+          else if (message.type === 'control' && message.event === 'state') app.signals.control.dispatch(message.controller);
           // another client took control of this run from this tab
           else if (message.type === 'control' && message.event === 'taken') app.signals.controlTaken.dispatch(message.message);
         },

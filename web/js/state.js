@@ -31,6 +31,7 @@ export const app = {
     overlaysChanged: new Signal(),
     message: new Signal(),         // (text, kind 'error'|'info')
     controlTaken: new Signal(),    // (text) another client took control of the live run from this tab
+    control: new Signal(),         // ('you' | 'other' | 'none') who holds control of the live run
   },
   error(e) { this.signals.message.dispatch(e, 'error'); },
   info(text) { this.signals.message.dispatch(text, 'info'); },
