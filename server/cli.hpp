@@ -34,6 +34,7 @@ struct ServeOptions {
   double max_run_cost = 2e10;
   std::int64_t max_scenarios = 1000;
   std::int64_t test_db_max_pages = 0;  // tests only: PRAGMA max_page_count on the write connection (0: none)
+  bool test_db_read_only = false;       // tests only: PRAGMA query_only on the write connection
   std::vector<std::string> allow_hosts, allow_origins;  // beyond this server's own (net/request_guard.hpp)
   std::string token;             // --token or RRLAB_TOKEN: required for changes, WebSocket inputs and reads
   bool public_read = false;      // reads need no token

@@ -48,6 +48,9 @@ int main(int argc, char** argv) {
                         "full disk")
       ->check(CLI::Range(std::int64_t(1), std::int64_t(1) << 40))
       ->group("");  // hidden from --help
+  serve_cmd->add_flag("--test-db-read-only", serve.test_db_read_only,
+                      "TESTS ONLY: refuse every write to the database (PRAGMA query_only), as a read-only file would")
+      ->group("");
   serve_cmd->add_option("--allow-host", serve.allow_hosts,
                         "also accept requests whose Host names NAME (repeatable; e.g. behind a proxy or on --host 0.0.0.0)");
   serve_cmd->add_option("--allow-origin", serve.allow_origins,

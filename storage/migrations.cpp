@@ -49,6 +49,7 @@ int migrate_to_current(Database& db) {
                        "; this rrlab reads versions up to " + std::to_string(kSchemaVersion) +
                        "): open it with that rrlab or a newer one");
   if (version < 1) throw StorageError("the database has an invalid schema version " + std::to_string(version));
+  if (version == kSchemaVersion) return version;  // nothing to write: a read-only file opens too
   for (const Migration* m = migrations_begin(); m != migrations_end(); ++m) {
     if (m->to_version <= version) continue;
     try {

@@ -97,6 +97,11 @@ bool RunStore::probe_write() {
   return true;
 }
 
+void RunStore::set_query_only() {
+  std::lock_guard lock(mutex_);
+  db_->exec("PRAGMA query_only=ON");
+}
+
 void RunStore::set_max_page_count(std::int64_t pages) {
   std::lock_guard lock(mutex_);
   db_->exec("PRAGMA max_page_count = " + std::to_string(pages));

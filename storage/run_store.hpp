@@ -159,6 +159,9 @@ class RunStore {
   // Tests only: caps the file at `pages` pages on the write connection
   // (PRAGMA max_page_count), so that tests can fill the "disk".
   void set_max_page_count(std::int64_t pages);
+  // Tests only: every later write on the write connection fails with
+  // SQLITE_READONLY (PRAGMA query_only), as with a file opened read-only.
+  void set_query_only();
 
  private:
   // Runs a write; a StorageError with a write fault is recorded, then rethrown.

@@ -104,11 +104,15 @@ void RunManager::begin_job(std::int64_t source_run) {
   job_sources_.insert(source_run);
 }
 
-void RunManager::end_job(std::int64_t source_run) {
+void RunManager::done_reading(std::int64_t source_run) {
+  std::lock_guard lock(mutex_);
+  if (auto it = job_sources_.find(source_run); it != job_sources_.end()) job_sources_.erase(it);
+}
+
+void RunManager::end_job() {
   {
     std::lock_guard lock(mutex_);
     --jobs_;
-    if (auto it = job_sources_.find(source_run); it != job_sources_.end()) job_sources_.erase(it);
   }
   jobs_done_.notify_all();
 }

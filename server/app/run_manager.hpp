@@ -91,9 +91,12 @@ class RunManager {
   std::int64_t add_replay(std::shared_ptr<ReplayPlayer> player);
   // Background jobs (re-simulations of source_run): counted against the
   // active-run limit, told to stop and waited for by stop_all(); the source
-  // cannot be deleted meanwhile. begin_job throws ApiError 503.
+  // cannot be deleted until the job calls done_reading (before it answers, so
+  // that a client may delete the run once it has the answer). begin_job
+  // throws ApiError 503.
   void begin_job(std::int64_t source_run);
-  void end_job(std::int64_t source_run);
+  void done_reading(std::int64_t source_run);
+  void end_job();
   bool stopping() const { return stopping_; }
   std::shared_ptr<ReplayPlayer> replay(std::int64_t id);
 

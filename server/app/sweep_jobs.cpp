@@ -92,7 +92,10 @@ json SweepJobs::start(const json& body, int jobs) {
   try {
     for (; begun < job->jobs; ++begun) runs_.begin_job(0);
   } catch (...) {
-    for (int i = 0; i < begun; ++i) runs_.end_job(0);
+    for (int i = 0; i < begun; ++i) {
+      runs_.done_reading(0);  // a sweep reads no stored run (0: none)
+      runs_.end_job();
+    }
     throw;
   }
   // forget the oldest finished sweeps beyond the limit
@@ -129,7 +132,10 @@ json SweepJobs::start(const json& body, int jobs) {
       job->error = error;
       job->outcome = std::move(outcome);
     }
-    for (int i = 0; i < job->jobs; ++i) runs_.end_job(0);
+    for (int i = 0; i < job->jobs; ++i) {
+      runs_.done_reading(0);  // a sweep reads no stored run (0: none)
+      runs_.end_job();
+    }
   });
   return status_of(*job);
 }

@@ -10,6 +10,7 @@
 #include "cli.hpp"
 #include "net/sessions.hpp"
 #include "storage/frame_writer.hpp"
+#include "storage/migrations.hpp"
 #include "storage/run_store.hpp"
 
 namespace rrlab::cli {
@@ -32,6 +33,7 @@ int serve(const ServeOptions& options) {
     if (db.has_parent_path()) std::filesystem::create_directories(db.parent_path());
     storage::RunStore store(options.db);
     if (options.test_db_max_pages > 0) store.set_max_page_count(options.test_db_max_pages);
+    if (options.test_db_read_only) store.set_query_only();
     storage::FrameWriter writer(store);
     ServerLimits limits;
     limits.default_display_hz = options.display_hz;
@@ -56,7 +58,7 @@ int serve(const ServeOptions& options) {
                                  options.token,         options.public_read};
     std::cout << "rrlab: serving http://" << options.host << ":" << port << "/ (database " << options.db;
     if (store.interrupted_at_open() > 0) std::cout << ", " << store.interrupted_at_open() << " runs marked interrupted";
-    if (store.migrated_from() > 0)
+    if (store.migrated_from() > 0 && store.migrated_from() < storage::current_schema_version())
       std::cout << ", migrated from schema version " << store.migrated_from();
     std::cout << ")";
     if (!options.token.empty()) std::cout << (options.public_read ? "; token required to change" : "; token required");

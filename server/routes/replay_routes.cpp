@@ -49,6 +49,7 @@ ApiResponse resimulate_run(RouteContext& c, const storage::RunRecord& run) {
         verification.update(verification_json(result));
         summary["verification"] = verification;
         runs.store().finish_run(id, "completed", summary.dump());
+        runs.done_reading(run.id);  // before the answer: its client may delete the run at once
         respond(json_response(200, verification));
       } catch (const std::exception& e) {
         if (id != 0) {
@@ -58,18 +59,20 @@ ApiResponse resimulate_run(RouteContext& c, const storage::RunRecord& run) {
           } catch (const std::exception&) {
           }
         }
+        runs.done_reading(run.id);
         respond(error_response(ApiError(500, "resimulation_failed", e.what(), "")));
       }
       // released before end_job: it owns the HTTP session, which must be gone
       // before stop_all() returns and the server destroys its I/O context (ASan
       // caught the session's socket closed through the freed context at shutdown)
       respond = nullptr;
-      runs.end_job(run.id);
+      runs.end_job();
     };
     try {
       std::thread(job).detach();
     } catch (const std::exception& e) {
-      runs.end_job(run.id);
+      runs.done_reading(run.id);
+      runs.end_job();
       respond(error_response(ApiError(503, "busy", std::string("cannot start a thread: ") + e.what(), "")));
     }
   };

@@ -154,12 +154,22 @@ ApiResponse list_runs(RouteContext& c) {
 
 ApiResponse get_run(RouteContext& c) {
   const std::int64_t id = c.id();
-  json body = run_record_json(find_run(c, id));
+  // The group's state first, the stored row after: a group seen finished has
+  // stored its summary by then (read the other way round, a run that ended in
+  // between showed "failed" with the summary of the row read while it ran).
   int lane = 0;
-  if (auto group = c.runs.group_of(id, lane)) {
-    body["live"] = group->status_json(lane);
-    body["status"] = body["live"]["status"];
-    if (!group->finished()) body["summary"] = group->summary_json(lane);
+  const auto group = c.runs.group_of(id, lane);
+  const bool finished = group && group->finished();
+  json live, summary;
+  if (group) {
+    live = group->status_json(lane);
+    if (!finished) summary = group->summary_json(lane);
+  }
+  json body = run_record_json(find_run(c, id));
+  if (group) {
+    body["live"] = live;
+    body["status"] = live["status"];
+    if (!finished) body["summary"] = summary;
   }
   return json_response(200, body);
 }

@@ -127,5 +127,41 @@ TEST(StorageFull, ALiveRunFailsAndDeletingRunsEndsTheCondition) {
   EXPECT_EQ(verify.exit_code, 0) << verify.out;
 }
 
+// A database that cannot be written (serve --test-db-read-only: PRAGMA
+// query_only on the write connection, as SQLite does for a file it may only
+// read): new runs, compares and deletions get 503 storage_readonly with a
+// message, reads keep working, and the file is unchanged.
+TEST(StorageReadOnly, ChangesGet503AndReadsWork) {
+  const std::string dir = temp_dir();
+  const std::string db = dir + "/ro.db";
+  {
+    ServerProcess writer(db);
+    ASSERT_EQ(post(writer, "/api/runs", circle_batch(200)).status, 200);
+    ASSERT_EQ(writer.stop(), 0);
+  }
+  const std::string before = query_text(db, "SELECT id || ':' || status || ':' || frames FROM runs");
+  ServerProcess server(db, {"--test-db-read-only"});
+  const HttpResult refused = post(server, "/api/runs", circle_batch(10));
+  ASSERT_EQ(refused.status, 503) << refused.body;
+  EXPECT_EQ(error_of(refused)["code"], "storage_readonly");
+  EXPECT_NE(error_of(refused)["message"].get<std::string>().find("read"), std::string::npos) << refused.body;
+  EXPECT_EQ(post(server, "/api/runs", {{"scenario", small_scenario("circle", 5)}}).status, 503);  // live too
+  const HttpResult deleted = http(server.port(), "DELETE", "/api/runs/1");
+  EXPECT_EQ(deleted.status, 503) << deleted.body;
+  EXPECT_EQ(error_of(deleted)["code"], "storage_readonly");
+  const HttpResult resimulated = http(server.port(), "POST", "/api/runs/1/replay", R"({"mode":"resimulate"})");
+  EXPECT_EQ(resimulated.status, 503) << resimulated.body;  // re-simulations are refused like new runs
+  // reads keep working
+  const json runs = http(server.port(), "GET", "/api/runs").json();
+  ASSERT_EQ(runs.size(), 1u);
+  EXPECT_EQ(run_of(server, 1)["frames"], 200);
+  EXPECT_EQ(http(server.port(), "GET", "/api/runs/1/frames?to=10").status, 200);
+  const HttpResult replay = http(server.port(), "POST", "/api/runs/1/replay", "{}");
+  EXPECT_LT(replay.status, 300) << replay.body;  // playing stored frames writes nothing
+  ASSERT_EQ(server.stop(), 0);
+  EXPECT_EQ(query_text(db, "SELECT id || ':' || status || ':' || frames FROM runs"), before);
+  EXPECT_EQ(query_text(db, "PRAGMA integrity_check"), "ok");
+}
+
 }  // namespace
 }  // namespace rrlab::testing
