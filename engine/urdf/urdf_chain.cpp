@@ -42,9 +42,9 @@ class CapturingHandler : public console_bridge::OutputHandler {
 };
 
 urdf::ModelInterfaceSharedPtr parse_with_urdfdom(const std::string& xml, std::string& errors) {
-  static CapturingHandler handler;
   static std::once_flag installed;
-  std::call_once(installed, [] { console_bridge::useOutputHandler(&handler); });
+  // never destroyed: console_bridge keeps the pointer until the process ends
+  std::call_once(installed, [] { console_bridge::useOutputHandler(new CapturingHandler); });
   CapturingHandler::Scope scope(errors);
   return urdf::parseURDF(xml);
 }
