@@ -61,11 +61,15 @@ Model parse_urdf_robot(JsonObject& robot, double radians_per_unit, const std::st
     if (long(urdf_text.size()) > ScenarioLimits::max_urdf_bytes)
       throw ScenarioError(source_path, "is longer than " + std::to_string(ScenarioLimits::max_urdf_bytes) + " bytes");
   }
+  // A fault in a file names the file; a base_link or tip_link the URDF lacks
+  // is the fault of that key.
+  std::string in_file;  // built by appending: GCC 12 warns (-Wrestrict, falsely) on "\"" + string
+  if (has_file) in_file.append("\"").append(robot.string("file")).append("\": ");
   UrdfChain chain;
   try {
     chain = read_urdf_chain(urdf_text, robot.string("base_link", ""), robot.string("tip_link", ""));
   } catch (const UrdfError& e) {
-    throw ScenarioError(source_path, e.what());
+    throw ScenarioError(e.key().empty() ? source_path : robot.child(e.key()), in_file + e.what());
   }
   if (int(chain.joints.size()) > ScenarioLimits::max_joints)
     throw ScenarioError(source_path, "has " + std::to_string(chain.joints.size()) + " moving joints, at most " +
@@ -120,14 +124,14 @@ Model parse_urdf_robot(JsonObject& robot, double radians_per_unit, const std::st
     for (const UrdfMesh& m : chain.meshes[i]) {
       const std::string where = " (link '" + m.link + "')";
       if (m.filename.rfind("package://", 0) == 0 || m.filename.rfind("file://", 0) == 0)
-        throw ScenarioError(source_path, "mesh \"" + m.filename + "\"" + where +
+        throw ScenarioError(source_path, in_file + "mesh \"" + m.filename + "\"" + where +
                                              ": package:// and file:// URIs are not resolved; give a path relative to the URDF file");
       const std::string urdf_dir = has_file ? fs::path(robot.string("file")).parent_path().string() : std::string();
       const std::string file = confined_path(m.filename, dir, source_path, urdf_dir);
       try {
         merged->append(load_mesh_file(file, m.scale), m.pose);
       } catch (const MeshError& e) {
-        throw ScenarioError(source_path, e.what() + where);
+        throw ScenarioError(source_path, in_file + e.what() + where);
       }
     }
     meshes[i] = merged;

@@ -3,8 +3,10 @@
 #include <tinyxml.h>
 
 #include <cmath>
+#include <console_bridge/console.h>
 #include <limits>
 #include <map>
+#include <mutex>
 #include <set>
 #include <urdf_parser/urdf_parser.h>
 
@@ -14,11 +16,45 @@ namespace {
 
 std::string quoted(const std::string& s) { return "'" + s + "'"; }
 
+// urdfdom gives its reasons for refusing a document only to console_bridge's
+// output handler (stderr by default). This handler, installed once for the
+// process, keeps the errors logged by the calling thread's parse instead, so
+// the UrdfError can quote them, and keeps urdfdom's console noise out of the
+// server's log. Other threads' messages (none but urdfdom's are expected)
+// are dropped.
+class CapturingHandler : public console_bridge::OutputHandler {
+ public:
+  void log(const std::string& text, console_bridge::LogLevel level, const char*, int) override {
+    if (capture_ && level >= console_bridge::CONSOLE_BRIDGE_LOG_ERROR) {
+      std::string line = text;
+      while (!line.empty() && (line.back() == '\n' || line.back() == ' ')) line.pop_back();
+      if (!line.empty()) *capture_ += (capture_->empty() ? "" : "; ") + line;
+    }
+  }
+  // Collects the errors logged by this thread while it exists.
+  struct Scope {
+    explicit Scope(std::string& into) { capture_ = &into; }
+    ~Scope() { capture_ = nullptr; }
+  };
+
+ private:
+  static inline thread_local std::string* capture_ = nullptr;
+};
+
+urdf::ModelInterfaceSharedPtr parse_with_urdfdom(const std::string& xml, std::string& errors) {
+  static std::once_flag installed;
+  // never destroyed: console_bridge keeps the pointer until the process ends
+  std::call_once(installed, [] { console_bridge::useOutputHandler(new CapturingHandler); });
+  CapturingHandler::Scope scope(errors);
+  return urdf::parseURDF(xml);
+}
+
 // urdfdom reports why it rejects a document only on its console; the checks
 // below find the common faults first so the error can name them: XML that is
 // not well formed, a joint naming a link that is not defined, a link with two
 // parents, and a cycle.
 void check_structure(const std::string& xml) {
+  if (xml.find_first_not_of(" \t\r\n") == std::string::npos) throw UrdfError("the URDF is empty");
   TiXmlDocument doc;
   doc.Parse(xml.c_str());
   if (doc.Error())
@@ -91,13 +127,16 @@ double primitive_radius(const urdf::Geometry& g) {
 
 UrdfChain read_urdf_chain(const std::string& xml, const std::string& base_link, const std::string& tip_link) {
   check_structure(xml);
-  const urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(xml);
-  if (!model) throw UrdfError("urdfdom rejected the URDF (a joint without required limits or origin, or a bad number?)");
+  std::string urdfdom_errors;
+  const urdf::ModelInterfaceSharedPtr model = parse_with_urdfdom(xml, urdfdom_errors);
+  if (!model)
+    throw UrdfError("urdfdom rejected the URDF: " +
+                    (urdfdom_errors.empty() ? std::string("(it gave no reason)") : urdfdom_errors));
   if (!model->getRoot()) throw UrdfError("the URDF has no root link");
 
   UrdfChain chain;
   chain.base_link = base_link.empty() ? model->getRoot()->name : base_link;
-  if (!model->getLink(chain.base_link)) throw UrdfError("base_link " + quoted(chain.base_link) + " is not a link of the URDF");
+  if (!model->getLink(chain.base_link)) throw UrdfError("base_link " + quoted(chain.base_link) + " is not a link of the URDF", "base_link");
   chain.tip_link = tip_link;
   if (tip_link.empty()) {
     std::vector<urdf::LinkSharedPtr> links;
@@ -108,19 +147,22 @@ UrdfChain read_urdf_chain(const std::string& xml, const std::string& base_link, 
     if (leaves.size() != 1) {
       std::string names;
       for (const auto& n : leaves) names += (names.empty() ? "" : ", ") + quoted(n);
-      throw UrdfError("the URDF has " + std::to_string(leaves.size()) + " leaf links (" + names + "); name the tip_link");
+      throw UrdfError("the URDF has " + std::to_string(leaves.size()) + " leaf links (" + names + "); name the tip_link",
+                      "tip_link");
     }
     chain.tip_link = leaves.front();
   }
   urdf::LinkConstSharedPtr tip = model->getLink(chain.tip_link);
-  if (!tip) throw UrdfError("tip_link " + quoted(chain.tip_link) + " is not a link of the URDF");
+  if (!tip) throw UrdfError("tip_link " + quoted(chain.tip_link) + " is not a link of the URDF", "tip_link");
 
   // Walk up from the tip to the base, then read the joints base to tip.
   std::vector<urdf::LinkConstSharedPtr> path;  // tip ... (child of base)
   for (urdf::LinkConstSharedPtr l = tip; l->name != chain.base_link;) {
     path.push_back(l);
     l = l->getParent();
-    if (!l) throw UrdfError("tip_link " + quoted(chain.tip_link) + " is not below base_link " + quoted(chain.base_link));
+    if (!l) throw UrdfError("tip_link " + quoted(chain.tip_link) + " is not below base_link " + quoted(chain.base_link) +
+                      " (base_link must be an ancestor of tip_link)",
+                      "tip_link");
   }
   std::reverse(path.begin(), path.end());
 

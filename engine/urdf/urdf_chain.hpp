@@ -12,9 +12,16 @@
 namespace rrlab {
 
 // A URDF that cannot be used; the message names the joint or link at fault.
+// `key`: the scenario key at fault when it is not the URDF itself
+// ("base_link" or "tip_link" naming a link the URDF lacks), else empty.
 class UrdfError : public std::runtime_error {
  public:
-  using std::runtime_error::runtime_error;
+  explicit UrdfError(const std::string& message, std::string key = {})
+      : std::runtime_error(message), key_(std::move(key)) {}
+  const std::string& key() const { return key_; }
+
+ private:
+  std::string key_;
 };
 
 // A <collision><mesh>: its file as written in the URDF, its scale, and its

@@ -112,6 +112,21 @@ TEST(UrdfScenario, MimicJointNamedWithTheRobotPath) {
       << error_path(doc, "");
 }
 
+TEST(UrdfScenario, FaultsNameTheFileAndTheKey) {
+  json doc = iiwa_scenario();
+  doc["robot"]["tip_link"] = "iiwa_gripper";
+  EXPECT_EQ(error_path(doc, kScenarios),
+            "robot.tip_link | robot.tip_link: \"robots/iiwa14.urdf\": tip_link 'iiwa_gripper' is not a link of the URDF");
+  doc["robot"]["tip_link"] = "iiwa_link_3";
+  doc["robot"]["base_link"] = "iiwa_link_5";
+  EXPECT_NE(error_path(doc, kScenarios).find("robot.tip_link | robot.tip_link: \"robots/iiwa14.urdf\": tip_link 'iiwa_link_3' is not below"),
+            std::string::npos) << error_path(doc, kScenarios);
+  doc = iiwa_scenario();
+  doc["robot"]["base_link"] = "iiwa_link_99";
+  EXPECT_EQ(error_path(doc, kScenarios),
+            "robot.base_link | robot.base_link: \"robots/iiwa14.urdf\": base_link 'iiwa_link_99' is not a link of the URDF");
+}
+
 TEST(UrdfScenario, LinkRadiusAndLimitsOverride) {
   json doc = iiwa_scenario();
   doc["robot"]["link_radius"] = 0.1;

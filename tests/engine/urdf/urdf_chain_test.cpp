@@ -222,5 +222,33 @@ TEST(UrdfChain, FaultsAreNamed) {
             std::string::npos);
 }
 
+TEST(UrdfChain, EmptyTextUrdfdomsReasonsAndTheKeyAtFault) {
+  EXPECT_EQ(error_of(""), "the URDF is empty");
+  EXPECT_EQ(error_of(" \n\t"), "the URDF is empty");
+  // urdfdom logs why it refuses a document; the error quotes it (and nothing reaches stderr)
+  std::string no_limit = small_urdf();
+  no_limit.erase(no_limit.find("<limit"), no_limit.find("</joint>") - no_limit.find("<limit"));  // j1's
+  EXPECT_EQ(error_of(no_limit),
+            "urdfdom rejected the URDF: Joint [j1] is of type REVOLUTE but it does not specify limits; "
+            "joint xml is not initialized correctly");
+  std::string bad_number = small_urdf();
+  bad_number.replace(bad_number.find("0.4 0 0"), 7, "0.4 abc 0");
+  EXPECT_NE(error_of(bad_number).find("Unable to parse component [abc] to a double"), std::string::npos) << error_of(bad_number);
+  EXPECT_NE(error_of(bad_number).find("Malformed parent origin element for joint [j2]"), std::string::npos);
+  // base_link / tip_link faults say which key is at fault
+  const auto key_of = [](const std::string& base, const std::string& tip) {
+    try {
+      read_urdf_chain(small_urdf(), base, tip);
+    } catch (const UrdfError& e) {
+      return e.key() + " | " + e.what();
+    }
+    return std::string("(accepted)");
+  };
+  EXPECT_EQ(key_of("pedestal", ""), "base_link | base_link 'pedestal' is not a link of the URDF");
+  EXPECT_EQ(key_of("", "gripper"), "tip_link | tip_link 'gripper' is not a link of the URDF");
+  EXPECT_EQ(key_of("l2", "l1"), "tip_link | tip_link 'l1' is not below base_link 'l2' (base_link must be an ancestor of tip_link)");
+  EXPECT_EQ(key_of("l2", "tip"), " | no revolute, continuous or prismatic joint between 'l2' and 'tip'");
+}
+
 }  // namespace
 }  // namespace rrlab

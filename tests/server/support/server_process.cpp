@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cstdio>
@@ -29,8 +30,10 @@ ServerProcess::ServerProcess(std::string db, std::vector<std::string> extra_args
   int out[2];
   if (pipe(out) != 0) throw std::runtime_error("pipe failed");
   std::vector<std::string> args = {RRLAB_BINARY, "serve", "--port", "0", "--db", db_,
-                                   "--web", std::string(RRLAB_SOURCE_DIR) + "/web",
-                                   "--scenarios", std::string(RRLAB_SOURCE_DIR) + "/scenarios"};
+                                   "--web", std::string(RRLAB_SOURCE_DIR) + "/web"};
+  // the source tree's scenarios/, unless the extra arguments name another directory
+  if (std::find(extra_args.begin(), extra_args.end(), "--scenarios") == extra_args.end())
+    args.insert(args.end(), {"--scenarios", std::string(RRLAB_SOURCE_DIR) + "/scenarios"});
   args.insert(args.end(), extra_args.begin(), extra_args.end());
   pid_ = fork();
   if (pid_ == 0) {

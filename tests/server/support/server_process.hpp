@@ -11,7 +11,8 @@ namespace rrlab::testing {
 
 class ServerProcess {
  public:
-  // `db` empty: a new temporary file. Extra arguments go after `serve`.
+  // `db` empty: a new temporary file. Extra arguments go after `serve`'s own
+  // (--scenarios among them replaces the source tree's scenarios/).
   explicit ServerProcess(std::string db = "", std::vector<std::string> extra_args = {});
   ~ServerProcess();
   ServerProcess(const ServerProcess&) = delete;
