@@ -180,6 +180,13 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
     send_api(error_response(ApiError(status, code, message, "")));
   }
 
+  // The peer's IP address ("" if the socket no longer knows it).
+  std::string remote_address() {
+    beast::error_code ec;
+    const auto endpoint = stream_.socket().remote_endpoint(ec);
+    return ec ? std::string() : endpoint.address().to_string();
+  }
+
   void on_read() {
     http::request<http::string_body> request = parser_->release();
     keep_alive_ = request.keep_alive();
@@ -196,6 +203,18 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
                          std::string(request[http::field::authorization]),
                          std::string(request[http::field::access_control_request_headers])});
     access_headers_ = access.headers;
+    if (access.token_presented) {  // token guessing: 429 for a while after too many wrong ones (net/auth_throttle.hpp)
+      const std::string address = remote_address();
+      const auto now = AuthThrottle::Clock::now();
+      if (const long wait = state_->auth_failures.blocked_for(address, now); wait > 0) {
+        ApiResponse slow = error_response(
+            ApiError(429, "too_many_attempts",
+                     "too many wrong tokens from this address; try again in " + std::to_string(wait) + " s", ""));
+        slow.headers.emplace_back("Retry-After", std::to_string(wait));
+        return send_api(slow);
+      }
+      if (access.wrong_token) state_->auth_failures.failed(address, now);
+    }
     if (access.status >= 400) return send_api(error_response(ApiError(access.status, access.code, access.message)));
     if (!access.allowed()) {  // a CORS preflight
       ApiResponse preflight;

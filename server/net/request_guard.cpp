@@ -255,12 +255,14 @@ AccessDecision check_access(const AccessConfig& config, const AccessRequest& req
     const bool valid = token && constant_time_equals(*token, config.token);
     const bool open = safe && !request.upgrade && (!api || path == "/api/health" || path == "/api/health/");
     const bool readable = safe && config.public_read;
+    decision.token_presented = token.has_value();
     if (token && !valid) {
       AccessDecision refused = refuse(401, "unauthorized",
                                       "the token is wrong: send the token this server was started with "
                                       "(--token or RRLAB_TOKEN) as Authorization: Bearer TOKEN");
       refused.headers = decision.headers;
       refused.headers.push_back({"WWW-Authenticate", "Bearer realm=\"rrlab\", error=\"invalid_token\""});
+      refused.token_presented = refused.wrong_token = true;
       return refused;
     }
     if (!valid && !open && !readable) {

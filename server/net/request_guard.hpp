@@ -56,6 +56,8 @@ struct AccessDecision {
   std::string code, message;
   std::vector<std::pair<std::string, std::string>> headers;  // add to the answer (CORS)
   bool may_steer = true;  // a WebSocket upgrade: its messages may steer (false: watch only)
+  bool token_presented = false;  // a token was sent (right or wrong): the throttle applies (net/auth_throttle.hpp)
+  bool wrong_token = false;      // ... and it was wrong
   bool allowed() const { return status == 0; }
 };
 

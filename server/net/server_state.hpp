@@ -7,6 +7,7 @@
 
 #include "app/export_pool.hpp"
 #include "app/run_manager.hpp"
+#include "net/auth_throttle.hpp"
 #include "net/request_guard.hpp"
 #include "routes/routes.hpp"
 
@@ -38,6 +39,7 @@ struct ServerState {
   std::string web_root;
   NetLimits limits;
   AccessConfig access;  // Host/Origin/Content-Type rules (net/request_guard.hpp)
+  AuthThrottle auth_failures;  // wrong tokens per address (429 beyond)
   std::atomic<int> websockets{0};
   ExportPool exports{limits.export_threads, limits.export_budget};
 };

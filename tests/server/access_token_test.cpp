@@ -54,6 +54,27 @@ void expect_unauthorized(const HttpResult& r, const std::string& what) {
   EXPECT_EQ(r.content_type, "application/json") << what;
 }
 
+// Token guessing: after 20 wrong tokens in a minute an address gets 429 with
+// Retry-After for every request with a token, the right one too, so that a
+// guess learns nothing; requests without a token are not affected.
+TEST(TokenGuessing, TwentyWrongTokensAMinuteThen429) {
+  ServerProcess server("", {"--token", kToken});
+  const Headers wrong = {{"Authorization", "Bearer guess"}};
+  for (int i = 0; i < 20; ++i) EXPECT_EQ(http(server.port(), "GET", "/api/runs", "", "", wrong).status, 401) << i;
+  for (const Headers& headers : {wrong, kAuth}) {
+    const HttpResult slowed = http(server.port(), "GET", "/api/runs", "", "", headers);
+    EXPECT_EQ(slowed.status, 429) << slowed.body;
+    EXPECT_EQ(error_of(slowed)["code"], "too_many_attempts");
+    ASSERT_EQ(slowed.headers.count("retry-after"), 1u);
+    const long wait = std::stol(slowed.headers.at("retry-after"));
+    EXPECT_GT(wait, 0);
+    EXPECT_LE(wait, 60);
+  }
+  EXPECT_EQ(ws_upgrade(server.port(), "/ws/runs/1?token=" + kToken).status, 429);
+  EXPECT_EQ(http(server.port(), "GET", "/api/health").status, 200);  // no token: not affected
+  EXPECT_EQ(http(server.port(), "GET", "/").status, 200);
+}
+
 TEST_F(TokenServer, ChangesNeedTheToken) {
   const std::string run = json{{"scenario", small_scenario("joystick", 60)}, {"rate", 1}}.dump();
   const std::size_t before = request("GET", "/api/runs", kAuth).json().size();
