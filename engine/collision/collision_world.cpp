@@ -22,8 +22,9 @@
 //                         leaves are exact segment–triangle distances
 //                         (segment_mesh). Exact when apart and while only the
 //                         capsule's radius overlaps the mesh; a segment crossing
-//                         the surface reports -kMeshContact (minus the radius),
-//                         one wholly inside a closed mesh is not detected.
+//                         the surface reports -kMeshContact (minus the radius);
+//                         one wholly inside a closed mesh, minus its distance
+//                         to the surface (ray parity decides inside).
 //
 // Why not FCL in compute(): FCL 0.7 (Debian 0.7.0) failed here in four ways,
 // all reproduced while writing this file:
@@ -57,7 +58,9 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <array>
 #include <limits>
+#include <map>
 #include <stdexcept>
 
 #include "collision/polygon.hpp"
@@ -499,13 +502,59 @@ void descend(const MeshBvh& bvh, int node, SegmentMeshQuery& q) {
   if (d_second < q.best) descend(bvh, second, q);
 }
 
-// Signed distance of segment a-b (world, no radius) to a mesh obstacle. The
-// mesh's surface only: a segment crossing it reports -kMeshContact with the
-// crossed triangle's normal (outward for counter-clockwise triangles); a
-// segment wholly inside a closed mesh is not detected (the distance to the
-// surface is reported), as FCL's mesh distance does not either.
-void segment_mesh(const MeshBvh& bvh, const Matrix3d& rotation, const Vector3d& position, const Vector3d& a,
-                  const Vector3d& b, LinkObstacleDistance& out) {
+// Whether every edge of the mesh (vertices welded by position) borders
+// exactly two triangles: a closed surface, whose inside a ray's parity finds.
+bool closed_mesh(const TriangleMesh& mesh) {
+  std::map<std::array<double, 3>, int> welded;
+  std::vector<int> id(mesh.vertices.size());
+  for (size_t v = 0; v < mesh.vertices.size(); ++v) {
+    const Vector3d& p = mesh.vertices[v];
+    id[v] = welded.emplace(std::array<double, 3>{p.x(), p.y(), p.z()}, int(welded.size())).first->second;
+  }
+  std::map<std::pair<int, int>, int> edges;
+  for (const Eigen::Vector3i& t : mesh.triangles)
+    for (int e = 0; e < 3; ++e) {
+      const int i = id[size_t(t[e])], j = id[size_t(t[(e + 1) % 3])];
+      if (i != j) ++edges[{std::min(i, j), std::max(i, j)}];
+    }
+  for (const auto& [edge, count] : edges)
+    if (count != 2) return false;
+  return !edges.empty();
+}
+
+// Whether p lies inside a closed mesh: the parity of a ray's crossings
+// (Möller & Trumbore's ray–triangle test) along a fixed direction chosen off
+// the axes and diagonals, so that it seldom meets an edge or vertex exactly.
+bool inside_mesh(const MeshBvh& bvh, const Vector3d& p) {
+  static const Vector3d ray = Vector3d(0.2672612419124244, 0.5345224838248488, 0.8017837257372732);  // (1, 2, 3)/√14
+  bool inside = false;
+  for (int i = 0; i < bvh.num_tris; ++i) {
+    const fcl::Triangle& t = bvh.tri_indices[i];
+    const Vector3d& v0 = bvh.vertices[t[0]];
+    const Vector3d e1 = bvh.vertices[t[1]] - v0, e2 = bvh.vertices[t[2]] - v0;
+    const Vector3d h = ray.cross(e2);
+    const double det = e1.dot(h);
+    if (std::abs(det) < 1e-300) continue;  // parallel to the ray
+    const Vector3d s = p - v0;
+    const double u = s.dot(h) / det;
+    if (u < 0 || u > 1) continue;
+    const Vector3d q = s.cross(e1);
+    const double v = ray.dot(q) / det;
+    if (v < 0 || u + v > 1) continue;
+    if (e2.dot(q) / det > 0) inside = !inside;
+  }
+  return inside;
+}
+
+// Signed distance of segment a-b (world, no radius) to a mesh obstacle. A
+// segment crossing the surface reports -kMeshContact with the crossed
+// triangle's normal (outward for counter-clockwise triangles). A segment
+// wholly inside a closed mesh (`closed`, tested when its start lies in the
+// mesh's bounds) reports minus its distance to the surface, with the normal
+// pointing out to that nearest surface point: the depth of the nearest point,
+// at most the depth that separates. Inside an open mesh nothing is detected.
+void segment_mesh(const MeshBvh& bvh, bool closed, const Eigen::AlignedBox3d& bounds, const Matrix3d& rotation,
+                  const Vector3d& position, const Vector3d& a, const Vector3d& b, LinkObstacleDistance& out) {
   SegmentMeshQuery q;
   q.a = rotation.transpose() * (a - position);
   q.b = rotation.transpose() * (b - position);
@@ -523,6 +572,11 @@ void segment_mesh(const MeshBvh& bvh, const Matrix3d& rotation, const Vector3d& 
   out.on_link = rotation * q.on_segment + position;
   out.on_obstacle = rotation * q.on_mesh + position;
   if (!q.crossing && q.best > kTouching) {
+    if (closed && bounds.contains(q.a) && inside_mesh(bvh, q.a)) {
+      out.distance = -q.best;
+      out.normal = (out.on_obstacle - out.on_link) / q.best;
+      return;
+    }
     out.distance = q.best;
     out.normal = (out.on_link - out.on_obstacle) / q.best;
     return;
@@ -542,6 +596,8 @@ struct ObstacleGeometry {
   Vector3d normal = Vector3d::UnitY();  // wall, own frame, unit
   std::shared_ptr<const TriangleMesh> mesh;  // mesh, own frame
   std::shared_ptr<MeshBvh> bvh;              // mesh: built once, shared across reshapes
+  bool closed = false;                       // mesh: a closed surface (inside is detected)
+  Eigen::AlignedBox3d bounds;                // mesh: its vertices' box, own frame
   Matrix3d rotation = Matrix3d::Identity();
   Vector3d position = Vector3d::Zero();
 };
@@ -581,6 +637,8 @@ ObstacleGeometry build_geometry(const Obstacle& o) {
     case ShapeKind::mesh:
       if (!o.mesh || o.mesh->triangles.empty()) throw bad_obstacle(o, "mesh has no triangles");
       g.mesh = o.mesh;  // the BVH is built (or reused) by the caller
+      g.closed = closed_mesh(*o.mesh);
+      for (const Vector3d& v : o.mesh->vertices) g.bounds.extend(v);
       break;
   }
   return g;
@@ -593,7 +651,7 @@ void segment_obstacle(const ObstacleGeometry& g, const Vector3d& a, const Vector
     case ShapeKind::point: segment_sphere(a, b, g.position, 0.0, out); return;
     case ShapeKind::sphere: segment_sphere(a, b, g.position, g.radius, out); return;
     case ShapeKind::wall: segment_wall(a, b, g.position, g.rotation * g.normal, out); return;
-    case ShapeKind::mesh: segment_mesh(*g.bvh, g.rotation, g.position, a, b, out); return;
+    case ShapeKind::mesh: segment_mesh(*g.bvh, g.closed, g.bounds, g.rotation, g.position, a, b, out); return;
     case ShapeKind::polygon:
     case ShapeKind::box: break;
   }

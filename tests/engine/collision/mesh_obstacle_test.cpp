@@ -88,7 +88,7 @@ TEST(MeshObstacle, BoxMeshEqualsTheBoxPrimitive) {
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> coordinate(-0.6, 0.6);
   double worst = 0;
-  int apart = 0, grazing = 0, crossing = 0;
+  int apart = 0, grazing = 0, crossing = 0, inside = 0;
   for (int trial = 0; trial < 2000; ++trial) {
     const Vector3d a = centre + Vector3d(coordinate(rng), coordinate(rng), coordinate(rng));
     const Vector3d b = centre + Vector3d(coordinate(rng), coordinate(rng), coordinate(rng));
@@ -100,20 +100,44 @@ TEST(MeshObstacle, BoxMeshEqualsTheBoxPrimitive) {
     if (box.distance > -radius + 1e-9) {  // the axis outside the box: the mesh distance is exact
       worst = std::max(worst, std::abs(mesh.distance - box.distance));
       ++(box.distance > 0 ? apart : grazing);
-    } else {  // the axis crosses the box: contact, no depth
+    } else if (mesh.distance > -radius - 2e-9) {  // the axis crosses the surface: contact, no depth
       EXPECT_LT(mesh.distance, -radius) << trial;
-      EXPECT_GT(mesh.distance, -radius - 2e-9) << trial;
       ++crossing;
+    } else {  // the axis wholly inside: the depth of its nearest point, at most the box's (separating) depth
+      EXPECT_GE(mesh.distance, box.distance - 1e-12) << trial;
+      ++inside;
     }
   }
   std::cout << "box mesh vs box: worst " << worst << " m, " << apart << " apart, " << grazing << " grazing, " << crossing
-            << " crossing\n";
+            << " crossing, " << inside << " inside\n";
   // measured: 1.1e-16 m over 1417 apart + 215 grazing pairs, 368 crossing (the
   // segment against triangles and against the box's faces are both exact)
   EXPECT_LT(worst, 1e-9);
   EXPECT_GT(apart, 500);
   EXPECT_GT(grazing, 20);
   EXPECT_GT(crossing, 100);
+  // segments wholly inside: minus the distance to the nearest face, exactly
+  // (for a box: the smallest of an end point's face clearances)
+  std::uniform_real_distribution<double> unit(-1, 1);
+  double worst_inside = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    Vector3d ends[2];
+    for (Vector3d& e : ends) e = centre + kTurn * Vector3d(0.19 * unit(rng), 0.14 * unit(rng), 0.09 * unit(rng));
+    arm.place(ends[0], ends[1]);
+    world.compute(arm.kin, table);
+    double clearance = INFINITY;
+    for (const Vector3d& e : ends) {
+      const Vector3d local = kTurn.transpose() * (e - centre);
+      for (int k = 0; k < 3; ++k) clearance = std::min(clearance, size[k] / 2 - std::abs(local[k]));
+    }
+    worst_inside = std::max(worst_inside, std::abs(table.at(0, 0).distance - (-clearance - radius)));
+    EXPECT_GE(table.at(0, 0).distance, table.at(0, 1).distance - 1e-12) << trial;  // at most the separating depth
+    expect_consistent(table.at(0, 0), radius);
+    ++inside;
+  }
+  // measured: 0 m (exact) over 300 segments inside
+  std::cout << "segments inside the box mesh: worst " << worst_inside << " m\n";
+  EXPECT_LT(worst_inside, 1e-12);
 }
 
 TEST(MeshObstacle, SphereMeshWithinItsTessellation) {
@@ -178,7 +202,7 @@ TEST(MeshObstacle, AgreesWithFclOnTheTorus) {
       ++compared;
     }
   }
-  // measured: 1.4e-9 m (FCL's GJK tolerance), nearest points 7.0e-6 m apart at worst, 700 pairs
+  // measured: 1.4e-9 m (FCL's GJK tolerance), nearest points 7.0e-6 m apart at worst, 699 pairs
   std::cout << "torus vs FCL: worst distance gap " << worst << " m, nearest points " << worst_point << " m over "
             << compared << " pairs\n";
   EXPECT_LT(worst, 1e-6);
@@ -243,11 +267,20 @@ TEST(MeshObstacle, MovingTheObstacleMovesTheDistance) {
   world.compute(arm.kin, table);
   EXPECT_NEAR(table.at(0, 0).distance, -0.02 - 1e-9, 1e-12);  // contact, no depth
   EXPECT_NEAR((table.at(0, 0).normal + Vector3d::UnitX()).norm(), 0.0, 1e-12);  // the crossed face's outward normal
-  // The gap named in collision_world.cpp: an axis wholly inside a closed mesh
-  // is not detected; the distance to the surface (here 0.05 to the top face)
-  // is reported as if outside.
+  // the axis wholly inside the closed box mesh: minus its distance to the
+  // surface (0.1 to the top face, the bottom face and the end face x = 0.2)
+  // and the radius, pointing out to the nearest surface point
   scene.obstacles[0].position = Vector3d(0.0, 0.0, 0.3);
   world.sync(scene);
+  world.compute(arm.kin, table);
+  EXPECT_NEAR(table.at(0, 0).distance, -0.1 - 0.02, 1e-12);
+  expect_consistent(table.at(0, 0), 0.02);
+  // an open mesh (the box without its top) has no inside: the gap named in
+  // collision_world.cpp, the distance to the surface is reported as if outside
+  TriangleMesh open = box_mesh(size);
+  open.triangles.erase(open.triangles.begin() + 2, open.triangles.begin() + 4);  // the top face
+  scene.obstacles[0] = mesh_obstacle(open, Vector3d(0.0, 0.0, 0.3), Eigen::Matrix3d::Identity());
+  world.sync(scene, true);
   world.compute(arm.kin, table);
   EXPECT_NEAR(table.at(0, 0).distance, 0.1 - 0.02, 1e-12);
 }
