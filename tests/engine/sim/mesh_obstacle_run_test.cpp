@@ -59,5 +59,29 @@ TEST(MeshObstacleRun, MovingTheHoopLiveMovesItsDistance) {
   EXPECT_THROW(apply_input(sim, "obstacle", {{"id", "hoop"}, {"size", {1, 1, 1}}}), ScenarioError);
 }
 
+// A live obstacle_add of a mesh resolves its file in the catalogue directory
+// and is refused on a planar arm, naming the key.
+TEST(MeshObstacleRun, LiveAddsAreCheckedLikeScenarioObstacles) {
+  set_scenario_catalogue_dir(test::source_path("scenarios"));
+  const nlohmann::json hoop = {{"id", "ring"}, {"shape", "mesh"}, {"file", "meshes/torus.obj"}, {"center", {0.5, 0.5, 0.5}}};
+  Simulator planar(load_scenario_file(test::source_path("scenarios/01_planar7_obstacles.json")));
+  try {
+    apply_input(planar, "obstacle_add", hoop);
+    ADD_FAILURE() << "a planar arm took a mesh obstacle";
+  } catch (const ScenarioError& e) {
+    EXPECT_STREQ(e.what(), "shape: mesh obstacles need a spatial robot (spatial_xz, dh or urdf), not a planar one");
+  }
+  Simulator spatial(load_scenario_file(test::source_path(kScenario)));
+  apply_input(spatial, "obstacle_add", hoop);
+  ASSERT_EQ(spatial.scene().obstacles.size(), 3u);
+  spatial.step();
+  EXPECT_TRUE(std::isfinite(spatial.distances().at(0, 2).distance));
+  nlohmann::json escaping = hoop;
+  escaping["id"] = "other";
+  escaping["file"] = "../README.md";
+  EXPECT_THROW(apply_input(spatial, "obstacle_add", escaping), ScenarioError);
+  set_scenario_catalogue_dir("");
+}
+
 }  // namespace
 }  // namespace rrlab
