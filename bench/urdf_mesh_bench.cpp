@@ -2,41 +2,20 @@
 // analytic capsules against the same capsules as triangle meshes through
 // FCL's BVH models, per distance table and per simulator step (dls).
 // Mesh resolution: `around` vertices per ring (Arg), 8 rings per cap.
+// Mesh obstacles (capsule links against an obstacle's BVH): scenario 40's
+// table as its box primitive (Arg 0) and as a 12-triangle box mesh (Arg 1),
+// and scenario 43's 576-triangle torus hoop (Arg 2).
 #include <benchmark/benchmark.h>
 
 #include "collision/collision_world.hpp"
 #include "collision/mesh_loader.hpp"
+#include "collision/mesh_shapes.hpp"
 #include "kinematics/kinematics.hpp"
 #include "scenario/scenario.hpp"
 #include "sim/simulator.hpp"
 
 namespace rrlab {
 namespace {
-
-// A capsule of `radius` around the z segment [0, length], vertices on its surface.
-TriangleMesh capsule_mesh(double radius, double length, int around, int rings = 8) {
-  TriangleMesh m;
-  std::vector<std::pair<double, double>> profile;
-  for (int i = 0; i <= rings; ++i) {
-    const double a = -M_PI / 2 + M_PI / 2 * i / rings;
-    profile.emplace_back(radius * std::cos(a), radius * std::sin(a));
-  }
-  for (int i = 0; i <= rings; ++i) {
-    const double a = M_PI / 2 * i / rings;
-    profile.emplace_back(radius * std::cos(a), length + radius * std::sin(a));
-  }
-  for (const auto& [r, z] : profile)
-    for (int k = 0; k < around; ++k)
-      m.vertices.emplace_back(r * std::cos(2 * M_PI * k / around), r * std::sin(2 * M_PI * k / around), z);
-  const int n = int(profile.size());
-  for (int i = 0; i + 1 < n; ++i)
-    for (int k = 0; k < around; ++k) {
-      const int a = i * around + k, b = i * around + (k + 1) % around;
-      m.triangles.emplace_back(a, b, b + around);
-      m.triangles.emplace_back(a, b + around, a + around);
-    }
-  return m;
-}
 
 Scenario iiwa() { return load_scenario_file(std::string(RRLAB_SOURCE_DIR) + "/scenarios/40_urdf_iiwa14_pose.json"); }
 
@@ -85,7 +64,38 @@ void steps(benchmark::State& state, const Scenario& sc) {
 void BM_urdf_capsule_step(benchmark::State& state) { steps(state, iiwa()); }
 void BM_urdf_mesh_step(benchmark::State& state) { steps(state, iiwa_meshes(int(state.range(0)))); }
 
+// Scenario 40 with the table as a box primitive (0) or as the same box as a mesh (1); scenario 43 (2).
+Scenario mesh_obstacle_case(int which) {
+  if (which == 2)
+    return load_scenario_file(std::string(RRLAB_SOURCE_DIR) + "/scenarios/43_urdf_iiwa14_mesh_obstacle.json");
+  Scenario sc = iiwa();
+  if (which == 1) {
+    Obstacle& table = sc.scene.obstacles[size_t(sc.scene.find("table"))];
+    table.shape = ShapeKind::mesh;
+    table.mesh = std::make_shared<TriangleMesh>(box_mesh(table.size));
+  }
+  return sc;
+}
+void BM_mesh_obstacle_distances(benchmark::State& state) { distances(state, mesh_obstacle_case(int(state.range(0)))); }
+// The same tables from FCL's own queries (compute_with_fcl: fcl::distance of
+// each capsule against the BVHModel, GJK per triangle), for comparison.
+void BM_mesh_obstacle_fcl_distances(benchmark::State& state) {
+  const Scenario sc = mesh_obstacle_case(int(state.range(0)));
+  CollisionWorld world(sc.model, sc.scene);
+  KinematicsData kin(sc.model);
+  DistanceTable table;
+  forward_kinematics(sc.model, sc.q0, kin);
+  for (auto _ : state) {
+    world.compute_with_fcl(kin, table);
+    benchmark::DoNotOptimize(table.min_distance);
+  }
+}
+void BM_mesh_obstacle_step(benchmark::State& state) { steps(state, mesh_obstacle_case(int(state.range(0)))); }
+
 BENCHMARK(BM_urdf_capsule_distances);
+BENCHMARK(BM_mesh_obstacle_distances)->Arg(0)->Arg(1)->Arg(2);
+BENCHMARK(BM_mesh_obstacle_fcl_distances)->Arg(0)->Arg(1)->Arg(2);
+BENCHMARK(BM_mesh_obstacle_step)->Arg(0)->Arg(1)->Arg(2);
 BENCHMARK(BM_urdf_mesh_distances)->Arg(16)->Arg(64);
 BENCHMARK(BM_urdf_capsule_step);
 BENCHMARK(BM_urdf_mesh_step)->Arg(16)->Arg(64);

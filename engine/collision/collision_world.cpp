@@ -17,6 +17,14 @@
 //                         when apart; when penetrating, the deepest part's
 //                         depth, which near an internal diagonal can be less
 //                         than the whole polygon's and point across it.
+//   link x mesh           the segment against the obstacle's OBBRSS tree (FCL's
+//                         BVHModel, built once per mesh): RSS bounds prune,
+//                         leaves are exact segment–triangle distances
+//                         (segment_mesh). Exact when apart and while only the
+//                         capsule's radius overlaps the mesh; a segment crossing
+//                         the surface reports -kMeshContact (minus the radius);
+//                         one wholly inside a closed mesh, minus its distance
+//                         to the surface (ray parity decides inside).
 //
 // Why not FCL in compute(): FCL 0.7 (Debian 0.7.0) failed here in four ways,
 // all reproduced while writing this file:
@@ -40,7 +48,8 @@
 // distances come from FCL's BVH model (OBBRSS) of the mesh against each
 // obstacle's FCL shape, in compute() as in compute_with_fcl(); walls stay
 // analytic (the lowest vertex). FCL's mesh distance gives no penetration
-// depth: a penetrating mesh link reports -kMeshContact.
+// depth: a penetrating mesh link reports -kMeshContact. A mesh link against a
+// mesh obstacle is FCL's BVH–BVH distance (exact triangle pairs).
 #include "collision/mesh_loader.hpp"
 #include "collision/collision_world.hpp"
 
@@ -49,7 +58,9 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <array>
 #include <limits>
+#include <map>
 #include <stdexcept>
 
 #include "collision/polygon.hpp"
@@ -367,6 +378,215 @@ void segment_wall(const Vector3d& a, const Vector3d& b, const Vector3d& point,
   out.on_obstacle = out.on_link - out.distance * normal;
 }
 
+// --- triangle meshes (mesh links and mesh obstacles) ------------------------------
+
+using MeshBvh = fcl::BVHModel<fcl::OBBRSSd>;
+
+// Reported for touching or penetrating meshes, whose depth FCL does not give.
+constexpr double kMeshContact = 1e-9;
+
+std::shared_ptr<MeshBvh> make_bvh(const TriangleMesh& mesh) {
+  auto bvh = std::make_shared<MeshBvh>();
+  std::vector<fcl::Triangle> triangles;
+  triangles.reserve(mesh.triangles.size());
+  for (const Eigen::Vector3i& t : mesh.triangles) triangles.emplace_back(t[0], t[1], t[2]);
+  bvh->beginModel();
+  bvh->addSubModel(mesh.vertices, triangles);
+  bvh->endModel();
+  return bvh;
+}
+
+// Ericson, "Real-Time Collision Detection", 5.1.5: the point of triangle abc nearest p.
+Vector3d closest_on_triangle(const Vector3d& p, const Vector3d& a, const Vector3d& b, const Vector3d& c) {
+  const Vector3d ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return a;
+  const Vector3d bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + d1 / (d1 - d3) * ab;
+  const Vector3d cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + d2 / (d2 - d6) * ac;
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
+  const double denom = 1.0 / (va + vb + vc);
+  return a + ab * (vb * denom) + ac * (vc * denom);
+}
+
+// The point of segment a-b nearest triangle p0 p1 p2 and the triangle's
+// point nearest it, exact: 0 where the segment crosses the triangle, else the
+// minimum over the end points against the triangle and the segment against
+// its three edges (a nearest pair interior to both would make them parallel,
+// where such a pair is as near). `crossing` tells the first case.
+double segment_triangle(const Vector3d& a, const Vector3d& b, const Vector3d& p0, const Vector3d& p1,
+                        const Vector3d& p2, Vector3d& on_segment, Vector3d& on_triangle, bool& crossing) {
+  crossing = false;
+  const Vector3d n = (p1 - p0).cross(p2 - p0);
+  const double da = n.dot(a - p0), db = n.dot(b - p0);
+  if (n.squaredNorm() > 0 && ((da <= 0 && db >= 0) || (da >= 0 && db <= 0)) && da != db) {
+    const Vector3d x = a + da / (da - db) * (b - a);  // where the line meets the plane
+    if (n.dot((p1 - p0).cross(x - p0)) >= 0 && n.dot((p2 - p1).cross(x - p1)) >= 0 &&
+        n.dot((p0 - p2).cross(x - p2)) >= 0) {
+      on_segment = on_triangle = x;
+      crossing = true;
+      return 0.0;
+    }
+  }
+  double best = kInfinity;
+  for (const Vector3d* end : {&a, &b}) {
+    const Vector3d c = closest_on_triangle(*end, p0, p1, p2);
+    const double d = (c - *end).squaredNorm();
+    if (d < best) {
+      best = d;
+      on_segment = *end;
+      on_triangle = c;
+    }
+  }
+  const Vector3d* corners[3] = {&p0, &p1, &p2};
+  Vector3d c1, c2;
+  for (int e = 0; e < 3; ++e) {
+    closest_points_segments(a, b, *corners[e], *corners[(e + 1) % 3], c1, c2);
+    const double d = (c1 - c2).squaredNorm();
+    if (d < best) {
+      best = d;
+      on_segment = c1;
+      on_triangle = c2;
+    }
+  }
+  return std::sqrt(best);
+}
+
+// Segment against a mesh through its OBBRSS tree (FCL's BVH, built once): a
+// node is opened only when its RSS (rectangle swept sphere, the OBBRSS's
+// distance volume) lies nearer than the best triangle so far, the nearer
+// child first; leaves are solved exactly by segment_triangle. Allocation
+// free (fcl::distance on a capsule allocates while bounding the capsule).
+struct SegmentMeshQuery {
+  Vector3d a, b;
+  fcl::RSSd segment;  // the segment as a zero-width, zero-radius RSS
+  double best = kInfinity;
+  int triangle = -1;
+  bool crossing = false;
+  Vector3d on_segment = Vector3d::Zero(), on_mesh = Vector3d::Zero();
+};
+
+void descend(const MeshBvh& bvh, int node, SegmentMeshQuery& q) {
+  const fcl::BVNode<fcl::OBBRSSd>& n = bvh.getBV(node);
+  if (n.isLeaf()) {
+    const fcl::Triangle& t = bvh.tri_indices[n.primitiveId()];
+    Vector3d on_segment, on_mesh;
+    bool crossing = false;
+    const double d = segment_triangle(q.a, q.b, bvh.vertices[t[0]], bvh.vertices[t[1]], bvh.vertices[t[2]],
+                                      on_segment, on_mesh, crossing);
+    if (d < q.best) {
+      q.best = d;
+      q.triangle = n.primitiveId();
+      q.crossing = crossing;
+      q.on_segment = on_segment;
+      q.on_mesh = on_mesh;
+    }
+    return;
+  }
+  int first = n.leftChild(), second = n.rightChild();
+  double d_first = bvh.getBV(first).bv.rss.distance(q.segment);
+  double d_second = bvh.getBV(second).bv.rss.distance(q.segment);
+  if (d_second < d_first) {
+    std::swap(first, second);
+    std::swap(d_first, d_second);
+  }
+  if (d_first < q.best) descend(bvh, first, q);
+  if (d_second < q.best) descend(bvh, second, q);
+}
+
+// Whether every edge of the mesh (vertices welded by position) borders
+// exactly two triangles: a closed surface, whose inside a ray's parity finds.
+bool closed_mesh(const TriangleMesh& mesh) {
+  std::map<std::array<double, 3>, int> welded;
+  std::vector<int> id(mesh.vertices.size());
+  for (size_t v = 0; v < mesh.vertices.size(); ++v) {
+    const Vector3d& p = mesh.vertices[v];
+    id[v] = welded.emplace(std::array<double, 3>{p.x(), p.y(), p.z()}, int(welded.size())).first->second;
+  }
+  std::map<std::pair<int, int>, int> edges;
+  for (const Eigen::Vector3i& t : mesh.triangles)
+    for (int e = 0; e < 3; ++e) {
+      const int i = id[size_t(t[e])], j = id[size_t(t[(e + 1) % 3])];
+      if (i != j) ++edges[{std::min(i, j), std::max(i, j)}];
+    }
+  for (const auto& [edge, count] : edges)
+    if (count != 2) return false;
+  return !edges.empty();
+}
+
+// Whether p lies inside a closed mesh: the parity of a ray's crossings
+// (Möller & Trumbore's ray–triangle test) along a fixed direction chosen off
+// the axes and diagonals, so that it seldom meets an edge or vertex exactly.
+bool inside_mesh(const MeshBvh& bvh, const Vector3d& p) {
+  static const Vector3d ray = Vector3d(0.2672612419124244, 0.5345224838248488, 0.8017837257372732);  // (1, 2, 3)/√14
+  bool inside = false;
+  for (int i = 0; i < bvh.num_tris; ++i) {
+    const fcl::Triangle& t = bvh.tri_indices[i];
+    const Vector3d& v0 = bvh.vertices[t[0]];
+    const Vector3d e1 = bvh.vertices[t[1]] - v0, e2 = bvh.vertices[t[2]] - v0;
+    const Vector3d h = ray.cross(e2);
+    const double det = e1.dot(h);
+    if (std::abs(det) < 1e-300) continue;  // parallel to the ray
+    const Vector3d s = p - v0;
+    const double u = s.dot(h) / det;
+    if (u < 0 || u > 1) continue;
+    const Vector3d q = s.cross(e1);
+    const double v = ray.dot(q) / det;
+    if (v < 0 || u + v > 1) continue;
+    if (e2.dot(q) / det > 0) inside = !inside;
+  }
+  return inside;
+}
+
+// Signed distance of segment a-b (world, no radius) to a mesh obstacle. A
+// segment crossing the surface reports -kMeshContact with the crossed
+// triangle's normal (outward for counter-clockwise triangles). A segment
+// wholly inside a closed mesh (`closed`, tested when its start lies in the
+// mesh's bounds) reports minus its distance to the surface, with the normal
+// pointing out to that nearest surface point: the depth of the nearest point,
+// at most the depth that separates. Inside an open mesh nothing is detected.
+void segment_mesh(const MeshBvh& bvh, bool closed, const Eigen::AlignedBox3d& bounds, const Matrix3d& rotation,
+                  const Vector3d& position, const Vector3d& a, const Vector3d& b, LinkObstacleDistance& out) {
+  SegmentMeshQuery q;
+  q.a = rotation.transpose() * (a - position);
+  q.b = rotation.transpose() * (b - position);
+  const Vector3d d = q.b - q.a;
+  const Vector3d along = d.norm() > 0 ? Vector3d(d.normalized()) : Vector3d::UnitZ();
+  const Vector3d across = any_perpendicular(along);
+  q.segment.axis.col(0) = along;
+  q.segment.axis.col(1) = across;
+  q.segment.axis.col(2) = along.cross(across);
+  q.segment.To = q.a;
+  q.segment.l[0] = d.norm();
+  q.segment.l[1] = 0;
+  q.segment.r = 0;
+  descend(bvh, 0, q);
+  out.on_link = rotation * q.on_segment + position;
+  out.on_obstacle = rotation * q.on_mesh + position;
+  if (!q.crossing && q.best > kTouching) {
+    if (closed && bounds.contains(q.a) && inside_mesh(bvh, q.a)) {
+      out.distance = -q.best;
+      out.normal = (out.on_obstacle - out.on_link) / q.best;
+      return;
+    }
+    out.distance = q.best;
+    out.normal = (out.on_link - out.on_obstacle) / q.best;
+    return;
+  }
+  const fcl::Triangle& t = bvh.tri_indices[q.triangle];
+  const Vector3d face = (bvh.vertices[t[1]] - bvh.vertices[t[0]]).cross(bvh.vertices[t[2]] - bvh.vertices[t[0]]);
+  out.normal = face.norm() > 0 ? Vector3d(rotation * face.normalized()) : any_perpendicular(b - a);
+  out.distance = q.crossing ? -kMeshContact : q.best;
+}
+
 // --- obstacles -------------------------------------------------------------------
 
 struct ObstacleGeometry {
@@ -374,6 +594,10 @@ struct ObstacleGeometry {
   std::vector<ConvexPolytope> parts;  // polygon parts or the box, own frame
   double radius = 0;                  // sphere
   Vector3d normal = Vector3d::UnitY();  // wall, own frame, unit
+  std::shared_ptr<const TriangleMesh> mesh;  // mesh, own frame
+  std::shared_ptr<MeshBvh> bvh;              // mesh: built once, shared across reshapes
+  bool closed = false;                       // mesh: a closed surface (inside is detected)
+  Eigen::AlignedBox3d bounds;                // mesh: its vertices' box, own frame
   Matrix3d rotation = Matrix3d::Identity();
   Vector3d position = Vector3d::Zero();
 };
@@ -410,6 +634,12 @@ ObstacleGeometry build_geometry(const Obstacle& o) {
         throw bad_obstacle(o, "wall normal must be non-zero");
       g.normal = o.normal.normalized();
       break;
+    case ShapeKind::mesh:
+      if (!o.mesh || o.mesh->triangles.empty()) throw bad_obstacle(o, "mesh has no triangles");
+      g.mesh = o.mesh;  // the BVH is built (or reused) by the caller
+      g.closed = closed_mesh(*o.mesh);
+      for (const Vector3d& v : o.mesh->vertices) g.bounds.extend(v);
+      break;
   }
   return g;
 }
@@ -421,6 +651,7 @@ void segment_obstacle(const ObstacleGeometry& g, const Vector3d& a, const Vector
     case ShapeKind::point: segment_sphere(a, b, g.position, 0.0, out); return;
     case ShapeKind::sphere: segment_sphere(a, b, g.position, g.radius, out); return;
     case ShapeKind::wall: segment_wall(a, b, g.position, g.rotation * g.normal, out); return;
+    case ShapeKind::mesh: segment_mesh(*g.bvh, g.closed, g.bounds, g.rotation, g.position, a, b, out); return;
     case ShapeKind::polygon:
     case ShapeKind::box: break;
   }
@@ -473,6 +704,7 @@ FclObstacle build_fcl(const Obstacle& o, const ObstacleGeometry& g) {
       // none: FCL 0.7 has no distance query for a Halfspace; its generic GJK
       // then calls a missing support function and crashes
       break;
+    case ShapeKind::mesh: f.parts.push_back(g.bvh); break;  // BVH: against capsules and mesh links
   }
   return f;
 }
@@ -514,6 +746,10 @@ void fcl_pair(const FclLink& link, const fcl::CollisionGeometryd& shape,
   fcl::DistanceRequestd distance_request(true, false, 0.0, 0.0, 1e-10, fcl::GST_LIBCCD);
   fcl::DistanceResultd distance_result;
   fcl::distance(link.capsule, link.pose, &shape, shape_pose, distance_request, distance_result);
+  // a shape against a BVH (a mesh obstacle) is solved as BVH against shape,
+  // and FCL 0.7 hands back the nearest points in that order
+  if (shape.getObjectType() == fcl::OT_BVH)
+    std::swap(distance_result.nearest_points[0], distance_result.nearest_points[1]);
   if (distance_result.min_distance > 0) {
     from_fcl_points(link, distance_result.min_distance, distance_result.nearest_points[0],
                     distance_result.nearest_points[1], out);
@@ -568,42 +804,6 @@ int DistanceTable::nearest_obstacle(int link) const {
 }
 
 // --- CollisionWorld ------------------------------------------------------------------
-
-using MeshBvh = fcl::BVHModel<fcl::OBBRSSd>;
-
-constexpr double kMeshContact = 1e-9;
-
-std::shared_ptr<MeshBvh> make_bvh(const TriangleMesh& mesh) {
-  auto bvh = std::make_shared<MeshBvh>();
-  std::vector<fcl::Triangle> triangles;
-  triangles.reserve(mesh.triangles.size());
-  for (const Eigen::Vector3i& t : mesh.triangles) triangles.emplace_back(t[0], t[1], t[2]);
-  bvh->beginModel();
-  bvh->addSubModel(mesh.vertices, triangles);
-  bvh->endModel();
-  return bvh;
-}
-
-// Ericson, "Real-Time Collision Detection", 5.1.5: the point of triangle abc nearest p.
-Vector3d closest_on_triangle(const Vector3d& p, const Vector3d& a, const Vector3d& b, const Vector3d& c) {
-  const Vector3d ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0 && d2 <= 0) return a;
-  const Vector3d bp = p - b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0 && d4 <= d3) return b;
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + d1 / (d1 - d3) * ab;
-  const Vector3d cp = p - c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0 && d5 <= d6) return c;
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + d2 / (d2 - d6) * ac;
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
-  const double denom = 1.0 / (va + vb + vc);
-  return a + ab * (vb * denom) + ac * (vc * denom);
-}
 
 // One mesh link against one obstacle: FCL BVH distance for boxes and
 // polygon prisms; spheres and points by the nearest triangle (FCL 0.7.0's
@@ -688,10 +888,17 @@ struct CollisionWorld::Impl {
   std::vector<FclObstacle> fcl_obstacles;
 
   void reshape(const Scene& scene) {
+    std::vector<ObstacleGeometry> previous = std::move(obstacles);
     obstacles.clear();
     fcl_obstacles.clear();
     for (const Obstacle& o : scene.obstacles) {
       obstacles.push_back(build_geometry(o));
+      ObstacleGeometry& g = obstacles.back();
+      if (g.mesh) {  // a mesh's BVH outlives edits of other obstacles
+        for (const ObstacleGeometry& old : previous)
+          if (old.mesh == g.mesh) g.bvh = old.bvh;
+        if (!g.bvh) g.bvh = make_bvh(*g.mesh);
+      }
       fcl_obstacles.push_back(build_fcl(o, obstacles.back()));
     }
   }

@@ -9,6 +9,7 @@ const char* to_string(ShapeKind kind) {
     case ShapeKind::sphere: return "sphere";
     case ShapeKind::point: return "point";
     case ShapeKind::wall: return "wall";
+    case ShapeKind::mesh: return "mesh";
   }
   return "?";
 }

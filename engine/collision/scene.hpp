@@ -2,12 +2,14 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace rrlab {
 
-enum class ShapeKind { polygon, box, sphere, point, wall };
+enum class ShapeKind { polygon, box, sphere, point, wall, mesh };
+struct TriangleMesh;  // collision/mesh_loader.hpp
 const char* to_string(ShapeKind kind);
 
 // Geometry is given in the obstacle's own frame, placed at `position` (world)
@@ -21,6 +23,12 @@ struct Obstacle {
   Eigen::Vector3d size = Eigen::Vector3d::Zero();  // box: full edge lengths
   double radius = 0.0;                              // sphere
   Eigen::Vector3d normal = Eigen::Vector3d::UnitY();  // wall: outward normal (free side)
+  // mesh: triangles in the obstacle's frame (already scaled), shared by copies
+  // (live edits move the obstacle, never its triangles); `file` and `scale` as
+  // the scenario gave them
+  std::shared_ptr<const TriangleMesh> mesh;
+  std::string file;
+  Eigen::Vector3d scale = Eigen::Vector3d::Ones();
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
   Eigen::Vector3d position0 = Eigen::Vector3d::Zero();  // position at t = 0
   Eigen::Vector3d velocity = Eigen::Vector3d::Zero();

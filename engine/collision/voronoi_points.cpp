@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "collision/mesh_loader.hpp"
+
 namespace rrlab {
 namespace {
 
@@ -60,6 +62,9 @@ void obstacle_vertices(const Obstacle& o, double z, double time_offset, bool edg
     case ShapeKind::sphere: out.push_back({pose_point(o, time_offset, Eigen::Vector3d::Zero()), o.radius}); break;
     case ShapeKind::point: out.push_back({pose_point(o, time_offset, Eigen::Vector3d::Zero()), 0.0}); break;
     case ShapeKind::wall: break;
+    case ShapeKind::mesh:  // every vertex (as the box gives its corners)
+      for (const Eigen::Vector3d& v : o.mesh->vertices) out.push_back({pose_point(o, time_offset, v), 0.0});
+      break;
   }
 }
 

@@ -445,7 +445,8 @@ class QpConstraints final : public Method {
         const Eigen::Vector3d ends[3] = {pair.on_link, in.kin.link_start.col(link), in.kin.link_end.col(link)};
         const double radius = in.model.links[link].radius;
         const ShapeKind shape = in.scene.obstacles[o].shape;
-        const bool has_faces = shape == ShapeKind::box || shape == ShapeKind::polygon || shape == ShapeKind::wall;
+        const bool has_faces = shape == ShapeKind::box || shape == ShapeKind::polygon || shape == ShapeKind::wall ||
+                               shape == ShapeKind::mesh;
         for (int e = 0; e < (has_faces ? 3 : 1); ++e) {
           const double de = e == 0 ? d : r_oc.dot(ends[e] - pair.on_obstacle) - radius;
           if (e > 0 && (de > ds + sigma || (ends[e] - pair.on_link).squaredNorm() < 1e-12)) continue;

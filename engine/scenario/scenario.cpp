@@ -11,7 +11,9 @@
 
 #include "collision/polygon.hpp"
 #include "methods/registry.hpp"
+#include "collision/mesh_loader.hpp"
 #include "scenario/json_reader.hpp"
+#include "scenario/mesh_obstacle.hpp"
 #include "scenario/physical_bounds.hpp"
 #include "scenario/urdf_robot.hpp"
 
@@ -215,10 +217,11 @@ void parse_robot(JsonObject robot, const Units& units, const std::string& dir, S
 
 // ---- obstacles ----
 
-Obstacle parse_obstacle(const json& value, const std::string& path, size_t index, const Units& units) {
+Obstacle parse_obstacle(const json& value, const std::string& path, size_t index, const Units& units,
+                        const std::string& dir) {
   JsonObject obj(value, path);
   Obstacle o;
-  const std::string shape = obj.choice("shape", {"polygon", "box", "sphere", "point", "wall"});
+  const std::string shape = obj.choice("shape", {"polygon", "box", "sphere", "point", "wall", "mesh"});
   if (shape == "polygon") {
     obj.check_keys({"id", "shape", "points", "z", "velocity"});
     o.shape = ShapeKind::polygon;
@@ -252,6 +255,27 @@ Obstacle parse_obstacle(const json& value, const std::string& path, size_t index
     o.shape = ShapeKind::sphere;
     o.position0 = to_vec3(bounded_numbers(obj, "center", 2, 3, PhysicalBounds::length, units));
     o.radius = positive(obj, "radius", PhysicalBounds::length, units);
+  } else if (shape == "mesh") {
+    obj.check_keys({"id", "shape", "file", "scale", "center", "rpy", "velocity"});
+    o.shape = ShapeKind::mesh;
+    o.position0 = to_vec3(bounded_numbers(obj, "center", 3, 3, PhysicalBounds::length, units));
+    if (obj.has("rpy"))
+      o.rotation = rpy_matrix(bounded_numbers(obj, "rpy", 3, 3, PhysicalBounds::angle, units), units.angle);
+    if (obj.has("scale")) {
+      const json& scale = obj.raw("scale");
+      const std::string scale_path = obj.child("scale");
+      const std::vector<double> s = scale.is_number() ? std::vector<double>(3, json_number(scale, scale_path))
+                                                      : json_numbers(scale, scale_path, 3, 3);
+      for (int i = 0; i < 3; ++i) {
+        const std::string at = scale.is_number() ? scale_path : index_path(scale_path, size_t(i));
+        if (!(s[size_t(i)] > 0) || !std::isfinite(s[size_t(i)]) || s[size_t(i)] > ScenarioLimits::max_mesh_scale)
+          throw ScenarioError(at, "must be in (0, " + format_number(ScenarioLimits::max_mesh_scale) + "], got " +
+                                      format_number(s[size_t(i)]));
+        o.scale[i] = s[size_t(i)];
+      }
+    }
+    o.file = obj.string("file");
+    o.mesh = load_obstacle_mesh(o.file, o.scale, dir, obj.child("file"));
   } else if (shape == "point") {
     obj.check_keys({"id", "shape", "position", "velocity"});
     o.shape = ShapeKind::point;
@@ -272,16 +296,18 @@ Obstacle parse_obstacle(const json& value, const std::string& path, size_t index
   return o;
 }
 
-void parse_obstacles(const json& value, const std::string& path, const Units& units, Scenario& sc) {
+void parse_obstacles(const json& value, const std::string& path, const Units& units, const std::string& dir,
+                     Scenario& sc) {
   if (!value.is_array()) throw ScenarioError(path, "must be an array, got " + json_type_name(value));
   if (value.size() > size_t(ScenarioLimits::max_obstacles))
     throw ScenarioError(path, "has " + std::to_string(value.size()) + " obstacles, at most " +
                                   std::to_string(ScenarioLimits::max_obstacles) + " allowed");
   std::set<std::string> ids;
   for (size_t i = 0; i < value.size(); ++i) {
-    Obstacle o = parse_obstacle(value[i], index_path(path, i), i, units);
+    Obstacle o = parse_obstacle(value[i], index_path(path, i), i, units, dir);
     if (!ids.insert(o.id).second)
       throw ScenarioError(index_path(path, i) + ".id", "duplicate obstacle id \"" + o.id + "\"");
+    check_obstacle_fits(o, sc.model, sc.scene, index_path(path, i));
     sc.scene.obstacles.push_back(std::move(o));
   }
 }
@@ -398,8 +424,25 @@ std::vector<std::pair<std::string, double>> resolve_method_params(const std::str
   return resolved;
 }
 
-Obstacle parse_obstacle_json(const nlohmann::json& value, const std::string& path) {
-  return parse_obstacle(value, path, 0, Units{});
+Obstacle parse_obstacle_json(const nlohmann::json& value, const std::string& path, const std::string& dir) {
+  return parse_obstacle(value, path, 0, Units{}, dir);
+}
+
+void check_obstacle_fits(const Obstacle& o, const Model& model, const Scene& scene, const std::string& path) {
+  if (o.shape != ShapeKind::mesh) return;
+  const auto at = [&](const char* key) { return path.empty() ? std::string(key) : path + "." + key; };
+  // Planar arms move in the x-y plane against obstacles seen as their x-y
+  // footprint; a mesh has no such footprint here (it would need a prism or a
+  // slice), so it is refused rather than approximated.
+  if (model.kind == ModelKind::planar)
+    throw ScenarioError(at("shape"), "mesh obstacles need a spatial robot (spatial_xz, dh or urdf), not a planar one");
+  long triangles = long(o.mesh->triangles.size());
+  for (const Obstacle& other : scene.obstacles)
+    if (other.mesh) triangles += long(other.mesh->triangles.size());
+  if (triangles > ScenarioLimits::max_mesh_obstacle_triangles)
+    throw ScenarioError(at("file"), "the mesh obstacles would have " + std::to_string(triangles) +
+                                            " triangles together, at most " +
+                                            std::to_string(ScenarioLimits::max_mesh_obstacle_triangles) + " allowed");
 }
 
 long Scenario::steps() const { return std::lround(duration / dt); }
@@ -480,7 +523,7 @@ Scenario parse_scenario(const json& doc, const std::string& dir) {
     sc.seed = seed.get<std::uint64_t>();
   }
   parse_robot(root.object("robot"), units, dir, sc);
-  if (root.has("obstacles")) parse_obstacles(root.raw("obstacles"), "obstacles", units, sc);
+  if (root.has("obstacles")) parse_obstacles(root.raw("obstacles"), "obstacles", units, dir, sc);
   parse_task(root.object("task"), units, sc);
   if (root.has("method")) {
     parse_method(root.object("method"), sc);

@@ -24,6 +24,12 @@ struct ScenarioLimits {
   static constexpr int max_path_points = 10000;
   static constexpr long max_steps = 10'000'000;
   static constexpr long max_urdf_bytes = 1 << 20;  // a URDF file or inline text
+  // Mesh obstacles: per file, and over all of a scenario's mesh obstacles (the
+  // dashboard receives their triangles with every snapshot).
+  static constexpr long max_mesh_bytes = 8 << 20;
+  static constexpr int max_mesh_triangles = 20000;
+  static constexpr int max_mesh_obstacle_triangles = 20000;
+  static constexpr double max_mesh_scale = 1000.0;
 };
 
 class ScenarioError : public std::runtime_error {
@@ -72,7 +78,12 @@ std::string scenario_catalogue_dir();
 nlohmann::json read_json_file(const std::string& file, const std::string& what);
 
 // One obstacle in scenario syntax, angles in radians (live edits over REST).
-Obstacle parse_obstacle_json(const nlohmann::json& value, const std::string& path);
+// A mesh obstacle's file is resolved in `dir` (empty: the catalogue directory).
+Obstacle parse_obstacle_json(const nlohmann::json& value, const std::string& path, const std::string& dir = {});
+// Throws ScenarioError at `path` when obstacle `o` cannot join a scene of
+// `model` that holds `scene` (mesh obstacles: not on planar robots, and the
+// mesh triangles bounded in total).
+void check_obstacle_fits(const Obstacle& o, const Model& model, const Scene& scene, const std::string& path);
 
 // Throws ScenarioError at `path` unless `name` is a registered method.
 void require_method(const std::string& name, const std::string& path);

@@ -77,9 +77,10 @@ void apply_obstacle_add(Simulator& sim, const json& payload) {
   if (sim.scene().obstacles.size() >= size_t(ScenarioLimits::max_obstacles))
     throw InputStateError("the run already has " + std::to_string(ScenarioLimits::max_obstacles) +
                           " obstacles, the most allowed");
-  Obstacle added = parse_obstacle_json(payload, "");
+  Obstacle added = parse_obstacle_json(payload, "");  // a mesh's file: in the catalogue directory
   if (sim.scene().find(added.id) >= 0)
     throw ScenarioError("id", "an obstacle \"" + added.id + "\" exists already");
+  check_obstacle_fits(added, sim.model(), sim.scene(), "");
   added.position = added.position0;
   added.position0 = added.position - added.velocity * sim.state().t;
   sim.scene().obstacles.push_back(std::move(added));
@@ -166,6 +167,14 @@ json obstacle_to_json(const Obstacle& o) {
       j["point"] = vec(o.position);
       j["normal"] = vec(o.normal);
       break;
+    case ShapeKind::mesh: {
+      j["file"] = o.file;
+      j["scale"] = vec(o.scale);
+      j["center"] = vec(o.position);
+      const Eigen::Vector3d rpy = o.rotation.eulerAngles(2, 1, 0).reverse();  // roll, pitch, yaw
+      j["rpy"] = vec(rpy);
+      break;
+    }
   }
   j["velocity"] = vec(o.velocity);
   return j;

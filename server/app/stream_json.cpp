@@ -3,6 +3,7 @@
 #include <charconv>
 #include <cmath>
 
+#include "collision/mesh_loader.hpp"
 #include "methods/registry_json.hpp"
 #include "sim/run_inputs.hpp"
 
@@ -251,12 +252,28 @@ nlohmann::json model_json(const Model& model) {
             {"acceleration", finite_or_null(model.limits.acceleration)}}}};
 }
 
+// A mesh obstacle's triangles for drawing, in its own frame: flat
+// [x, y, z, ...] rounded to 1 µm, and flat vertex indices [i, j, k, ...].
+// Bounded by ScenarioLimits::max_mesh_obstacle_triangles over the scene.
+static nlohmann::json mesh_json(const TriangleMesh& mesh) {
+  using nlohmann::json;
+  json vertices = json::array(), triangles = json::array();
+  for (const Eigen::Vector3d& v : mesh.vertices)
+    for (int i = 0; i < 3; ++i) vertices.push_back(std::round(v[i] * 1e6) / 1e6);
+  for (const Eigen::Vector3i& t : mesh.triangles)
+    for (int i = 0; i < 3; ++i) triangles.push_back(t[i]);
+  return {{"vertices", vertices}, {"triangles", triangles}};
+}
+
 nlohmann::json snapshot_json(const FrameContext& c, const Simulator& sim, const std::string& frame_text) {
   using nlohmann::json;
   json specs = json::array();
   for (const ParamSpec& spec : sim.method().specs()) specs.push_back(param_spec_json(spec));
   json obstacles = json::array();
-  for (const Obstacle& o : sim.scene().obstacles) obstacles.push_back(obstacle_to_json(o));
+  for (const Obstacle& o : sim.scene().obstacles) {
+    obstacles.push_back(obstacle_to_json(o));
+    if (o.mesh) obstacles.back()["mesh"] = mesh_json(*o.mesh);
+  }
   // The path for drawing: the target sampled over the run (empty for a joystick).
   json path = json::array();
   if (!sim.task().is_joystick()) {

@@ -63,6 +63,8 @@ class ScenarioSchema(unittest.TestCase):
             "sphere without radius": lambda d: d["obstacles"][1].pop("radius"),
             "polygon of two points": lambda d: d["obstacles"][0].update(points=[[0, 0], [1, 1]]),
             "box key on a sphere": lambda d: d["obstacles"][1].update(size=[1, 1]),
+            "mesh obstacle on a planar robot": lambda d: d["obstacles"].append(
+                {"shape": "mesh", "file": "meshes/torus.obj", "center": [1, 1, 0]}),
             "task space": lambda d: d["task"].update(space="uv"),
             "trajectory type": lambda d: d["task"]["trajectory"].update(type="spiral"),
             "circle without radius": lambda d: d["task"]["trajectory"].pop("radius"),
@@ -82,6 +84,25 @@ class ScenarioSchema(unittest.TestCase):
         self.assertEqual(self.errors(doc), [])
         doc["robot"]["links"][0]["length"] = 0.3  # a planar key
         self.assertGreater(len(self.errors(doc)), 0)
+
+    def test_mesh_obstacles_on_spatial_robots(self):
+        doc = load(os.path.join(SOURCE_DIR, "scenarios", "43_urdf_iiwa14_mesh_obstacle.json"))
+        self.assertEqual(self.errors(doc), [])
+        hoop = doc["obstacles"][0]
+        for scale in ([1, 2, 3], 0.5):
+            hoop["scale"] = scale
+            self.assertEqual(self.errors(doc), [], scale)
+        for bad in (0, -1, [1, 0, 1], [1, 2], "big"):
+            hoop["scale"] = bad
+            self.assertGreater(len(self.errors(doc)), 0, bad)
+        hoop["scale"] = 1
+        for key, value in (("size", [1, 1, 1]), ("center", [1, 2])):
+            broken = copy.deepcopy(doc)
+            broken["obstacles"][0][key] = value
+            self.assertGreater(len(self.errors(broken)), 0, key)
+        broken = copy.deepcopy(doc)
+        broken["obstacles"][0].pop("file")
+        self.assertGreater(len(self.errors(broken)), 0)
 
 
 if __name__ == "__main__":

@@ -1,6 +1,8 @@
 // Every REST route: success, and each error code with the bad field named.
 #include "server_fixture.hpp"
 
+#include "scenario/scenario.hpp"
+
 namespace rrlab::testing {
 namespace {
 
@@ -98,6 +100,40 @@ TEST_F(Routes, StartRunErrorsNameTheField) {
   EXPECT_EQ(path_of(r), "scenario.robot.q0");
   r = send("POST", "/api/runs", json::array());
   EXPECT_EQ(r.status, 400);
+}
+
+// A mesh obstacle's file in a scenario sent over REST resolves in the
+// catalogue (--scenarios) and may not leave it.
+TEST_F(Routes, MeshObstacleFilesStayInTheCatalogue) {
+  json scenario = read_json_file(std::string(RRLAB_SOURCE_DIR) + "/scenarios/43_urdf_iiwa14_mesh_obstacle.json", "scenario");
+  scenario["obstacles"][0]["file"] = "../README.md";
+  HttpResult r = send("POST", "/api/runs", {{"scenario", scenario}});
+  EXPECT_EQ(r.status, 422) << r.body;
+  EXPECT_EQ(error_of(r)["path"], "scenario.obstacles[0].file");
+  EXPECT_NE(error_of(r)["message"].get<std::string>().find("\"../README.md\" leads outside the scenario directory"),
+            std::string::npos)
+      << r.body;
+  scenario["obstacles"][0]["file"] = "meshes/../../README.md";
+  r = send("POST", "/api/runs", {{"scenario", scenario}});
+  EXPECT_EQ(r.status, 422) << r.body;
+  EXPECT_EQ(error_of(r)["path"], "scenario.obstacles[0].file");
+  scenario["obstacles"][0]["file"] = "meshes/torus.obj";
+  r = send("POST", "/api/runs", {{"scenario", scenario}, {"mode", "batch"}, {"steps", 20}});
+  EXPECT_EQ(r.status, 200) << r.body;  // a batch run answers with its summary
+  EXPECT_EQ(r.json()["summary"]["nonfinite_steps"], 0);
+  // a live run takes live mesh obstacles
+  r = send("POST", "/api/runs", {{"scenario", "43_urdf_iiwa14_mesh_obstacle"}, {"mode", "live"}, {"rate", 0.1}});
+  ASSERT_EQ(r.status, 201) << r.body;
+  const std::int64_t id = r.json().at("id").get<std::int64_t>();
+  // a live obstacle_add of a mesh: resolved in the catalogue too, confined alike
+  r = send("POST", "/api/runs/" + std::to_string(id) + "/obstacles",
+           {{"id", "ring"}, {"shape", "mesh"}, {"file", "../README.md"}, {"center", {0.5, 0.5, 0.5}}});
+  EXPECT_EQ(r.status, 400) << r.body;  // a live input's error, as for the other shapes
+  EXPECT_EQ(error_of(r)["path"], "file");
+  r = send("POST", "/api/runs/" + std::to_string(id) + "/obstacles",
+           {{"id", "ring"}, {"shape", "mesh"}, {"file", "meshes/torus.obj"}, {"center", {0.5, 0.5, 0.5}}});
+  EXPECT_LT(r.status, 300) << r.body;
+  EXPECT_EQ(send("POST", "/api/runs/" + std::to_string(id) + "/control", {{"action", "stop"}}).status, 200);
 }
 
 TEST_F(Routes, BatchRunReturnsItsSummaryAndStoresFrames) {

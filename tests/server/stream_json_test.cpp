@@ -107,6 +107,28 @@ TEST_F(StreamJson, LiveFramesCarryNearestObstaclesAndTheEllipsoid) {
   wait_ended(id);
 }
 
+// A mesh obstacle's snapshot entry carries its triangles for drawing (own
+// frame, scaled), alongside the scenario keys; frames move it by position only.
+TEST_F(StreamJson, SnapshotsCarryMeshObstacleTriangles) {
+  const std::int64_t id = start_live({{"scenario", "43_urdf_iiwa14_mesh_obstacle"}, {"rate", 1}});
+  WsClient ws(port(), "/ws/runs/" + std::to_string(id));
+  const auto snapshot = ws.read_type("snapshot");
+  ASSERT_TRUE(snapshot);
+  const json& hoop = (*snapshot)["obstacles"][0];
+  EXPECT_EQ(hoop["shape"], "mesh");
+  EXPECT_EQ(hoop["file"], "meshes/torus.obj");
+  EXPECT_EQ(hoop["scale"], json::array({2.0, 2.0, 2.0}));
+  ASSERT_TRUE(hoop.contains("mesh")) << hoop.dump().substr(0, 400);
+  EXPECT_EQ(hoop["mesh"]["triangles"].size(), 3u * 576u);
+  EXPECT_EQ(hoop["mesh"]["vertices"].size(), 3u * 288u);
+  double outer = 0;  // the torus scaled by 2: ring 0.2 m + tube 0.06 m
+  for (size_t i = 0; i + 2 < hoop["mesh"]["vertices"].size(); i += 3)
+    outer = std::max(outer, std::hypot(hoop["mesh"]["vertices"][i].get<double>(), hoop["mesh"]["vertices"][i + 1].get<double>()));
+  EXPECT_NEAR(outer, 0.26, 1e-6);
+  EXPECT_EQ(send("POST", "/api/runs/" + std::to_string(id) + "/control", {{"action", "stop"}}).status, 200);
+  wait_ended(id);
+}
+
 TEST_F(StreamJson, MultiPreviewGhostsComeWithTheirLinks) {
   const json scenario = get("/api/scenarios/31_zhang_multi_preview").json();
   const std::int64_t id = start_live({{"scenario", "31_zhang_multi_preview"}, {"rate", 1}});

@@ -4,7 +4,9 @@
 // (tests/web/harness.mjs): 17_chen_sim2_spatial16_window renders in WebGL (a
 // context, pixels that are not all background), the picture changes while the
 // run plays, dragging an obstacle moves the server's obstacle (an `obstacle`
-// event), overlays, a compare lane and placing draw without error. Prints the
+// event), overlays, a compare lane and placing draw without error; a mesh
+// obstacle (43_urdf_iiwa14_mesh_obstacle's torus hoop) draws from the
+// snapshot's triangles and drags like the others. Prints the
 // frame rate and where a draw's time goes. Screenshots of the view go to
 // $RRLAB_SCREENSHOTS (default /tmp/rrlab-screens) as view3d-*.png;
 // RRLAB_VIEW3D_GALLERY=1 adds the dh and spatial_xz scenarios.
@@ -193,6 +195,52 @@ await suite('view3d', [
     check(Array.isArray(placed) && placed.length === 3 && placed.every(Number.isFinite), `a click while placing gives a point (${placed})`);
     await shot(t, 'chen-lane');
     await t.page.evaluate(() => { const v = window.harness.view; v.placing = null; v.setLanes([]); v.resetTrace(); v.fit(); v.destroy(); });
+  }],
+
+  ['draws a mesh obstacle and drags it', async (t) => {
+    const runId = await open(t, '43_urdf_iiwa14_mesh_obstacle');
+    const hoop = await t.page.evaluate(() => {
+      const h = window.harness, index = h.snapshot.obstacles.findIndex((o) => o.id === 'hoop');
+      const o = h.snapshot.obstacles[index], item = h.view.obstacles.items[index];
+      const position = item.mesh.geometry.getAttribute('position');
+      return { index, shape: o.shape, file: o.file, vertices: o.mesh.vertices.length / 3, indices: o.mesh.triangles.length,
+        drawnVertices: position.count, drawnIndices: item.mesh.geometry.index.count };
+    });
+    check(hoop.shape === 'mesh' && hoop.file === 'meshes/torus.obj', `the hoop is a mesh obstacle (${JSON.stringify(hoop)})`);
+    check(hoop.indices === 3 * 576 && hoop.drawnIndices === hoop.indices && hoop.drawnVertices === hoop.vertices,
+      `its 576 triangles are drawn (${JSON.stringify(hoop)})`);
+    await t.page.evaluate(() => { window.harness.view.overlays = { nearest: true, manipulability: false, method: false, ghosts: false, trace: false }; });
+    await t.page.waitForTimeout(1000);
+    const sample = await t.page.evaluate(() => window.harness.sample());
+    check(sample.coloured > 0.02 * sample.total, `the canvas is not blank (${sample.coloured} of ${sample.total})`);
+    await shot(t, 'mesh-obstacle');
+    // grab the hoop's tube (its centre is a hole) and drag it
+    const grip = await t.page.evaluate((index) => {
+      const h = window.harness, centre = h.view.worldToClient(h.frame.obstacles[index]);
+      for (let r = 0; r <= 120; r += 4) for (let a = 0; a < 16; ++a) {
+        const at = { x: centre.x + r * Math.cos(a * Math.PI / 8), y: centre.y + r * Math.sin(a * Math.PI / 8) };
+        if (h.view.obstacleAt(at.x, at.y) === index) return at;
+      }
+      return null;
+    }, hoop.index);
+    check(grip, 'the hoop can be grabbed');
+    await t.page.mouse.move(grip.x, grip.y);
+    await t.page.mouse.down();
+    for (let i = 1; i <= 8; ++i) { await t.page.mouse.move(grip.x + 6 * i, grip.y + 2 * i); await t.page.waitForTimeout(60); }
+    await t.page.mouse.up();
+    const moves = await until(async () => {
+      const events = (await t.get(`/api/runs/${runId}/events`)).filter((e) => e.kind === 'obstacle');
+      return events.length ? events : null;
+    }, 'an obstacle event');
+    check(moves[0].payload.id === 'hoop', `the hoop is the one moved (${JSON.stringify(moves[0])})`);
+    const moved = await until(async () => {
+      const now = await t.page.evaluate((index) => window.harness.frame.obstacles[index], hoop.index);
+      const start = await t.page.evaluate((index) => window.harness.snapshot.obstacles[index].center, hoop.index);
+      return Math.hypot(now[0] - 0.8, now[1] + 0.1, now[2] - 0.4208) > 1e-3 ? { now, start } : null;
+    }, 'the hoop at a new position in the frames');
+    console.log(`  hoop moved to ${moved.now.map((v) => v.toFixed(3)).join(', ')}`);
+    await t.page.waitForTimeout(500);
+    await shot(t, 'mesh-obstacle-dragged');
   }],
 
   ...(process.env.RRLAB_VIEW3D_GALLERY ? ['03_dh7_pose', '02_spatial_xz_reach', '23_kapoor_dm_rule'] : []).map((scenario) => [`gallery ${scenario}`, async (t) => {

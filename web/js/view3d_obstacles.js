@@ -1,8 +1,10 @@
 // Obstacles in the 3D view, drawn as the engine checks them (engine/collision):
 // box (size, rpy = Rz·Ry·Rx), sphere, point, polygon as a prism over
 // z in [z_min, z_max] of its frame (default [-1, 1]), wall as a patch of its
-// plane with the blocked half-space behind it. Built once per snapshot;
-// update() only moves them to the frame's positions.
+// plane with the blocked half-space behind it, mesh from the triangles the
+// snapshot carries (o.mesh: flat vertices in its own frame, flat indices;
+// scaled already) turned by rpy. Built once per snapshot; update() only
+// moves them to the frame's positions.
 import * as THREE from 'three';
 
 export const obstacleColours = {
@@ -17,7 +19,7 @@ export function obstaclePosition(o) {
 
 // Geometry that changes the mesh (not where it is): to reuse meshes across snapshots.
 export function obstacleShapeKey(o) {
-  return JSON.stringify([o.id, o.shape, o.points, o.z, o.size, o.rpy, o.radius, o.normal]);
+  return JSON.stringify([o.id, o.shape, o.points, o.z, o.size, o.rpy, o.radius, o.normal, o.file, o.scale]);
 }
 
 function prismGeometry(o) {
@@ -25,6 +27,16 @@ function prismGeometry(o) {
   const [zMin, zMax] = o.z || [-1, 1];
   const geometry = new THREE.ExtrudeGeometry(shape, { depth: zMax - zMin, bevelEnabled: false });
   geometry.translate(0, 0, zMin);
+  return geometry;
+}
+
+// A mesh obstacle's triangles (snapshot.obstacles[i].mesh), with smooth-ish
+// shading from per-vertex normals.
+function meshGeometry(o) {
+  const geometry = new THREE.BufferGeometry();
+  geometry.setAttribute('position', new THREE.Float32BufferAttribute(o.mesh.vertices, 3));
+  geometry.setIndex(o.mesh.triangles);
+  geometry.computeVertexNormals();
   return geometry;
 }
 
@@ -81,8 +93,11 @@ export class Obstacles {
       geometry = new THREE.SphereGeometry(o.radius, 32, 20);
     } else if (o.shape === 'polygon') {
       geometry = prismGeometry(o);
-    } else if (o.shape === 'point') {
+    } else if (o.shape === 'point' || (o.shape === 'mesh' && !o.mesh)) {  // a mesh without its triangles: a marker
       geometry = new THREE.SphereGeometry(0.012 * this.reach, 16, 10);
+    } else if (o.shape === 'mesh') {
+      geometry = meshGeometry(o);
+      if (o.rpy) group.rotation.set(o.rpy[0], o.rpy[1], o.rpy[2], 'ZYX');
     } else if (o.shape === 'wall') {
       const wall = wallObject(o, this.reach, this.materials);
       group.add(wall);
@@ -93,8 +108,9 @@ export class Obstacles {
     mesh.userData.obstacleIndex = index;
     group.add(mesh);
     let edges = null;
-    if (o.shape === 'box' || o.shape === 'polygon') {
-      edges = new THREE.LineSegments(new THREE.EdgesGeometry(geometry, 20), this.materials.edge);
+    if (o.shape === 'box' || o.shape === 'polygon' || (o.shape === 'mesh' && o.mesh)) {
+      // a mesh's creases only (40°): a tessellated curve draws no lines
+      edges = new THREE.LineSegments(new THREE.EdgesGeometry(geometry, o.shape === 'mesh' ? 40 : 20), this.materials.edge);
       group.add(edges);
     }
     this.object.add(group);

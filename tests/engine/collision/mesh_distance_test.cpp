@@ -9,6 +9,7 @@
 
 #include "collision/collision_world.hpp"
 #include "collision/mesh_loader.hpp"
+#include "collision/mesh_shapes.hpp"
 #include "scenario/scenario.hpp"
 
 namespace rrlab {
@@ -17,40 +18,9 @@ namespace {
 using nlohmann::json;
 constexpr double kRadius = 0.05, kLength = 0.4;
 
-// A capsule of kRadius around the z segment [0, kLength], every vertex on its
-// surface: `around` vertices per ring, `rings` rings per hemisphere.
-TriangleMesh capsule_mesh(int around = 64, int rings = 16) {
-  TriangleMesh m;
-  std::vector<std::pair<double, double>> profile;  // (radius, z) from the bottom pole to the top
-  for (int i = 0; i <= rings; ++i) {
-    const double a = -M_PI / 2 + M_PI / 2 * i / rings;
-    profile.emplace_back(kRadius * std::cos(a), kRadius * std::sin(a));
-  }
-  for (int i = 0; i <= rings; ++i) {
-    const double a = M_PI / 2 * i / rings;
-    profile.emplace_back(kRadius * std::cos(a), kLength + kRadius * std::sin(a));
-  }
-  for (const auto& [r, z] : profile)
-    for (int k = 0; k < around; ++k) {
-      const double t = 2 * M_PI * k / around;
-      m.vertices.emplace_back(r * std::cos(t), r * std::sin(t), z);
-    }
-  const int n = int(profile.size());
-  for (int i = 0; i + 1 < n; ++i)
-    for (int k = 0; k < around; ++k) {
-      const int a = i * around + k, b = i * around + (k + 1) % around;
-      const int c = a + around, d = b + around;
-      m.triangles.emplace_back(a, b, d);
-      m.triangles.emplace_back(a, d, c);
-    }
-  return m;
-}
-
-void write_obj(const TriangleMesh& m, const std::string& path) {
-  std::ofstream out(path);
-  for (const auto& v : m.vertices) out << "v " << v.x() << ' ' << v.y() << ' ' << v.z() << '\n';
-  for (const auto& t : m.triangles) out << "f " << t[0] + 1 << ' ' << t[1] + 1 << ' ' << t[2] + 1 << '\n';
-}
+// The capsule of kRadius around the z segment [0, kLength] as a mesh
+// (collision/mesh_shapes.hpp): 64 vertices around, 16 rings per cap.
+TriangleMesh capsule_mesh() { return rrlab::capsule_mesh(kRadius, kLength, 64, 16); }
 
 // A two-joint arm whose second link is the capsule, as a mesh or a cylinder primitive.
 std::string arm_urdf(const std::string& geometry) {

@@ -89,7 +89,8 @@ TEST_P(UrdfArmRuns, EveryMethodStepsFinitely) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Arms, UrdfArmRuns,
-                         ::testing::Values("40_urdf_iiwa14_pose.json", "41_urdf_panda_pose.json", "42_urdf_gen3_pose.json"));
+                         ::testing::Values("40_urdf_iiwa14_pose.json", "41_urdf_panda_pose.json", "42_urdf_gen3_pose.json",
+                                           "43_urdf_iiwa14_mesh_obstacle.json"));
 
 }  // namespace
 }  // namespace rrlab

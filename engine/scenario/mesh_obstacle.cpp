@@ -1,0 +1,38 @@
+#include "scenario/mesh_obstacle.hpp"
+
+#include <filesystem>
+
+#include "scenario/scenario.hpp"
+#include "scenario/urdf_robot.hpp"
+
+namespace rrlab {
+
+std::shared_ptr<const TriangleMesh> load_obstacle_mesh(const std::string& file, const Eigen::Vector3d& scale,
+                                                       const std::string& dir, const std::string& path) {
+  if (file.rfind("package://", 0) == 0 || file.rfind("file://", 0) == 0)
+    throw ScenarioError(path, "\"" + file + "\": package:// and file:// URIs are not resolved; give a path relative to the scenario file");
+  const std::string full = confined_path(file, dir, path);  // the same confinement as a URDF robot's file
+  std::error_code ec;
+  const std::uintmax_t bytes = std::filesystem::file_size(full, ec);
+  if (ec) throw ScenarioError(path, "cannot read \"" + file + "\": " + ec.message());
+  if (bytes > std::uintmax_t(ScenarioLimits::max_mesh_bytes))
+    throw ScenarioError(path, "\"" + file + "\" has " + std::to_string(bytes) + " bytes, at most " +
+                                  std::to_string(ScenarioLimits::max_mesh_bytes) + " allowed for a mesh obstacle");
+  std::shared_ptr<TriangleMesh> mesh;
+  try {
+    mesh = std::make_shared<TriangleMesh>(load_mesh_file(full, scale));
+  } catch (const MeshError& e) {
+    // assimp's reason, with the file as the scenario names it (not the server's path)
+    std::string reason = e.what();
+    for (size_t at = reason.find(full); at != std::string::npos; at = reason.find(full))
+      reason.replace(at, full.size(), file);
+    throw ScenarioError(path, reason);
+  }
+  if (int(mesh->triangles.size()) > ScenarioLimits::max_mesh_triangles)
+    throw ScenarioError(path, "\"" + file + "\" has " + std::to_string(mesh->triangles.size()) +
+                                  " triangles, at most " + std::to_string(ScenarioLimits::max_mesh_triangles) +
+                                  " allowed for a mesh obstacle");
+  return mesh;
+}
+
+}  // namespace rrlab
