@@ -36,13 +36,15 @@ Scenario iiwa_meshes(int around) {
   return sc;
 }
 
-void distances(benchmark::State& state, const Scenario& sc) {
+// The distance table at q0, by `compute` (rrlab's) or `compute_with_fcl` (FCL's own queries).
+void distances(benchmark::State& state, const Scenario& sc,
+               void (CollisionWorld::*compute)(const KinematicsData&, DistanceTable&) = &CollisionWorld::compute) {
   CollisionWorld world(sc.model, sc.scene);
   KinematicsData kin(sc.model);
   DistanceTable table;
   forward_kinematics(sc.model, sc.q0, kin);
   for (auto _ : state) {
-    world.compute(kin, table);
+    (world.*compute)(kin, table);
     benchmark::DoNotOptimize(table.min_distance);
   }
   state.counters["min_link"] = benchmark::Counter(table.min_link);
@@ -80,15 +82,7 @@ void BM_mesh_obstacle_distances(benchmark::State& state) { distances(state, mesh
 // The same tables from FCL's own queries (compute_with_fcl: fcl::distance of
 // each capsule against the BVHModel, GJK per triangle), for comparison.
 void BM_mesh_obstacle_fcl_distances(benchmark::State& state) {
-  const Scenario sc = mesh_obstacle_case(int(state.range(0)));
-  CollisionWorld world(sc.model, sc.scene);
-  KinematicsData kin(sc.model);
-  DistanceTable table;
-  forward_kinematics(sc.model, sc.q0, kin);
-  for (auto _ : state) {
-    world.compute_with_fcl(kin, table);
-    benchmark::DoNotOptimize(table.min_distance);
-  }
+  distances(state, mesh_obstacle_case(int(state.range(0))), &CollisionWorld::compute_with_fcl);
 }
 void BM_mesh_obstacle_step(benchmark::State& state) { steps(state, mesh_obstacle_case(int(state.range(0)))); }
 
