@@ -80,7 +80,8 @@ await suite('access', [
       await until(async () => (await controllerOf(other)) === 'other', 'the second tab is told it watches');
       check(await other.isVisible('#control-note') && await other.isVisible('#take-control'), 'the watcher is offered Take control');
       await other.click('#controls button[data-action="start"]');
-      check((await other.textContent('#message')).includes('Another client controls this run'), 'a plain message');
+      // the refusal (409 not_controller) is said in plain words
+      await until(async () => (await other.textContent('#message')).includes('Another client controls this run'), 'a plain message');
       check((await t.get(`/api/runs/${run.id}`)).status === 'paused', 'the watcher did not steer');
       await t.screenshot('first-tab');
       await other.click('#take-control');

@@ -39,15 +39,20 @@ const std::map<std::string, Expected> kExpected = {
     {"direct_search", {5e-4, ""}},       // 2.75e-5 / 3.84e-5 / 1.39e-5
 };
 
-// Closest approach of any link to the ball or table over the 60 steps, every
-// method: iiwa 0.1443 (multi_preview) … 0.1509 m, Panda 0.1692 … 0.1700 m,
-// Gen3 0.1366 (multi_preview) … 0.1510 m.
-constexpr double kMinClearance = 0.10;
+// A scenario and the bound on the closest approach of any link to its
+// obstacles over the 60 steps, every method. Measured: iiwa 0.1443
+// (multi_preview) … 0.1509 m, Panda 0.1692 … 0.1700 m, Gen3 0.1366
+// (multi_preview) … 0.1510 m; the iiwa past the mesh hoop 0.02953 …
+// 0.02969 m (the path passes it that close, whatever the method).
+struct ArmCase {
+  const char* file;
+  double min_clearance;  // m
+};
 
-class UrdfArmRuns : public ::testing::TestWithParam<const char*> {};
+class UrdfArmRuns : public ::testing::TestWithParam<ArmCase> {};
 
 TEST_P(UrdfArmRuns, EveryMethodStepsFinitely) {
-  const Scenario scenario = load_scenario_file(test::source_path(std::string("scenarios/") + GetParam()));
+  const Scenario scenario = load_scenario_file(test::source_path(std::string("scenarios/") + GetParam().file));
   ASSERT_EQ(scenario.model.kind, ModelKind::urdf);
   ASSERT_EQ(scenario.model.dof(), 7);
   int ran = 0;
@@ -80,7 +85,7 @@ TEST_P(UrdfArmRuns, EveryMethodStepsFinitely) {
     const Summary s = sim->summary();
     EXPECT_EQ(s.nonfinite_steps, 0) << info.name;
     EXPECT_LT(s.max_tracking_error, expected->second.worst_error) << info.name;
-    EXPECT_GT(s.min_distance, kMinClearance) << info.name;
+    EXPECT_GT(s.min_distance, GetParam().min_clearance) << info.name;
     EXPECT_FALSE(s.collided) << info.name;
     EXPECT_FALSE(s.joint_limit_violated) << info.name;
     ++ran;
@@ -89,8 +94,9 @@ TEST_P(UrdfArmRuns, EveryMethodStepsFinitely) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Arms, UrdfArmRuns,
-                         ::testing::Values("40_urdf_iiwa14_pose.json", "41_urdf_panda_pose.json", "42_urdf_gen3_pose.json",
-                                           "43_urdf_iiwa14_mesh_obstacle.json"));
+                         ::testing::Values(ArmCase{"40_urdf_iiwa14_pose.json", 0.10}, ArmCase{"41_urdf_panda_pose.json", 0.10},
+                                           ArmCase{"42_urdf_gen3_pose.json", 0.10},
+                                           ArmCase{"43_urdf_iiwa14_mesh_obstacle.json", 0.025}));
 
 }  // namespace
 }  // namespace rrlab
