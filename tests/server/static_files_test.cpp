@@ -28,7 +28,7 @@ TEST_F(StaticFiles, RevalidatedEveryLoadAndNotSentAgainWhenUnchanged) {
 TEST_F(StaticFiles, NpmPackagesWithJavaScriptMimeTypes) {
   const std::string modules = std::string(RRLAB_SOURCE_DIR) + "/web/node_modules";
   if (!std::filesystem::is_directory(modules + "/three") || !std::filesystem::is_directory(modules + "/uplot"))
-    GTEST_SKIP() << "web/node_modules has no three or uplot: run `npm install` in web/";
+    FAIL() << "web/node_modules has no three or uplot: run scripts/install-deps (npm ci in web/), as make test does";
   for (const char* path : {"/node_modules/three/build/three.module.js", "/node_modules/three/build/three.core.js",
                            "/node_modules/uplot/dist/uPlot.esm.js"}) {
     const HttpResult file = get(path);
