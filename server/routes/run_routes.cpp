@@ -125,8 +125,8 @@ ApiResponse post_run(RouteContext& c) {
   const std::int64_t id = group->run_id(0);
   if (options.mode == "batch" && wait) {
     ApiResponse response;
-    response.deferred = [group, id](Responder respond) {
-      group->when_finished([group, id, respond] {
+    response.deferred = [group](Responder respond) {
+      group->when_finished([group, respond] {
         json body = group->status_json(0);
         body["summary"] = group->summary_json(0);
         respond(json_response(200, body));
