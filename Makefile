@@ -64,7 +64,7 @@ fuzz: deps
 	cmake --build $(SANITIZE_BUILD) --parallel $(JOBS) --target rrlab_fuzz
 	./tests/fuzz/run $(SANITIZE_BUILD) $(FUZZ_SECONDS)
 
-# The server tests under ThreadSanitizer (not part of .ci/run: see the README).
+# The server and storage tests (the concurrent parts) under ThreadSanitizer; fails on any report.
 test-tsan: deps
 	CC=clang CXX=clang++ cmake -S . -B $(TSAN_BUILD) -G Ninja $(SANITIZE_FLAGS) -DRRLAB_SANITIZE=thread
 	cmake --build $(TSAN_BUILD) --parallel $(JOBS) --target rrlab rrlab_server_tests rrlab_storage_tests

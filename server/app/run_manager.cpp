@@ -110,10 +110,11 @@ void RunManager::done_reading(std::int64_t source_run) {
 }
 
 void RunManager::end_job() {
-  {
-    std::lock_guard lock(mutex_);
-    --jobs_;
-  }
+  // notified under the lock: once stop_all() sees jobs_ == 0 the manager may
+  // be destroyed, condition variable included (ThreadSanitizer caught a
+  // notify after the unlock racing with its destruction at shutdown)
+  std::lock_guard lock(mutex_);
+  --jobs_;
   jobs_done_.notify_all();
 }
 
