@@ -636,8 +636,7 @@ ObstacleGeometry build_geometry(const Obstacle& o) {
       break;
     case ShapeKind::mesh:
       if (!o.mesh || o.mesh->triangles.empty()) throw bad_obstacle(o, "mesh has no triangles");
-      g.mesh = o.mesh;  // the BVH is built (or reused) by the caller
-      g.closed = closed_mesh(*o.mesh);
+      g.mesh = o.mesh;  // the BVH and `closed` are built (or reused) by the caller
       for (const Vector3d& v : o.mesh->vertices) g.bounds.extend(v);
       break;
   }
@@ -894,10 +893,16 @@ struct CollisionWorld::Impl {
     for (const Obstacle& o : scene.obstacles) {
       obstacles.push_back(build_geometry(o));
       ObstacleGeometry& g = obstacles.back();
-      if (g.mesh) {  // a mesh's BVH outlives edits of other obstacles
+      if (g.mesh) {  // a mesh's BVH (and whether it is closed) outlives edits of other obstacles
         for (const ObstacleGeometry& old : previous)
-          if (old.mesh == g.mesh) g.bvh = old.bvh;
-        if (!g.bvh) g.bvh = make_bvh(*g.mesh);
+          if (old.mesh == g.mesh) {
+            g.bvh = old.bvh;
+            g.closed = old.closed;
+          }
+        if (!g.bvh) {
+          g.bvh = make_bvh(*g.mesh);
+          g.closed = closed_mesh(*g.mesh);
+        }
       }
       fcl_obstacles.push_back(build_fcl(o, obstacles.back()));
     }

@@ -9,8 +9,8 @@ namespace rrlab {
 
 std::shared_ptr<const TriangleMesh> load_obstacle_mesh(const std::string& file, const Eigen::Vector3d& scale,
                                                        const std::string& dir, const std::string& path) {
-  if (file.rfind("package://", 0) == 0 || file.rfind("file://", 0) == 0)
-    throw ScenarioError(path, "\"" + file + "\": package:// and file:// URIs are not resolved; give a path relative to the scenario file");
+  if (const std::string problem = uri_problem(file, "scenario file"); !problem.empty())
+    throw ScenarioError(path, "\"" + file + "\": " + problem);
   const std::string full = confined_path(file, dir, path);  // the same confinement as a URDF robot's file
   std::error_code ec;
   const std::uintmax_t bytes = std::filesystem::file_size(full, ec);

@@ -14,6 +14,11 @@ namespace rrlab {
 
 namespace fs = std::filesystem;
 
+std::string uri_problem(const std::string& file, const std::string& relative_to) {
+  if (file.rfind("package://", 0) != 0 && file.rfind("file://", 0) != 0) return "";
+  return "package:// and file:// URIs are not resolved; give a path relative to the " + relative_to;
+}
+
 std::string confined_path(const std::string& file, const std::string& dir, const std::string& path,
                           const std::string& subdir) {
   if (file.empty()) throw ScenarioError(path, "must name a file");
@@ -123,9 +128,8 @@ Model parse_urdf_robot(JsonObject& robot, double radians_per_unit, const std::st
     auto merged = std::make_shared<TriangleMesh>();
     for (const UrdfMesh& m : chain.meshes[i]) {
       const std::string where = " (link '" + m.link + "')";
-      if (m.filename.rfind("package://", 0) == 0 || m.filename.rfind("file://", 0) == 0)
-        throw ScenarioError(source_path, in_file + "mesh \"" + m.filename + "\"" + where +
-                                             ": package:// and file:// URIs are not resolved; give a path relative to the URDF file");
+      if (const std::string problem = uri_problem(m.filename, "URDF file"); !problem.empty())
+        throw ScenarioError(source_path, in_file + "mesh \"" + m.filename + "\"" + where + ": " + problem);
       const std::string urdf_dir = has_file ? fs::path(robot.string("file")).parent_path().string() : std::string();
       const std::string file = confined_path(m.filename, dir, source_path, urdf_dir);
       try {

@@ -24,5 +24,9 @@ std::string read_confined_file(const std::string& file, const std::string& dir, 
 // refused like read_confined_file when it leaves `dir`.
 std::string confined_path(const std::string& file, const std::string& dir, const std::string& path,
                           const std::string& subdir = {});
+// Why a mesh path cannot be used as given: a package:// or file:// URI, which
+// rrlab does not resolve ("...; give a path relative to the `relative_to`");
+// empty when it is a plain path.
+std::string uri_problem(const std::string& file, const std::string& relative_to);
 
 }  // namespace rrlab

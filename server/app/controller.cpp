@@ -16,15 +16,17 @@ std::string valid_client_name(const std::string& name) {
   return name;
 }
 
+json Controller::state_message_locked(const std::string& client) const {
+  json message = state_locked(client);
+  message["type"] = "control";
+  message["event"] = "state";
+  return message;
+}
+
 Controller::Notices Controller::state_notices_locked() const {
   Notices notices;
-  for (const auto& [id, c] : connections_) {
-    if (!c.notify) continue;
-    json message = state_locked(c.client);
-    message["type"] = "control";
-    message["event"] = "state";
-    notices.emplace_back(c.notify, std::move(message));
-  }
+  for (const auto& [id, c] : connections_)
+    if (c.notify) notices.emplace_back(c.notify, state_message_locked(c.client));
   return notices;
 }
 
@@ -39,10 +41,7 @@ std::uint64_t Controller::attach(const std::string& client, Notify notify) {
     std::lock_guard lock(mutex_);
     handle = ++next_;
     connections_[handle] = Connection{client, notify};
-    json message = state_locked(client);
-    message["type"] = "control";
-    message["event"] = "state";
-    if (notify) notices.emplace_back(std::move(notify), std::move(message));
+    if (notify) notices.emplace_back(std::move(notify), state_message_locked(client));
   }
   send(notices);
   return handle;

@@ -54,6 +54,8 @@ class Controller {
 
  private:
   nlohmann::json state_locked(const std::string& client) const;
+  // {"type": "control", "event": "state", "controller": ...} as seen by `client`.
+  nlohmann::json state_message_locked(const std::string& client) const;
   using Notices = std::vector<std::pair<Notify, nlohmann::json>>;
   // Each connection's view of the state, to send once the lock is released.
   Notices state_notices_locked() const;

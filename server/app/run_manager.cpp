@@ -101,10 +101,11 @@ void RunManager::begin_job(std::int64_t source_run) {
   if (deleting_.count(source_run))
     throw ApiError(409, "wrong_state", "run " + std::to_string(source_run) + " is being deleted", "");
   ++jobs_;
-  job_sources_.insert(source_run);
+  if (source_run != 0) job_sources_.insert(source_run);
 }
 
 void RunManager::done_reading(std::int64_t source_run) {
+  if (source_run == 0) return;
   std::lock_guard lock(mutex_);
   if (auto it = job_sources_.find(source_run); it != job_sources_.end()) job_sources_.erase(it);
 }

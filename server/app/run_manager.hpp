@@ -92,8 +92,8 @@ class RunManager {
   // Background jobs (re-simulations of source_run): counted against the
   // active-run limit, told to stop and waited for by stop_all(); the source
   // cannot be deleted until the job calls done_reading (before it answers, so
-  // that a client may delete the run once it has the answer). begin_job
-  // throws ApiError 503.
+  // that a client may delete the run once it has the answer). source_run 0:
+  // a job that reads no stored run (a sweep). begin_job throws ApiError 503.
   void begin_job(std::int64_t source_run);
   void done_reading(std::int64_t source_run);
   void end_job();

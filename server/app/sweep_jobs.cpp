@@ -90,12 +90,9 @@ json SweepJobs::start(const json& body, int jobs) {
     throw ApiError(503, "busy", "at most " + std::to_string(kMaxRunningSweeps) + " sweeps may run at once", "");
   int begun = 0;
   try {
-    for (; begun < job->jobs; ++begun) runs_.begin_job(0);
+    for (; begun < job->jobs; ++begun) runs_.begin_job(0);  // 0: it reads no stored run
   } catch (...) {
-    for (int i = 0; i < begun; ++i) {
-      runs_.done_reading(0);  // a sweep reads no stored run (0: none)
-      runs_.end_job();
-    }
+    for (int i = 0; i < begun; ++i) runs_.end_job();
     throw;
   }
   // forget the oldest finished sweeps beyond the limit
@@ -132,10 +129,7 @@ json SweepJobs::start(const json& body, int jobs) {
       job->error = error;
       job->outcome = std::move(outcome);
     }
-    for (int i = 0; i < job->jobs; ++i) {
-      runs_.done_reading(0);  // a sweep reads no stored run (0: none)
-      runs_.end_job();
-    }
+    for (int i = 0; i < job->jobs; ++i) runs_.end_job();
   });
   return status_of(*job);
 }

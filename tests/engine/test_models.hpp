@@ -1,7 +1,9 @@
 // Models and scenarios shared by the engine tests.
 #pragma once
 
+#include <fstream>
 #include <random>
+#include <sstream>
 #include <string>
 
 #include "model/model.hpp"
@@ -72,6 +74,14 @@ inline std::vector<DhLinkSpec> iiwa_dh() {
 
 inline std::string source_path(const std::string& relative) {
   return std::string(RRLAB_SOURCE_DIR) + "/" + relative;
+}
+
+// The text of a file of the source tree (empty if it cannot be read).
+inline std::string read_source_file(const std::string& relative) {
+  std::ifstream in(source_path(relative));
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
 }
 
 }  // namespace rrlab::test

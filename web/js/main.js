@@ -25,7 +25,7 @@ setTokenPrompt(askForToken);
 app.signals.message.add((what, kind) => {
   // another tab or client steers this run: say so plainly and offer to take over
   if (what && what.code === 'not_controller') {
-    showControlNote(true);
+    showControl('other');
     what = 'Another client controls this run; you are watching. Press “Take control” to steer it.';
   }
   const box = $('message');
@@ -111,7 +111,7 @@ async function show(next, startFrame) {
   sceneTools.reset();
   $('compare-summary').hidden = true;
   $('controls').hidden = next.kind !== 'live';
-  showControlNote(false);
+  showControl('none');
   for (const el of document.querySelectorAll('#controls button:not(#delete-obstacle), #controls select')) el.disabled = false;
   // a session on screen: its controls come first, the pickers fold away
   $('new-run').open = false;
@@ -206,7 +206,6 @@ function showControl(controller) {
   $('take-control').hidden = controller !== 'other';
   $('release-control').hidden = controller !== 'you';
 }
-function showControlNote(show) { showControl(show ? 'other' : 'none'); }
 function controlAction(action, done) {
   if (!session || session.kind !== 'live') return;
   api('POST', `/api/runs/${session.controlRun}/control`, { action })

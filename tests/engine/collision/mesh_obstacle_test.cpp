@@ -74,8 +74,9 @@ const Eigen::Matrix3d kTurn = Eigen::AngleAxisd(0.7, Vector3d(1, 2, 3).normalize
 // on_link is on the axis, on_obstacle on the mesh, and the unit normal joins them.
 void expect_consistent(const LinkObstacleDistance& pair, double radius) {
   EXPECT_NEAR(pair.normal.norm(), 1.0, 1e-12);
-  if (pair.distance + radius > 1e-9)
+  if (pair.distance + radius > 1e-9) {
     EXPECT_NEAR((pair.on_link - pair.on_obstacle - (pair.distance + radius) * pair.normal).norm(), 0.0, 1e-9);
+  }
 }
 
 TEST(MeshObstacle, BoxMeshEqualsTheBoxPrimitive) {

@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
 
 #include "kinematics/kinematics.hpp"
 #include "scenario/scenario.hpp"
@@ -84,10 +83,7 @@ TEST(UrdfScenario, WithoutADirectoryTheCatalogueIsUsed) {
 TEST(UrdfScenario, InlineTextAndItsFaults) {
   json doc = iiwa_scenario();
   doc["robot"].erase("file");
-  std::ifstream in(kScenarios + "/robots/iiwa14.urdf");
-  std::stringstream text;
-  text << in.rdbuf();
-  doc["robot"]["urdf"] = text.str();
+  doc["robot"]["urdf"] = test::read_source_file("scenarios/robots/iiwa14.urdf");
   EXPECT_EQ(error_path(doc, ""), "(accepted)");
   doc["robot"]["urdf"] = "<robot name='x'><link name='a'></robot>";
   EXPECT_NE(error_path(doc, "").find("robot.urdf | robot.urdf: malformed XML"), std::string::npos) << error_path(doc, "");
@@ -100,10 +96,7 @@ TEST(UrdfScenario, InlineTextAndItsFaults) {
 TEST(UrdfScenario, MimicJointNamedWithTheRobotPath) {
   json doc = iiwa_scenario();
   doc["robot"].erase("file");
-  std::ifstream in(kScenarios + "/robots/iiwa14.urdf");
-  std::stringstream text;
-  text << in.rdbuf();
-  std::string urdf = text.str();
+  std::string urdf = test::read_source_file("scenarios/robots/iiwa14.urdf");
   const std::string axis = "<axis xyz=\"0 0 1\"/>";
   const size_t at = urdf.find(axis, urdf.find("iiwa_joint_3"));
   urdf.insert(at + axis.size(), "<mimic joint=\"iiwa_joint_2\"/>");

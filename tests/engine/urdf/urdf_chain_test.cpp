@@ -4,23 +4,14 @@
 
 #include <gtest/gtest.h>
 
-#include <fstream>
 #include <functional>
 #include <random>
-#include <sstream>
 
 #include "kinematics/kinematics.hpp"
 #include "engine/test_models.hpp"
 
 namespace rrlab {
 namespace {
-
-std::string read_text(const std::string& relative) {
-  std::ifstream in(test::source_path(relative));
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 Model chain_model(const UrdfChain& chain) {
   Model m = make_chain(Eigen::Isometry3d::Identity(), chain.joints, chain.tip);
@@ -98,7 +89,7 @@ constexpr double kDeg = M_PI / 180;
 
 // KUKA LBR iiwa 14 R820 specification: standard DH d = 0.36, 0, 0.42, 0, 0.40, 0, 0.126 m.
 TEST(UrdfArms, Iiwa14MatchesKukaDh) {
-  const UrdfChain chain = read_urdf_chain(read_text("scenarios/robots/iiwa14.urdf"), "iiwa_link_0", "iiwa_tip");
+  const UrdfChain chain = read_urdf_chain(test::read_source_file("scenarios/robots/iiwa14.urdf"), "iiwa_link_0", "iiwa_tip");
   ASSERT_EQ(chain.joints.size(), 7u);
   const std::vector<DhRow> rows = {{0, -kHalf, 0.36, 0}, {0, kHalf, 0, 0}, {0, kHalf, 0.42, 0}, {0, -kHalf, 0, 0},
                                    {0, -kHalf, 0.40, 0}, {0, kHalf, 0, 0}, {0, 0, 0.126, 0}};
@@ -112,7 +103,7 @@ TEST(UrdfArms, Iiwa14MatchesKukaDh) {
 
 // Franka FCI documentation: modified DH, flange d = 0.107 m.
 TEST(UrdfArms, PandaMatchesFrankaModifiedDh) {
-  const UrdfChain chain = read_urdf_chain(read_text("scenarios/robots/panda.urdf"), "panda_link_0", "panda_tip");
+  const UrdfChain chain = read_urdf_chain(test::read_source_file("scenarios/robots/panda.urdf"), "panda_link_0", "panda_tip");
   ASSERT_EQ(chain.joints.size(), 7u);
   const std::vector<DhRow> rows = {{0, 0, 0.333, 0},          {0, -kHalf, 0, 0},       {0, kHalf, 0.316, 0},
                                    {0.0825, kHalf, 0, 0},     {-0.0825, -kHalf, 0.384, 0},
@@ -127,7 +118,7 @@ TEST(UrdfArms, PandaMatchesFrankaModifiedDh) {
 
 // Kinova Gen3 user guide: classical DH with the base turned by π about x.
 TEST(UrdfArms, Gen3MatchesKinovaDh) {
-  const UrdfChain chain = read_urdf_chain(read_text("scenarios/robots/gen3.urdf"), "gen3_link_0", "gen3_tip");
+  const UrdfChain chain = read_urdf_chain(test::read_source_file("scenarios/robots/gen3.urdf"), "gen3_link_0", "gen3_tip");
   ASSERT_EQ(chain.joints.size(), 7u);
   const double pi = M_PI;
   const std::vector<DhRow> rows = {{0, kHalf, -(0.1564 + 0.1284), 0},  {0, kHalf, -(0.0054 + 0.0064), pi},
@@ -146,7 +137,7 @@ TEST(UrdfArms, Gen3MatchesKinovaDh) {
 
 // Capsule radii come from the collision cylinders.
 TEST(UrdfArms, LinkRadiiFromCollisionCylinders) {
-  const UrdfChain chain = read_urdf_chain(read_text("scenarios/robots/iiwa14.urdf"), "", "");
+  const UrdfChain chain = read_urdf_chain(test::read_source_file("scenarios/robots/iiwa14.urdf"), "", "");
   EXPECT_EQ(chain.base_link, "iiwa_link_0");
   EXPECT_EQ(chain.tip_link, "iiwa_tip");
   EXPECT_DOUBLE_EQ(chain.joints[0].radius, 0.075);
