@@ -4,6 +4,8 @@
 #include <nlohmann/json.hpp>
 #include <unordered_map>
 
+#include "util/nesting_depth.hpp"
+
 namespace rrlab::sweep {
 
 namespace {
@@ -45,7 +47,7 @@ void write_summaries_csv(std::ostream& out, const std::vector<SweepCase>& cases,
     const auto it = by_key.find(c.key);
     if (it == by_key.end()) continue;
     const storage::SweepRunEntry& e = *it->second;
-    const nlohmann::json summary = e.summary_json ? nlohmann::json::parse(*e.summary_json) : nlohmann::json::object();
+    const nlohmann::json summary = e.summary_json ? parse_json(*e.summary_json) : nlohmann::json::object();
     out << quoted(c.key) << ',' << quoted(c.scenario_key) << ',' << quoted(c.config_key) << ',' << quoted(c.family)
         << ',' << e.seed << ',' << (e.row.success ? 1 : 0) << ',' << e.run_id;
     for (const char* column : kSummaryColumns) out << ',' << field(summary.value(column, nlohmann::json()));

@@ -9,6 +9,8 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "util/nesting_depth.hpp"
+
 namespace rrlab::sweep {
 
 namespace {
@@ -34,8 +36,8 @@ RunFacts facts_of(const storage::SweepRunEntry& e) {
   if (!e.summary_json) return f;
   nlohmann::json s;
   try {
-    s = nlohmann::json::parse(*e.summary_json);
-  } catch (const nlohmann::json::parse_error&) {
+    s = parse_json(*e.summary_json);
+  } catch (const std::exception&) {  // not JSON, or nested too deep
     throw std::runtime_error("run " + std::to_string(e.run_id) + " (" + e.row.key + "): its summary is not JSON");
   }
   f.min_distance = number_or(s, "min_distance", kInf);

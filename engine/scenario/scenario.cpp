@@ -16,6 +16,7 @@
 #include "scenario/mesh_obstacle.hpp"
 #include "scenario/physical_bounds.hpp"
 #include "scenario/urdf_robot.hpp"
+#include "util/nesting_depth.hpp"
 
 namespace rrlab {
 
@@ -536,7 +537,9 @@ Scenario parse_scenario(const json& doc, const std::string& dir) {
 Scenario parse_scenario_text(const std::string& text) {
   json doc;
   try {
-    doc = json::parse(text);
+    doc = parse_json(text);
+  } catch (const TooDeepError& e) {
+    throw ScenarioError("", std::string("invalid JSON: ") + e.what());
   } catch (const json::exception& e) {  // parse_error, and out_of_range for a number beyond double
     throw ScenarioError("", std::string("invalid JSON: ") + e.what());
   }
@@ -549,7 +552,9 @@ json read_json_file(const std::string& file, const std::string& what) {
   std::stringstream buffer;
   buffer << in.rdbuf();
   try {
-    return json::parse(buffer.str());
+    return parse_json(buffer.str());
+  } catch (const TooDeepError& e) {
+    throw ScenarioError("", what + " '" + file + "' is not valid JSON: " + e.what());
   } catch (const json::exception& e) {  // parse_error, and out_of_range for a number beyond double
     throw ScenarioError("", what + " '" + file + "' is not valid JSON: " + e.what());
   }

@@ -10,6 +10,8 @@
 #include <set>
 #include <urdf_parser/urdf_parser.h>
 
+#include "util/nesting_depth.hpp"
+
 namespace rrlab {
 
 namespace {
@@ -55,6 +57,8 @@ urdf::ModelInterfaceSharedPtr parse_with_urdfdom(const std::string& xml, std::st
 // parents, and a cycle.
 void check_structure(const std::string& xml) {
   if (xml.find_first_not_of(" \t\r\n") == std::string::npos) throw UrdfError("the URDF is empty");
+  // TinyXML recurses once per element level: refuse deep documents before it runs.
+  if (const auto at = xml_too_deep_at(xml)) throw UrdfError(TooDeepError("XML", kMaxXmlDepth, *at).what());
   TiXmlDocument doc;
   doc.Parse(xml.c_str());
   if (doc.Error())
@@ -67,11 +71,16 @@ void check_structure(const std::string& xml) {
     const char* name = l->Attribute("name");
     if (!name) throw UrdfError("a <link> has no name (line " + std::to_string(l->Row()) + ")");
     if (!links.insert(name).second) throw UrdfError("link " + quoted(name) + " is defined twice");
+    if (links.size() > kMaxUrdfLinks)
+      throw UrdfError("the URDF has more than " + std::to_string(kMaxUrdfLinks) + " links");
   }
+  std::size_t joints = 0;
   std::map<std::string, std::string> parent_of, joint_of;  // child link -> parent link / joint
   for (const TiXmlElement* j = robot->FirstChildElement("joint"); j; j = j->NextSiblingElement("joint")) {
     const char* name = j->Attribute("name");
     if (!name) throw UrdfError("a <joint> has no name (line " + std::to_string(j->Row()) + ")");
+    if (++joints > kMaxUrdfJoints)
+      throw UrdfError("the URDF has more than " + std::to_string(kMaxUrdfJoints) + " joints");
     const std::string joint = name;
     auto link_of = [&](const char* element) -> std::string {
       const TiXmlElement* e = j->FirstChildElement(element);
@@ -90,12 +99,23 @@ void check_structure(const std::string& xml) {
     parent_of[child] = parent;
     joint_of[child] = joint;
   }
+  // Each link has at most one parent, so walking up from every link finds any
+  // cycle. A walk stops at a link an earlier walk finished (linear in links):
+  // meeting a link of its own walk again closes a cycle.
+  std::map<std::string, std::size_t> walk_of;  // link -> the walk that reached it first
+  std::size_t walk = 0;
   for (const std::string& start : links) {
-    std::set<std::string> seen{start};
-    for (auto it = parent_of.find(start); it != parent_of.end(); it = parent_of.find(it->second))
-      if (!seen.insert(it->second).second)
+    if (walk_of.count(start)) continue;
+    ++walk;
+    walk_of[start] = walk;
+    for (auto it = parent_of.find(start); it != parent_of.end(); it = parent_of.find(it->second)) {
+      const auto [seen, first_time] = walk_of.emplace(it->second, walk);
+      if (first_time) continue;
+      if (seen->second == walk)
         throw UrdfError("the joints form a cycle through link " + quoted(it->second) + " (joint " +
                         quoted(joint_of[it->second]) + ")");
+      break;  // an earlier walk went on from here
+    }
   }
 }
 

@@ -43,6 +43,11 @@ struct UrdfChain {
   std::vector<std::vector<UrdfMesh>> meshes;
 };
 
+// Bounds on a URDF's size (real arms have tens of links; a humanoid ~100):
+// beyond them a document is refused before urdfdom parses it.
+inline constexpr std::size_t kMaxUrdfLinks = 1000;
+inline constexpr std::size_t kMaxUrdfJoints = 1000;
+
 // `base_link` empty: the URDF's root link; `tip_link` empty: the one leaf of
 // the tree (an error when there are several). Throws UrdfError.
 UrdfChain read_urdf_chain(const std::string& xml, const std::string& base_link, const std::string& tip_link);

@@ -4,6 +4,7 @@
 #include "scenario/scenario.hpp"
 #include "sim/run_inputs.hpp"
 #include "storage/database.hpp"
+#include "util/nesting_depth.hpp"
 
 namespace rrlab::server {
 
@@ -89,7 +90,9 @@ std::string plain_reason(const nlohmann::json::exception& e) {
 
 nlohmann::json parse_client_json(const std::string& text) {
   try {
-    return nlohmann::json::parse(text);
+    return parse_json(text);
+  } catch (const TooDeepError& e) {
+    throw ApiError(400, "too_deep", e.what(), "");
   } catch (const nlohmann::json::exception& e) {
     throw ApiError(400, "malformed_json", plain_reason(e) + " at byte " + std::to_string(error_byte(text)), "");
   }

@@ -88,7 +88,9 @@ nlohmann::json socket_reply(const std::function<nlohmann::json()>& handle);
 // anything the parser refuses, numbers out of double's range included, is a
 // 400 "malformed_json" ApiError with a plain message naming the 1-based byte
 // where the parser stopped ("number out of range at byte 12": the number's
-// last digit), never the parser's exception text.
+// last digit), never the parser's exception text. A document nested deeper
+// than kMaxJsonDepth (64) levels is a 400 "too_deep" naming the byte of the
+// bracket that opens the level too many, found before the parser runs.
 nlohmann::json parse_client_json(const std::string& text);
 // Parses a JSON body (parse_client_json; an empty body is 400 too).
 nlohmann::json parse_body(const ApiRequest& request);

@@ -10,6 +10,7 @@
 #include "scenario/json_reader.hpp"
 #include "sim/run_inputs.hpp"
 #include "storage/frame_codec.hpp"
+#include "util/nesting_depth.hpp"
 
 namespace rrlab::server {
 
@@ -77,7 +78,7 @@ void ReplayPlayer::show_locked(std::int64_t seq) {
     const storage::StoredEvent& e = events_[next_event_++];
     if (e.kind.rfind("obstacle", 0) == 0 || e.kind == "method" || e.kind == "reset") {
       try {
-        apply_input(*sim_, e.kind, json::parse(e.payload_json));
+        apply_input(*sim_, e.kind, parse_json(e.payload_json));
         ++scene_version_;
       } catch (const std::exception&) {
       }

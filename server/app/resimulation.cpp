@@ -7,6 +7,7 @@
 #include "sim/run_record.hpp"
 #include "sim/simulator.hpp"
 #include "storage/frame_codec.hpp"
+#include "util/nesting_depth.hpp"
 
 namespace rrlab::server {
 
@@ -16,7 +17,7 @@ Scenario scenario_of_run(const storage::RunRecord& run) {
   Scenario scenario = parse_scenario_text(run.scenario_json);
   scenario.method.name = run.method;
   scenario.method.params.clear();
-  const json params = json::parse(run.params_json);
+  const json params = parse_json(run.params_json);
   for (auto it = params.begin(); it != params.end(); ++it)
     scenario.method.params.emplace_back(it.key(), it.value().get<double>());
   return scenario;
@@ -71,7 +72,7 @@ ResimulationResult resimulate(storage::RunStore& store, const storage::RunRecord
   sim.set_total_steps(ScenarioLimits::max_steps * 16);  // resets restart the step count; seq bounds the loop
   std::vector<RecordedEvent> events;
   for (const storage::StoredEvent& e : store.events(run.id))
-    events.push_back({long(e.seq), e.kind, json::parse(e.payload_json)});
+    events.push_back({long(e.seq), e.kind, parse_json(e.payload_json)});
   EventReplayer replayer(events);
   ResimulationResult result;
   std::string packed;

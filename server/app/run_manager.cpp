@@ -13,6 +13,7 @@
 #include "app/replay_player.hpp"
 #include "storage/database.hpp"
 #include "storage/run_store.hpp"
+#include "util/nesting_depth.hpp"
 
 namespace rrlab::server {
 
@@ -170,7 +171,7 @@ json RunManager::scenario_list(std::int64_t limit, std::int64_t offset) {
     }
     const auto text = store_.scenario(name);
     if (!text) continue;  // deleted meanwhile
-    json summary = scenario_summary(name, json::parse(*text), false);
+    json summary = scenario_summary(name, parse_json(*text), false);
     std::lock_guard lock(summaries_mutex_);
     stored_summaries_[name] = summary;
     list.push_back(std::move(summary));
@@ -180,7 +181,7 @@ json RunManager::scenario_list(std::int64_t limit, std::int64_t offset) {
 
 json RunManager::scenario_json(const std::string& name) {
   if (auto it = catalogue_.find(name); it != catalogue_.end()) return it->second;
-  if (auto stored = store_.scenario(name)) return json::parse(*stored);
+  if (auto stored = store_.scenario(name)) return parse_json(*stored);
   throw ApiError(404, "not_found", "no scenario \"" + name + "\"", "scenario");
 }
 

@@ -6,6 +6,7 @@
 #include "collision/mesh_loader.hpp"
 #include "methods/registry_json.hpp"
 #include "sim/run_inputs.hpp"
+#include "util/nesting_depth.hpp"
 
 namespace rrlab::server {
 
@@ -301,7 +302,7 @@ nlohmann::json snapshot_json(const FrameContext& c, const Simulator& sim, const 
             {"path", path}}},
           {"obstacles", obstacles},
           {"scene_version", c.scene_version},
-          {"frame", frame_text.empty() ? json() : json::parse(frame_text)}};
+          {"frame", frame_text.empty() ? json() : parse_json(frame_text)}};
 }
 
 }  // namespace rrlab::server

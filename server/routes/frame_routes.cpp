@@ -7,6 +7,7 @@
 // (sorted) order, {"diagnostic_names", "frames", "run"}.
 #include <algorithm>
 
+#include "util/nesting_depth.hpp"
 #include "routes/routes.hpp"
 #include "sim/frame_csv.hpp"
 #include "storage/frame_codec.hpp"
@@ -96,7 +97,7 @@ ApiResponse get_frames(RouteContext& c) {
   } else if (c.request.accept.find("text/csv") != std::string::npos) {
     format = "csv";
   }
-  std::vector<std::string> names = json::parse(run.diagnostic_names_json).get<std::vector<std::string>>();
+  std::vector<std::string> names = parse_json(run.diagnostic_names_json).get<std::vector<std::string>>();
   ApiResponse response;
   response.content_type = format == "csv" ? "text/csv" : "application/json";
   response.stream = std::make_shared<FrameExport>(c.runs.store(), run.id, from, to, stride, std::move(names),

@@ -1,6 +1,7 @@
 #include "routes/routes.hpp"
 #include "scenario/json_reader.hpp"
 #include "storage/run_store.hpp"
+#include "util/nesting_depth.hpp"
 
 namespace rrlab::server {
 
@@ -8,12 +9,12 @@ using nlohmann::json;
 
 namespace {
 
-json parse_or_null(const std::optional<std::string>& text) { return text ? json::parse(*text) : json(); }
+json parse_or_null(const std::optional<std::string>& text) { return text ? parse_json(*text) : json(); }
 
 json events_json(storage::RunStore& store, std::int64_t run) {
   json list = json::array();
   for (const storage::StoredEvent& e : store.events(run))
-    list.push_back({{"seq", e.seq}, {"step", e.step}, {"kind", e.kind}, {"payload", json::parse(e.payload_json)}});
+    list.push_back({{"seq", e.seq}, {"step", e.step}, {"kind", e.kind}, {"payload", parse_json(e.payload_json)}});
   return list;
 }
 
@@ -54,7 +55,7 @@ json run_record_json(const storage::RunRecord& r) {
   return {{"id", r.id},
           {"scenario", r.scenario_name},
           {"method", r.method},
-          {"params", json::parse(r.params_json)},
+          {"params", parse_json(r.params_json)},
           {"seed", r.seed},
           {"mode", r.mode},
           {"created", r.created},
@@ -62,7 +63,7 @@ json run_record_json(const storage::RunRecord& r) {
           {"frames", r.frames},
           {"frame_bytes", r.frame_bytes},
           {"dof", r.dof},
-          {"diagnostic_names", json::parse(r.diagnostic_names_json)},
+          {"diagnostic_names", parse_json(r.diagnostic_names_json)},
           {"summary", parse_or_null(r.summary_json)},
           {"source_run", r.source_run ? json(*r.source_run) : json()},
           {"compare_group", r.compare_group ? json(*r.compare_group) : json()}};
@@ -186,8 +187,8 @@ ApiResponse get_run_events(RouteContext& c) {
 // The run as a record `rrlab run` takes back (sim/run_record.hpp).
 ApiResponse get_run_record(RouteContext& c) {
   const storage::RunRecord run = find_run(c, c.id());
-  json scenario = json::parse(run.scenario_json);
-  scenario["method"] = {{"name", run.method}, {"params", json::parse(run.params_json)}};
+  json scenario = parse_json(run.scenario_json);
+  scenario["method"] = {{"name", run.method}, {"params", parse_json(run.params_json)}};
   scenario["seed"] = run.seed;
   return json_response(200, {{"rrlab_record", 1},
                              {"run", run.id},

@@ -5,13 +5,14 @@
 #include "fuzz_support.hpp"
 #include "sim/run_record.hpp"
 #include "sim/simulator.hpp"
+#include "util/nesting_depth.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   nlohmann::json doc;
   try {
-    doc = nlohmann::json::parse(rrlab::fuzz::as_text(data, size));
-  } catch (const nlohmann::json::exception&) {
-    return 0;  // not JSON: read_json_file's ScenarioError
+    doc = rrlab::parse_json(rrlab::fuzz::as_text(data, size));
+  } catch (const std::exception&) {
+    return 0;  // not JSON, or nested too deep: read_json_file's ScenarioError
   }
   rrlab::fuzz::expect_documented("parse_run_record", [&] {
     rrlab::RunRecordDoc input;

@@ -198,4 +198,21 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"no_command", "", "", false}),
     [](const ::testing::TestParamInfo<BadInput>& info) { return info.param.name; });
 
+// A scenario file or sweep spec nested 60,000 levels deep (a stack overflow
+// in the JSON library before the depth limit): exit 2 naming the byte.
+TEST(Cli, DeepScenarioFilesAndSweepSpecs) {
+  std::string deep;
+  for (int i = 0; i < 60000; ++i) deep += "{\"a\": ";
+  deep += "1" + std::string(60000, '}');
+  const std::string file = write_temp("rrlab_deep_scenario.json", deep);
+  const std::string db = (std::filesystem::temp_directory_path() / "rrlab_deep_sweep.db").string();
+  for (const std::string& command : {"run " + file, "sweep " + file + " --db " + db}) {
+    const Result r = rrlab(command);
+    EXPECT_EQ(r.code, 2) << command << ": " << r.err;
+    EXPECT_NE(r.err.find("nested deeper than 64 levels at byte 385"), std::string::npos) << command << ": " << r.err;
+  }
+  std::filesystem::remove(file);
+  std::filesystem::remove(db);
+}
+
 }  // namespace

@@ -138,5 +138,45 @@ TEST(UrdfScenario, LinkRadiusAndLimitsOverride) {
   EXPECT_NE(error_path(doc, kScenarios).find("robot.links"), std::string::npos);
 }
 
+// Every <mesh> reference counts against the robot's triangle budget: 2,000
+// references to the 576-triangle torus (a 159 KB request) once made 1.15 M
+// triangles, 11.8 s to validate and 149 ms per step.
+TEST(UrdfScenario, MeshReferencesShareOneTriangleBudget) {
+  const auto robot_with = [](int references) {
+    std::string collisions;
+    for (int i = 0; i < references; ++i)
+      collisions += R"(<collision><geometry><mesh filename="meshes/torus.obj"/></geometry></collision>)";
+    json doc = iiwa_scenario();
+    doc["robot"] = {{"kind", "urdf"}, {"q0", {0.1}},
+                    {"urdf", R"(<robot name="r"><link name="base"/><link name="l1">)" + collisions +
+                                 R"(</link><link name="tip"/><joint name="j1" type="revolute"><parent link="base"/>)"
+                                 R"(<child link="l1"/><axis xyz="0 0 1"/>)"
+                                 R"(<limit lower="-2" upper="2" velocity="1" effort="1"/></joint>)"
+                                 R"(<joint name="jt" type="fixed"><parent link="l1"/><child link="tip"/>)"
+                                 R"(<origin xyz="0.5 0 0"/></joint></robot>)"}};
+    return doc;
+  };
+  EXPECT_EQ(error_path(robot_with(2000), kScenarios),
+            "robot.urdf | robot.urdf: the robot's collision meshes would have 20160 triangles together at mesh "
+            "\"meshes/torus.obj\" (link 'l1'), at most 20000 allowed");
+  // 34 references (19,584 triangles) are within it: whatever else is refused, not the meshes
+  EXPECT_EQ(error_path(robot_with(34), kScenarios).find("collision meshes"), std::string::npos)
+      << error_path(robot_with(34), kScenarios);
+}
+
+// A chain of 10,000 fixed links (1 MB) took 22 s per request (a quadratic
+// cycle check); the link count is capped before urdfdom parses it.
+TEST(UrdfScenario, LinkAndJointCountsAreCapped) {
+  std::string links = R"(<link name="l0"/>)", joints;
+  for (int i = 1; i <= 1001; ++i) {
+    links += "<link name=\"l" + std::to_string(i) + "\"/>";
+    joints += "<joint name=\"j" + std::to_string(i) + "\" type=\"fixed\"><parent link=\"l" + std::to_string(i - 1) +
+              "\"/><child link=\"l" + std::to_string(i) + "\"/></joint>";
+  }
+  json doc = iiwa_scenario();
+  doc["robot"] = {{"kind", "urdf"}, {"link_radius", 0.05}, {"urdf", "<robot name=\"r\">" + links + joints + "</robot>"}};
+  EXPECT_EQ(error_path(doc, kScenarios), "robot.urdf | robot.urdf: the URDF has more than 1000 links");
+}
+
 }  // namespace
 }  // namespace rrlab
