@@ -53,7 +53,14 @@ TriangleMesh load_mesh_file(const std::string& path, const Eigen::Vector3d& scal
   if (int(mesh.triangles.size()) > kMaxMeshTriangles)
     throw MeshError("mesh '" + path + "' has " + std::to_string(mesh.triangles.size()) + " triangles, at most " +
                     std::to_string(kMaxMeshTriangles) + " allowed");
-  for (Eigen::Vector3d& v : mesh.vertices) v = v.cwiseProduct(scale);
+  for (Eigen::Vector3d& v : mesh.vertices) {
+    v = v.cwiseProduct(scale);
+    // NaN or 1e300 vertices would reach FCL's BVH fit (whose eigen solver gives up) and every distance
+    if (!v.allFinite() || v.cwiseAbs().maxCoeff() > kMaxMeshCoordinate)
+      throw MeshError("mesh '" + path + "' has a vertex at (" + std::to_string(v.x()) + ", " + std::to_string(v.y()) +
+                      ", " + std::to_string(v.z()) + ") m after scaling: every coordinate must be finite and within " +
+                      std::to_string(int(kMaxMeshCoordinate)) + " m");
+  }
   return mesh;
 }
 

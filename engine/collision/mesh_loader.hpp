@@ -27,5 +27,8 @@ TriangleMesh load_mesh_file(const std::string& path, const Eigen::Vector3d& scal
 
 // At most this many triangles per file (a collision mesh, not a render mesh).
 constexpr int kMaxMeshTriangles = 200000;
+// Every vertex coordinate, in metres after scaling, lies within this bound
+// (the bound on any length in a scenario); non-finite ones are refused too.
+constexpr double kMaxMeshCoordinate = 1.0e4;
 
 }  // namespace rrlab

@@ -29,6 +29,8 @@ struct ScenarioLimits {
   static constexpr long max_mesh_bytes = 8 << 20;
   static constexpr int max_mesh_triangles = 20000;
   static constexpr int max_mesh_obstacle_triangles = 20000;
+  // A URDF robot: over all its <collision><mesh> references.
+  static constexpr int max_robot_mesh_triangles = 20000;
   static constexpr double max_mesh_scale = 1000.0;
 };
 

@@ -1,11 +1,14 @@
 #include "scenario/urdf_robot.hpp"
 
 #include <algorithm>
+#include <array>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "collision/mesh_loader.hpp"
+#include "scenario/mesh_obstacle.hpp"
 #include "scenario/physical_bounds.hpp"
 #include "scenario/scenario.hpp"
 #include "urdf/urdf_chain.hpp"
@@ -121,7 +124,12 @@ Model parse_urdf_robot(JsonObject& robot, double radians_per_unit, const std::st
   // A link with meshes and no primitive (and no link_radius) collides as its
   // meshes; the capsule radius then bounds them (for the methods that sweep
   // a capsule, and for drawing).
+  // Every <mesh> reference counts against one triangle budget for the robot
+  // (a file named twice counts twice: its triangles are checked twice per
+  // step); a file is read once per scale.
   std::vector<std::shared_ptr<TriangleMesh>> meshes(n);
+  std::map<std::pair<std::string, std::array<double, 3>>, std::shared_ptr<const TriangleMesh>> read;
+  long triangles = 0;
   for (int i = 0; i < n; ++i) {
     if (chain.joints[i].radius >= 0) continue;
     chain.joints[i].radius = 0;
@@ -132,11 +140,19 @@ Model parse_urdf_robot(JsonObject& robot, double radians_per_unit, const std::st
         throw ScenarioError(source_path, in_file + "mesh \"" + m.filename + "\"" + where + ": " + problem);
       const std::string urdf_dir = has_file ? fs::path(robot.string("file")).parent_path().string() : std::string();
       const std::string file = confined_path(m.filename, dir, source_path, urdf_dir);
+      auto& mesh = read[{file, {m.scale.x(), m.scale.y(), m.scale.z()}}];
       try {
-        merged->append(load_mesh_file(file, m.scale), m.pose);
-      } catch (const MeshError& e) {
+        if (!mesh) mesh = read_scenario_mesh(m.filename, file, m.scale, "", "for a URDF mesh");
+      } catch (const ScenarioError& e) {  // at no path: the message alone
         throw ScenarioError(source_path, in_file + e.what() + where);
       }
+      triangles += long(mesh->triangles.size());
+      if (triangles > ScenarioLimits::max_robot_mesh_triangles)
+        throw ScenarioError(source_path, in_file + "the robot's collision meshes would have " +
+                                             std::to_string(triangles) + " triangles together at mesh \"" +
+                                             m.filename + "\"" + where + ", at most " +
+                                             std::to_string(ScenarioLimits::max_robot_mesh_triangles) + " allowed");
+      merged->append(*mesh, m.pose);
     }
     meshes[i] = merged;
   }

@@ -138,6 +138,35 @@ TEST_F(MeshObstacleScenario, SizeLimitsNameTheFileAndTheLimit) {
   EXPECT_EQ(error(doc), "obstacles[1].file: the mesh obstacles would have 23600 triangles together, at most 20000 allowed");
 }
 
+// A vertex with NaN, an infinity or 1e300 once reached FCL's BVH fit ("too
+// many iterations in Jacobi transform") and every distance: refused by name.
+TEST_F(MeshObstacleScenario, NonFiniteAndAbsurdVerticesAreRefused) {
+  {
+    // a binary STL (OBJ's reader takes "nan" for 0): one triangle with a NaN x
+    std::ofstream stl(dir_ / "meshes/nan.stl", std::ios::binary);
+    const std::string header(80, ' ');
+    stl.write(header.data(), 80);
+    const std::uint32_t count = 1;
+    stl.write(reinterpret_cast<const char*>(&count), 4);
+    const float values[12] = {0, 0, 1, std::nanf(""), 0, 0, 1, 0, 0, 0, 1, 0};  // normal, three vertices
+    stl.write(reinterpret_cast<const char*>(values), sizeof values);
+    const std::uint16_t attributes = 0;
+    stl.write(reinterpret_cast<const char*>(&attributes), 2);
+  }
+  for (const auto& [name, vertex] : std::vector<std::pair<std::string, std::string>>{
+           {"nan.stl", ""}, {"inf.obj", "v 0 inf 0"}, {"huge.obj", "v 0 0 1e300"}, {"far.obj", "v 20000 0 0"}}) {
+    if (!vertex.empty()) std::ofstream(dir_ / ("meshes/" + name)) << "v 0 0 0\nv 1 0 0\n" << vertex << "\nf 1 2 3\n";
+    const std::string message = error(scenario(mesh("meshes/" + name)));
+    EXPECT_EQ(message.rfind("obstacles[0].file: mesh 'meshes/" + name + "' has a vertex at (", 0), 0u) << message;
+    EXPECT_NE(message.find("every coordinate must be finite and within 10000 m"), std::string::npos) << name << ": " << message;
+  }
+  // a large file unit scaled down is fine: 20000 mm is 20 m
+  std::ofstream(dir_ / "meshes/mm.obj") << "v 0 0 0\nv 1 0 0\nv 20000 0 0\nf 1 2 3\n";
+  json doc = scenario(mesh("meshes/mm.obj"));
+  doc["obstacles"][0]["scale"] = 0.001;
+  EXPECT_EQ(error(doc), "(accepted)");
+}
+
 TEST_F(MeshObstacleScenario, BadScale) {
   const auto with_scale = [&](const json& scale) {
     json o = mesh("meshes/box.obj");
