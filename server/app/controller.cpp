@@ -40,8 +40,10 @@ std::uint64_t Controller::attach(const std::string& client, Notify notify) {
   {
     std::lock_guard lock(mutex_);
     handle = ++next_;
+    const bool lapsed = lapse_locked();
     connections_[handle] = Connection{client, notify};
-    if (notify) notices.emplace_back(std::move(notify), state_message_locked(client));
+    if (lapsed) notices = state_notices_locked();  // everyone: control lapsed
+    else if (notify) notices.emplace_back(std::move(notify), state_message_locked(client));
   }
   send(notices);
   return handle;
@@ -64,28 +66,53 @@ void Controller::detach(std::uint64_t connection) {
   send(notices);
 }
 
-void Controller::claim(const std::string& client) {
-  if (client.empty()) return;
-  Notices notices;
-  bool claimed = false;
+bool Controller::lapse_locked() {
+  if (holder_.empty() || now_() - holder_seen_ <= lapse_) return false;
+  for (const auto& [id, c] : connections_)
+    if (c.client == holder_) return false;  // a holder with a WebSocket keeps control until it closes
+  holder_.clear();
+  return true;
+}
+
+bool Controller::hold(const std::string& client) {
+  if (client.empty()) return false;
+  Notices notices;  // of a lapse found now
+  bool fresh = false, refused = false;
   {
     std::lock_guard lock(mutex_);
-    if (holder_ == client) return;
-    if (holder_.empty()) {
+    if (lapse_locked()) notices = state_notices_locked();
+    if (holder_ == client) {
+      holder_seen_ = now_();
+    } else if (holder_.empty()) {
       holder_ = client;
-      claimed = true;
-      notices = state_notices_locked();
+      holder_seen_ = now_();
+      fresh = true;
+    } else {
+      refused = true;
     }
   }
-  if (claimed) {
-    send(notices);
-    return;
+  send(notices);
+  if (refused)
+    throw ApiError(409, "not_controller",
+                   "another client controls this run; you are watching. Take control with "
+                   "{\"type\": \"control\", \"action\": \"take\"} (WebSocket) or "
+                   "POST /api/runs/{id}/control {\"action\": \"take\"} with an Rrlab-Client header naming you",
+                   "");
+  return fresh;
+}
+
+void Controller::announce() {
+  Notices notices;
+  {
+    std::lock_guard lock(mutex_);
+    notices = state_notices_locked();
   }
-  throw ApiError(409, "not_controller",
-                 "another client controls this run; you are watching. Take control with "
-                 "{\"type\": \"control\", \"action\": \"take\"} (WebSocket) or "
-                 "POST /api/runs/{id}/control {\"action\": \"take\"} with an Rrlab-Client header naming you",
-                 "");
+  send(notices);
+}
+
+void Controller::unhold(const std::string& client) {
+  std::lock_guard lock(mutex_);
+  if (holder_ == client) holder_.clear();
 }
 
 json Controller::take(const std::string& client) {
@@ -102,8 +129,10 @@ json Controller::take(const std::string& client) {
     if (!holder_.empty() && holder_ != client)
       for (const auto& [id, c] : connections_)
         if (c.client == holder_ && c.notify) previous.push_back(c.notify);
+    lapse_locked();
     const bool changed = holder_ != client;
     holder_ = client;
+    holder_seen_ = now_();
     if (changed) notices = state_notices_locked();
     state = state_locked(client);
   }
@@ -132,8 +161,15 @@ json Controller::release(const std::string& client) {
 }
 
 json Controller::state_json(const std::string& client) {
-  std::lock_guard lock(mutex_);
-  return state_locked(client);
+  Notices notices;
+  json state;
+  {
+    std::lock_guard lock(mutex_);
+    if (lapse_locked()) notices = state_notices_locked();
+    state = state_locked(client);
+  }
+  send(notices);
+  return state;
 }
 
 json Controller::state_locked(const std::string& client) const {

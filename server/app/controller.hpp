@@ -15,16 +15,20 @@
 // name is a client of its own (named after its connection). A REST request
 // without a name (curl, scripts, an operator stopping a run) is not a party
 // to control: it neither holds nor is refused it. Control is released when the
-// holder's last WebSocket to the run closes (a holder that only uses REST
-// keeps it until it releases it or another client takes over).
+// holder's last WebSocket to the run closes; a holder with no WebSocket to
+// the run (one that steers over REST) loses it after kRestControlLapse (60 s)
+// without a request. A message or request that is refused (invalid, wrong
+// state) takes nothing: control is held from the first input that is applied.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <map>
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -33,6 +37,12 @@ namespace rrlab::server {
 class Controller {
  public:
   using Notify = std::function<void(const nlohmann::json&)>;
+  using Clock = std::chrono::steady_clock;
+  static constexpr std::chrono::seconds kRestControlLapse{60};
+
+  // `now`: the clock the REST lapse is measured with (tests give their own).
+  explicit Controller(std::function<Clock::time_point()> now = &Clock::now, Clock::duration lapse = kRestControlLapse)
+      : now_(std::move(now)), lapse_(lapse) {}
 
   // A WebSocket connection of `client`, told the control state now and at
   // every change through `notify` (called without the lock held, from the
@@ -41,10 +51,28 @@ class Controller {
   // The connection closed: control is released when it was the holder's last one.
   void detach(std::uint64_t connection);
 
-  // Before an input or control from `client`: takes control if nobody holds
-  // it; throws ApiError 409 "not_controller" if another client holds it.
-  // An empty name (an unnamed REST request) passes and holds nothing.
-  void claim(const std::string& client);
+  // An input or control from `client`: throws ApiError 409 "not_controller"
+  // if another client holds control, else runs `act`. When nobody held
+  // control, `client` holds it while `act` runs and keeps it (everyone is
+  // told) only if `act` returns: a refused input takes nothing. An empty name
+  // (an unnamed REST request) passes and holds nothing.
+  template <typename Act>
+  auto steer(const std::string& client, Act&& act) -> decltype(act()) {
+    const bool fresh = hold(client);
+    try {
+      if constexpr (std::is_void_v<decltype(act())>) {
+        act();
+        if (fresh) announce();
+      } else {
+        auto result = act();
+        if (fresh) announce();
+        return result;
+      }
+    } catch (...) {
+      if (fresh) unhold(client);
+      throw;
+    }
+  }
   // `client` takes control (the previous holder is told); returns state_json.
   nlohmann::json take(const std::string& client);
   // `client` lets go (nothing if it does not hold control); returns state_json.
@@ -53,6 +81,13 @@ class Controller {
   nlohmann::json state_json(const std::string& client);
 
  private:
+  // steer's parts: hold returns true when `client` holds control anew (no one
+  // told yet); announce tells everyone; unhold lets go of a fresh hold.
+  bool hold(const std::string& client);
+  void announce();
+  void unhold(const std::string& client);
+  // A REST-only holder silent for longer than the lapse holds nothing; true when it lapsed now.
+  bool lapse_locked();
   nlohmann::json state_locked(const std::string& client) const;
   // {"type": "control", "event": "state", "controller": ...} as seen by `client`.
   nlohmann::json state_message_locked(const std::string& client) const;
@@ -65,8 +100,11 @@ class Controller {
     std::string client;
     Notify notify;
   };
+  std::function<Clock::time_point()> now_;
+  Clock::duration lapse_;
   std::mutex mutex_;
   std::string holder_;  // empty: nobody
+  Clock::time_point holder_seen_{};  // the holder's last input, take or claim
   std::map<std::uint64_t, Connection> connections_;
   std::uint64_t next_ = 0;
 };

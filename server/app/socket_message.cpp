@@ -5,6 +5,13 @@
 
 namespace rrlab::server {
 
+namespace {
+// An error reply, carried out of Controller::steer so that it lets go of the control it took.
+struct RefusedMessage {
+  nlohmann::json reply;
+};
+}  // namespace
+
 nlohmann::json reply_to_socket_message(FrameSource& source, const std::string& client, bool may_steer,
                                        const std::string& text) {
   try {
@@ -22,9 +29,16 @@ nlohmann::json reply_to_socket_message(FrameSource& source, const std::string& c
         if (message.size() != 2) throw ApiError(400, "invalid", "take and release take no other keys", "action");
         return {{"type", "ack"}, {"status", action == "take" ? controller->take(client) : controller->release(client)}};
       }
-      controller->claim(client);
+      // handle_message answers errors as a reply; only an ack keeps the control it took
+      return controller->steer(client, [&] {
+        nlohmann::json reply = source.handle_message(message);
+        if (reply.value("type", "") != "ack") throw RefusedMessage{std::move(reply)};
+        return reply;
+      });
     }
     return source.handle_message(message);
+  } catch (RefusedMessage& refused) {
+    return std::move(refused.reply);
   } catch (const ApiError& e) {
     return socket_error(e);
   } catch (const std::exception&) {

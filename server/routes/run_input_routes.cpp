@@ -12,8 +12,8 @@ namespace {
 ApiResponse apply(RouteContext& c, const std::string& kind, const json& payload) {
   int lane = 0;
   auto group = live_group(c, c.id(), lane);
-  group->controller().claim(c.request.client);
-  return json_response(200, group->input(lane, kind, payload, ""));
+  return group->controller().steer(c.request.client,
+                                   [&] { return json_response(200, group->input(lane, kind, payload, "")); });
 }
 // An input to the obstacle named in the path: an unknown one is a missing resource (404).
 ApiResponse apply_to_obstacle(RouteContext& c, const std::string& kind, const json& payload) {
@@ -40,8 +40,7 @@ ApiResponse post_control(RouteContext& c) {
     const std::string& client = c.request.client;
     return json_response(200, action == "take" ? controller.take(client) : controller.release(client));
   }
-  group->controller().claim(c.request.client);
-  json status = group->control(lane, body);
+  json status = group->controller().steer(c.request.client, [&] { return group->control(lane, body); });
   if (body.is_object() && body.value("action", "") == "stop") {
     // answer once the run has ended and its frames are committed
     ApiResponse response;

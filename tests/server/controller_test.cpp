@@ -147,17 +147,29 @@ TEST_F(Control, EveryClientHearsWhoHoldsControl) {
   wait_ended(id);
 }
 
+TEST_F(Control, ARefusedMessageTakesNoControl) {
+  const std::int64_t id = start_live({{"scenario", small_scenario()}, {"paused", true}});
+  WsClient alice(port(), ws(id, "alice")), bob(port(), ws(id, "bob"));
+  ASSERT_TRUE(alice.read_type("snapshot"));
+  ASSERT_TRUE(bob.read_type("snapshot"));
+  EXPECT_EQ(reply(alice, R"({"type": "bogus"})")["error"]["code"], "invalid");
+  EXPECT_EQ(reply(bob, kJoystick)["type"], "ack") << "alice's refused message took control";
+  EXPECT_EQ(reply(alice, kJoystick)["error"]["code"], "not_controller");
+  EXPECT_EQ(send("POST", "/api/runs/" + std::to_string(id) + "/control", {{"action", "stop"}}).status, 200);
+}
+
 TEST(ControllerUnit, ClaimTakeRelease) {
   server::Controller c;
   std::vector<json> told_a;
   const auto a1 = c.attach("a", [&](const json& m) { told_a.push_back(m); });
-  c.claim("");  // unnamed: allowed, holds nothing
+  const auto nothing = [] {};
+  c.steer("", nothing);  // unnamed: allowed, holds nothing
   EXPECT_EQ(c.state_json("a")["controller"], "none");
-  c.claim("a");
+  c.steer("a", nothing);
   EXPECT_EQ(c.state_json("a")["controller"], "you");
   EXPECT_EQ(c.state_json("b")["controller"], "other");
-  EXPECT_THROW(c.claim("b"), server::ApiError);
-  EXPECT_NO_THROW(c.claim(""));  // still no party to it
+  EXPECT_THROW(c.steer("b", nothing), server::ApiError);
+  EXPECT_NO_THROW(c.steer("", nothing));  // still no party to it
   EXPECT_EQ(c.take("b")["controller"], "you");
   // a: the state when attached (none), when it claimed (you), taken, the state after (other)
   ASSERT_EQ(told_a.size(), 4u);
@@ -180,6 +192,48 @@ TEST(ControllerUnit, ClaimTakeRelease) {
   EXPECT_EQ(server::valid_client_name("tab-0a1b"), "tab-0a1b");
   EXPECT_EQ(server::valid_client_name("a b"), "");
   EXPECT_EQ(server::valid_client_name(std::string(65, 'a')), "");
+}
+
+// A refused input takes nothing: before, {"type": "bogus"} from a watcher
+// took control although it was refused as invalid.
+TEST(ControllerUnit, ARefusedInputTakesNothing) {
+  server::Controller c;
+  int told = 0;
+  c.attach("a", [&](const json&) { ++told; });
+  EXPECT_EQ(told, 1);  // the state when attached
+  EXPECT_THROW(c.steer("a", [] { throw server::ApiError(400, "invalid", "bogus", "type"); }), server::ApiError);
+  EXPECT_EQ(c.state_json("b")["controller"], "none");
+  EXPECT_EQ(told, 1);  // nobody was told of a hold that did not last
+  EXPECT_EQ(c.steer("a", [] { return 7; }), 7);
+  EXPECT_EQ(c.state_json("b")["controller"], "other");
+  EXPECT_EQ(told, 2);
+  // the holder's refused input keeps the control it already held
+  EXPECT_THROW(c.steer("a", [] { throw server::ApiError(409, "wrong_state", "x", ""); }), server::ApiError);
+  EXPECT_EQ(c.state_json("a")["controller"], "you");
+}
+
+// A holder with no WebSocket (REST only) loses control after the lapse
+// without a request; one with a WebSocket keeps it.
+TEST(ControllerUnit, RestOnlyControlLapses) {
+  auto now = server::Controller::Clock::time_point{};
+  server::Controller c([&] { return now; }, std::chrono::seconds(60));
+  const auto nothing = [] {};
+  c.steer("script", nothing);
+  now += std::chrono::seconds(59);
+  EXPECT_THROW(c.steer("tab", nothing), server::ApiError);
+  c.steer("script", nothing);  // a request keeps it
+  now += std::chrono::seconds(60);
+  EXPECT_EQ(c.state_json("tab")["controller"], "other");
+  now += std::chrono::seconds(1);
+  EXPECT_EQ(c.state_json("tab")["controller"], "none");
+  std::vector<json> told;
+  const auto socket = c.attach("tab", [&](const json& m) { told.push_back(m); });
+  c.steer("tab", nothing);
+  EXPECT_EQ(told.back()["controller"], "you");
+  now += std::chrono::hours(1);  // with a WebSocket open, no lapse
+  EXPECT_THROW(c.steer("script", nothing), server::ApiError);
+  c.detach(socket);
+  EXPECT_NO_THROW(c.steer("script", nothing));
 }
 
 }  // namespace
