@@ -64,15 +64,21 @@ std::string bracketed(const std::string& address) {
   return v6 && address.front() != '[' ? "[" + address + "]" : address;
 }
 
-// Rule 1 for an authority; `default_port` when it names none.
-bool names_this_server(const AccessConfig& config, const Authority& a, int default_port) {
+// Rule 1 for an authority; `default_port` when it names none. An --allow-host
+// name without a port names any port, unless `only_port` says which (for an
+// origin: the port the request was sent to, so that another server on that
+// host, http://lab-pc:3000, is not this one's origin).
+bool names_this_server(const AccessConfig& config, const Authority& a, int default_port,
+                       std::optional<int> only_port = std::nullopt) {
   const int port = a.port.value_or(default_port);
   const std::string bound = lower(bracketed(config.bind_host));
   if (port == config.port && (a.name == "localhost" || a.name == "127.0.0.1" || a.name == "[::1]" || a.name == bound))
     return true;
   for (const std::string& allowed : config.allow_hosts) {
     const auto named = parse_authority(bracketed(trim(allowed)));
-    if (named && named->name == a.name && (!named->port || a.port.value_or(default_port) == *named->port)) return true;
+    if (!named || named->name != a.name) continue;
+    const std::optional<int> allowed_port = named->port ? named->port : only_port;
+    if (!allowed_port || port == *allowed_port) return true;
   }
   return false;
 }
@@ -199,11 +205,13 @@ std::string normalize_origin(const std::string& origin) {
 
 AccessDecision check_access(const AccessConfig& config, const AccessRequest& request) {
   // 1. Host
+  int request_port = config.port;  // the port the client addressed
   if (request.host.empty()) {
     if (!is_loopback_host(config.bind_host))
       return refuse(400, "missing_host", "the request needs a Host header naming this server");
   } else {
     const auto authority = parse_authority(trim(request.host));
+    if (authority) request_port = authority->port.value_or(80);
     if (!authority || !names_this_server(config, *authority, 80))
       return refuse(421, "misdirected",
                     "Host " + quote(request.host) + " does not name this server (" + hosts_for_message(config) +
@@ -215,7 +223,7 @@ AccessDecision check_access(const AccessConfig& config, const AccessRequest& req
   if (!request.origin.empty()) {
     const std::string normalized = normalize_origin(request.origin);
     const auto origin = parse_origin(trim(request.origin));
-    const bool own = origin && origin->scheme == "http" && names_this_server(config, origin->authority, 80);
+    const bool own = origin && origin->scheme == "http" && names_this_server(config, origin->authority, 80, request_port);
     const bool listed = is_allowed_origin(config, normalized);
     if (listed) {
       decision.headers = {{"Access-Control-Allow-Origin", trim(request.origin)}, {"Vary", "Origin"}};

@@ -8,8 +8,9 @@
 //    (browsers always send one), else 400 "missing_host".
 // 2. A mutating request (any method but GET, HEAD, OPTIONS) and every
 //    WebSocket upgrade that carries an Origin must come from this server's
-//    own origin (http://HOST where HOST passes rule 1) or an --allow-origin
-//    origin. Else 403 "forbidden_origin". No Origin (curl, scripts): allowed.
+//    own origin (http://HOST where HOST passes rule 1; for an --allow-host
+//    name without a port, only with the port the request was sent to) or an
+//    --allow-origin origin. Else 403 "forbidden_origin". No Origin (curl, scripts): allowed.
 // 3. With a token (--token or RRLAB_TOKEN), a request needs
 //    `Authorization: Bearer TOKEN` (a WebSocket upgrade: that header or the
 //    query parameter token=TOKEN, which browsers can send) when it is

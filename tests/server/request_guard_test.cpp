@@ -159,6 +159,11 @@ TEST(RequestGuardOptions, AllowOriginAndAllowHostWidenTheRules) {
                  {{"Host", "rrlab.example"}, {"Origin", "http://rrlab.example"}})
                 .status,
             200);
+  // a page of another server on that host (another port) is not this server's origin
+  EXPECT_EQ(http(port, "POST", "/api/scenarios/validate", scenario, "",
+                 {{"Host", "rrlab.example:" + std::to_string(port)}, {"Origin", "http://rrlab.example:3000"}})
+                .status,
+            403);
 
   // WebSockets from an allowed origin
   const HttpResult run = http(port, "POST", "/api/runs", json{{"scenario", small_scenario("joystick", 60)}}.dump());
@@ -223,6 +228,10 @@ TEST(RequestGuardTable, Decisions) {
   EXPECT_EQ(status_of(wildcard, "POST", "rrlab.example.org:443", "https://rrlab.example.org", "application/json", true),
             0);
   EXPECT_EQ(status_of(wildcard, "POST", "lab-pc:8080", "http://lab-pc:8080", "application/json", true), 0);
+  // another server on the allowed host is not this one's origin (it was: any port of a bare --allow-host)
+  EXPECT_EQ(status_of(wildcard, "POST", "lab-pc:8080", "http://lab-pc:3000", "application/json", true), 403);
+  EXPECT_EQ(status_of(wildcard, "POST", "lab-pc:8080", "http://lab-pc", "application/json", true), 403);
+  EXPECT_EQ(status_of(wildcard, "POST", "lab-pc", "http://lab-pc", "application/json", true), 0);  // behind a proxy on 80
   const auto preflight =
       check_access(wildcard, {"OPTIONS", "/api/runs", "lab-pc:8080", "https://rrlab.example.org", "", false, false});
   EXPECT_EQ(preflight.status, 204);
