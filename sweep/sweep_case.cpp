@@ -49,7 +49,7 @@ Scenario scenario_of_case(const SweepSpec& spec, const SweepCase& c) {
   return scenario;
 }
 
-CaseResult run_case(const SweepSpec& spec, const SweepCase& c, bool with_frames) {
+CaseResult run_case(const SweepSpec& spec, const SweepCase& c, bool with_frames, const std::atomic<bool>* stop) {
   const Scenario scenario = scenario_of_case(spec, c);
   Simulator sim(scenario);
   if (spec.steps) sim.set_total_steps(*spec.steps);
@@ -57,7 +57,7 @@ CaseResult run_case(const SweepSpec& spec, const SweepCase& c, bool with_frames)
   CaseResult result;
   FrameCollector collector(result.run.frames);
   if (with_frames) result.run.frames.reserve(size_t(std::min<long>(sim.total_steps(), kMaxStoredFrames)));
-  result.summary = run_to_end(sim, with_frames ? &collector : nullptr);
+  result.summary = run_to_end(sim, with_frames ? &collector : nullptr, stop);
 
   storage::NewRun& run = result.run.run;
   run.scenario_name = scenario.name;

@@ -4,6 +4,8 @@
 // the success verdict and, on request, its frames.
 #pragma once
 
+#include <atomic>
+
 #include "sim/frame.hpp"
 #include "storage/run_store.hpp"
 #include "sweep/sweep_expansion.hpp"
@@ -21,7 +23,9 @@ struct CaseResult {
 // defaults; the scenario's own method parameters do not carry over).
 Scenario scenario_of_case(const SweepSpec& spec, const SweepCase& c);
 
-// Throws what the engine throws (ScenarioError, ParamError) for a case it cannot run.
-CaseResult run_case(const SweepSpec& spec, const SweepCase& c, bool with_frames);
+// Throws what the engine throws (ScenarioError, ParamError) for a case it
+// cannot run, and RunInterrupted once `stop` (may be null) is set.
+CaseResult run_case(const SweepSpec& spec, const SweepCase& c, bool with_frames,
+                    const std::atomic<bool>* stop = nullptr);
 
 }  // namespace rrlab::sweep

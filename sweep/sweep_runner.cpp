@@ -7,6 +7,7 @@
 #include <unordered_set>
 
 #include "methods/method.hpp"
+#include "sim/simulator.hpp"
 #include "sweep/sweep_case.hpp"
 #include "sweep/sweep_progress.hpp"
 
@@ -43,8 +44,10 @@ RunnerOutcome run_sweep(const SweepSpec& spec, const std::vector<SweepCase>& cas
       const size_t i = next++;
       if (i >= todo.size()) return;
       try {
-        const CaseResult result = run_case(spec, todo[i], options.frames);
+        const CaseResult result = run_case(spec, todo[i], options.frames, options.stop);
         if (store.add_sweep_run(result.run, result.row)) ++stored;
+      } catch (const RunInterrupted&) {
+        return;  // not stored: a resumed sweep runs it again
       } catch (const ParamError& e) {
         std::lock_guard lock(failures_mutex);
         outcome.failures.push_back(todo[i].key + ": method.params." + e.what());

@@ -1,8 +1,9 @@
 // Runs a sweep's cases on worker threads, each run with its own simulator,
 // storing every finished run whole (run, summary, sweep row and, on request,
 // frames: one transaction). Runs whose key is stored already are skipped, so
-// a second invocation resumes; a stop request lets each worker finish its
-// current run and starts no other.
+// a second invocation resumes; a stop request ends each worker's current run
+// between two of its steps (unstored: a resumed sweep runs it again) and
+// starts no other.
 #pragma once
 
 #include <atomic>
@@ -18,7 +19,7 @@ namespace rrlab::sweep {
 struct RunnerOptions {
   int jobs = 0;  // 0: std::thread::hardware_concurrency()
   bool frames = false;
-  const std::atomic<bool>* stop = nullptr;  // set (e.g. by SIGINT) to stop after the current runs
+  const std::atomic<bool>* stop = nullptr;  // set (e.g. by SIGINT) to stop within a step of each run
   std::ostream* progress = nullptr;         // progress lines (sweep_progress.hpp), none when null
   bool progress_terminal = false;           // redraw one line in place
 };

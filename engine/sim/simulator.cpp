@@ -240,9 +240,10 @@ void timed_step(Simulator& sim) {
   sim.note_step_time(std::chrono::duration<double, std::micro>(stop - start).count());
 }
 
-Summary run_to_end(Simulator& sim, Recorder* recorder) {
+Summary run_to_end(Simulator& sim, Recorder* recorder, const std::atomic<bool>* stop) {
   if (recorder) recorder->begin(sim);
   while (!sim.done()) {
+    if (stop && stop->load(std::memory_order_relaxed)) throw RunInterrupted();
     timed_step(sim);
     if (recorder) recorder->frame(sim.frame());
   }

@@ -3,7 +3,9 @@
 // method → metrics → integration (Euler, unless the method integrated itself).
 #pragma once
 
+#include <atomic>
 #include <memory>
+#include <stdexcept>
 #include <string>
 
 #include "collision/collision_world.hpp"
@@ -93,7 +95,15 @@ class Simulator {
 // One step, its compute time noted (wall clock: kept apart from the deterministic frame).
 void timed_step(Simulator& sim);
 
+// A run left before its end because `stop` was set (a sweep stopping, a
+// server exiting): nothing of it is a result.
+class RunInterrupted : public std::runtime_error {
+ public:
+  RunInterrupted() : std::runtime_error("the run was stopped before its end") {}
+};
+
 // Runs to the end, timing each step, feeding a recorder (may be null).
-Summary run_to_end(Simulator& sim, Recorder* recorder);
+// `stop` (may be null) is read between steps: once set, throws RunInterrupted.
+Summary run_to_end(Simulator& sim, Recorder* recorder, const std::atomic<bool>* stop = nullptr);
 
 }  // namespace rrlab

@@ -1,8 +1,6 @@
 #include "app/export_pool.hpp"
 
-#include <sys/resource.h>
-#include <sys/syscall.h>
-#include <unistd.h>
+#include "app/thread_priority.hpp"
 
 namespace rrlab::server {
 
@@ -59,9 +57,7 @@ void ExportPool::stop() {
 }
 
 void ExportPool::work() {
-  // Exports are bulk work: below the I/O threads and the live runs (Linux
-  // nice values are per thread).
-  setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), 5);
+  lower_thread_priority(5);  // exports are bulk work: below the I/O threads and the live runs
   for (;;) {
     std::function<void()> task;
     {

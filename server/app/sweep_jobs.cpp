@@ -1,12 +1,11 @@
 #include "app/sweep_jobs.hpp"
 
-#include <sys/resource.h>
-
 #include <algorithm>
 #include <vector>
 
 #include "app/api.hpp"
 #include "app/run_manager.hpp"
+#include "app/thread_priority.hpp"
 #include "scenario/scenario.hpp"
 #include "sweep/sweep_expansion.hpp"
 #include "sweep/sweep_report.hpp"
@@ -109,8 +108,7 @@ json SweepJobs::start(const json& body, int jobs) {
   job->id = next_id_++;
   jobs_[job->id] = job;
   job->thread = std::thread([this, job] {
-    // Linux: the nice value is per thread and inherited by the workers it starts
-    setpriority(PRIO_PROCESS, 0, 10);
+    lower_thread_priority(10);  // inherited by the workers it starts
     sweep::RunnerOptions options;
     options.jobs = job->jobs;
     options.stop = &job->stop;

@@ -2,6 +2,8 @@
 // stored keys are skipped (resume), a stop request stops.
 #include <gtest/gtest.h>
 
+#include <thread>
+
 #include "sweep/sweep_merge.hpp"
 #include "sweep/sweep_runner.hpp"
 #include "sweep_test_support.hpp"
@@ -97,6 +99,31 @@ TEST(SweepRunner, AStopRequestStartsNoRun) {
   const RunnerOutcome outcome = run_sweep(spec, expand_sweep(spec), store, options);
   EXPECT_TRUE(outcome.interrupted);
   EXPECT_EQ(outcome.stored, 0u);
+}
+
+// A stop ends the run in progress between two steps: before, a worker
+// finished its run first (16 s for a 5e6-step run; a server with 1e7-step
+// sweep runs went on 60 s after SIGTERM). One case of 1e7 steps (minutes)
+// ends unstored and uncounted as a failure once stop is set.
+TEST(SweepRunner, AStopEndsTheRunInProgress) {
+  testing::TempDir dir;
+  nlohmann::json doc = small_spec("long");
+  doc["scenarios"] = {"01_planar7_obstacles"};
+  doc["methods"] = {"dls"};
+  doc["seeds"] = {1};
+  doc["steps"] = 10'000'000;
+  const SweepSpec spec = parse_spec(doc);
+  storage::RunStore store(dir.file("long.db"));
+  std::atomic<bool> stop{false};
+  RunnerOptions options;
+  options.stop = &stop;
+  RunnerOutcome outcome;
+  std::thread sweep([&] { outcome = run_sweep(spec, expand_sweep(spec), store, options); });
+  stop = true;
+  sweep.join();
+  EXPECT_TRUE(outcome.interrupted);
+  EXPECT_EQ(outcome.stored, 0u);
+  EXPECT_TRUE(outcome.failures.empty()) << outcome.failures.front();
 }
 
 TEST(SweepRunner, AddSweepRunStoresAKeyOnce) {

@@ -94,6 +94,25 @@ TEST(Simulator, SwitchingMethodContinuesFromTheCurrentState) {
   EXPECT_THROW(sim.switch_method("nope"), ParamError);
 }
 
+// run_to_end reads its stop flag between steps: set by the recorder after
+// the tenth frame, the run ends there with RunInterrupted.
+TEST(Simulator, RunToEndStopsBetweenSteps) {
+  Simulator sim(parse_scenario(moving_obstacle_scenario()));
+  std::atomic<bool> stop{false};
+  struct StopAfter : Recorder {
+    std::atomic<bool>& stop;
+    int frames = 0;
+    explicit StopAfter(std::atomic<bool>& s) : stop(s) {}
+    void frame(const Frame&) override {
+      if (++frames == 10) stop = true;
+    }
+  } recorder(stop);
+  EXPECT_THROW(run_to_end(sim, &recorder, &stop), RunInterrupted);
+  EXPECT_EQ(recorder.frames, 10);
+  EXPECT_EQ(sim.state().step, 10);
+  EXPECT_FALSE(sim.done());
+}
+
 TEST(Simulator, ResetReturnsToTheStart) {
   Simulator sim(parse_scenario(moving_obstacle_scenario()));
   sim.step();
