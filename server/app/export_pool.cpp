@@ -10,6 +10,11 @@ ExportPool::ExportPool(int threads, std::size_t budget) : budget_(budget) {
 
 ExportPool::~ExportPool() { stop(); }
 
+bool ExportPool::stopping() {
+  std::lock_guard lock(mutex_);
+  return stopping_;
+}
+
 std::shared_ptr<ExportPool::Ticket> ExportPool::reserve(std::size_t bytes) {
   {
     std::lock_guard lock(mutex_);

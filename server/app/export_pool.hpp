@@ -53,6 +53,7 @@ class ExportPool {
   // Drops queued tasks and joins the workers (a task under way finishes
   // first). Called before the run store goes away.
   void stop();
+  bool stopping();  // stop() has begun
 
  private:
   void release(std::size_t bytes);

@@ -141,10 +141,12 @@ TEST(CrashSafety, KillDuringALiveRunWithInputsKeepsEveryAcknowledgedInput) {
       ++acknowledged;
       std::this_thread::sleep_for(std::chrono::milliseconds(30));
     }
-    for (int i = 0; i < 200; ++i) {  // until a few batches of frames are committed
-      if (http(server.port(), "GET", base).json()["frames"].get<long>() > 500) break;
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    long committed = 0;
+    for (int i = 0; i < 3000 && committed <= 500; ++i) {  // until a few batches of frames are committed
+      committed = http(server.port(), "GET", base).json()["frames"].get<long>();
+      if (committed <= 500) std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }
+    ASSERT_GT(committed, 500) << "waited 60 s for more than 500 committed frames before the kill";
     server.kill_hard();  // the run is still live: its task is 600 s long
   }
   long frames = 0;

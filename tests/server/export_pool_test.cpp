@@ -53,9 +53,12 @@ TEST(ExportPool, StopDropsQueuedTasksAndTheirReservations) {
   ticket.reset();
   EXPECT_EQ(pool.reserved(), 1000u);
   std::thread stopper([&] { pool.stop(); });
-  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  // the worker is released only once stop() has begun, so it must drop the queued task
+  for (int i = 0; i < 60000 && !pool.stopping(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  const bool began = pool.stopping();
   release.set_value();
   stopper.join();
+  ASSERT_TRUE(began) << "stop() did not begin within 60 s";
   EXPECT_FALSE(ran);
   EXPECT_EQ(pool.reserved(), 0u);
   pool.post([&ran] { ran = true; });  // after stop: dropped

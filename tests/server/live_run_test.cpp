@@ -55,16 +55,14 @@ TEST_F(LiveRun, SnapshotThenFramesAndInputsTakeEffect) {
   ASSERT_TRUE(before);
   const double x0 = (*before)["target"][0];
   ASSERT_EQ(send("POST", base + "/joystick", {{"linear", {0.3, 0}}}).status, 200);
-  std::this_thread::sleep_for(std::chrono::milliseconds(400));
-  ASSERT_EQ(send("POST", base + "/joystick", {{"linear", {0, 0}}}).status, 200);
-  // frames queued on the socket are older: read up to the run's current step
-  const long now_seq = get(base).json()["live"]["frames"];
+  // held until the frames show the target 3 cm along +x (0.1 s at 0.3 m/s), however long that takes
   std::optional<json> after;
-  for (int i = 0; i < 1000; ++i) {
+  for (int i = 0; i < 3000; ++i) {
     after = ws.read_type("frame");
-    ASSERT_TRUE(after);
-    if ((*after)["seq"].get<long>() >= now_seq) break;
+    ASSERT_TRUE(after) << "no frame while the joystick is held";
+    if ((*after)["target"][0].get<double>() > x0 + 0.03) break;
   }
+  ASSERT_EQ(send("POST", base + "/joystick", {{"linear", {0, 0}}}).status, 200);
   EXPECT_GT((*after)["target"][0].get<double>(), x0 + 0.03)
       << "before seq " << (*before)["seq"] << ", after seq " << (*after)["seq"];
 

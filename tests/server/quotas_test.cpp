@@ -55,12 +55,20 @@ TEST(Quotas, StepsBeyondMaxRunFramesAre413AndNothingIsStored) {
 // holds, storage stops at it, the run goes on and its summary says why.
 TEST(Quotas, ALiveRunStopsStoringAtMaxRunFramesAndSaysWhy) {
   ServerProcess server("", {"--max-run-frames", "850"});
-  // 800 steps at 4x real time: 2 s; a reset after 0.5 s (about 200 steps) makes about 1000
-  const HttpResult started = post(server, "/api/runs", {{"scenario", small_scenario("circle", 8.0)}, {"rate", 4}});
+  // 800 steps; paused once past step 200, reset and started again: 1000 or more
+  const HttpResult started = post(server, "/api/runs", {{"scenario", small_scenario("circle", 8.0)}, {"rate", 1}});
   ASSERT_EQ(started.status, 201) << started.body;
   const std::string base = "/api/runs/" + std::to_string(started.json()["id"].get<long>());
-  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  long step = 0;
+  for (int i = 0; i < 3000 && step < 200; ++i) {
+    step = http(server.port(), "GET", base).json()["live"].value("step", 0L);
+    if (step < 200) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  ASSERT_GE(step, 200) << "the run did not reach step 200 within 60 s";
+  ASSERT_EQ(post(server, base + "/control", {{"action", "pause"}}).status, 200)
+      << "the run ended before it could be paused";
   ASSERT_EQ(post(server, base + "/control", {{"action", "reset"}}).status, 200);
+  ASSERT_EQ(post(server, base + "/control", {{"action", "start"}}).status, 200);
   json run;
   for (int i = 0; i < 1000; ++i) {
     run = http(server.port(), "GET", base).json();

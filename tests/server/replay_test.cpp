@@ -15,7 +15,7 @@ TEST_F(Replay, StreamsStoredFramesWithSeek) {
   const std::int64_t id = batch.json()["id"];
   const std::string stored_q = get("/api/runs/" + std::to_string(id) + "/frames?from=100&to=100").json()["frames"][0]["q"].dump();
 
-  const HttpResult started = send("POST", "/api/runs/" + std::to_string(id) + "/replay", {{"mode", "frames"}, {"speed", 2}});
+  const HttpResult started = send("POST", "/api/runs/" + std::to_string(id) + "/replay", {{"mode", "frames"}, {"speed", 0.25}});  // 16 s
   ASSERT_EQ(started.status, 201) << started.body;
   const std::string rid = std::to_string(started.json()["replay"].get<long>());
   EXPECT_EQ(started.json()["frames"], 400);

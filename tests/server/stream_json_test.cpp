@@ -3,6 +3,8 @@
 // links, in live runs and in replays.
 #include <cmath>
 
+#include <functional>
+
 #include "server_fixture.hpp"
 
 namespace rrlab::testing {
@@ -16,8 +18,11 @@ double norm3(double x, double y, double z) { return std::sqrt(x * x + y * y + z 
 
 // The next frame whose metrics name the link nearest an obstacle
 // (min_distance_link >= 1; 0 would mean metrics not yet evaluated).
-json stepped_frame(WsClient& ws) {
+// The next frame whose nearest link is not the base's; `step` (a paused
+// live run's single step) runs before each read.
+json stepped_frame(WsClient& ws, const std::function<void()>& step = {}) {
   for (int i = 0; i < 500; ++i) {
+    if (step) step();
     auto frame = ws.read_type("frame");
     if (!frame) break;
     if ((*frame)["metrics"]["min_distance_link"].get<int>() >= 1) return *frame;
@@ -90,13 +95,16 @@ void expect_planar_ellipsoid(const json& frame) {
 }
 
 TEST_F(StreamJson, LiveFramesCarryNearestObstaclesAndTheEllipsoid) {
-  const std::int64_t id = start_live({{"scenario", "01_planar7_obstacles"}, {"rate", 1}});
+  // paused and stepped by hand: the run cannot end before the test reads it
+  const std::int64_t id = start_live({{"scenario", "01_planar7_obstacles"}, {"paused", true}});
   WsClient ws(port(), "/ws/runs/" + std::to_string(id));
   const auto snapshot = ws.read_type("snapshot");
   ASSERT_TRUE(snapshot);
   ASSERT_EQ((*snapshot)["obstacles"].size(), 3u);
   for (int i = 0; i < 5; ++i) {
-    const json frame = stepped_frame(ws);
+    const json frame = stepped_frame(ws, [&] {
+      EXPECT_EQ(send("POST", "/api/runs/" + std::to_string(id) + "/control", {{"action", "step"}}).status, 200);
+    });
     ASSERT_FALSE(frame.is_null());
     expect_nearest_matches_metrics(frame, *snapshot);
     expect_planar_ellipsoid(frame);
@@ -110,7 +118,7 @@ TEST_F(StreamJson, LiveFramesCarryNearestObstaclesAndTheEllipsoid) {
 // A mesh obstacle's snapshot entry carries its triangles for drawing (own
 // frame, scaled), alongside the scenario keys; frames move it by position only.
 TEST_F(StreamJson, SnapshotsCarryMeshObstacleTriangles) {
-  const std::int64_t id = start_live({{"scenario", "43_urdf_iiwa14_mesh_obstacle"}, {"rate", 1}});
+  const std::int64_t id = start_live({{"scenario", "43_urdf_iiwa14_mesh_obstacle"}, {"paused", true}});
   WsClient ws(port(), "/ws/runs/" + std::to_string(id));
   const auto snapshot = ws.read_type("snapshot");
   ASSERT_TRUE(snapshot);
@@ -173,7 +181,8 @@ TEST_F(StreamJson, ReplayFramesCarryNearestObstaclesToo) {
       send("POST", "/api/runs", {{"scenario", "01_planar7_obstacles"}, {"mode", "batch"}, {"steps", 200}});
   ASSERT_EQ(batch.status, 200);
   const std::string run = std::to_string(batch.json()["id"].get<long>());
-  const HttpResult started = send("POST", "/api/runs/" + run + "/replay", {{"mode", "frames"}, {"speed", 1}});
+  // slow: 200 frames over 20 s, so that the socket connects before the replay ends
+  const HttpResult started = send("POST", "/api/runs/" + run + "/replay", {{"mode", "frames"}, {"speed", 0.1}});
   ASSERT_EQ(started.status, 201) << started.body;
   WsClient ws(port(), started.json()["ws"].get<std::string>());
   const auto snapshot = ws.read_type("snapshot");
@@ -191,7 +200,7 @@ TEST_F(StreamJson, NoObstaclesNoNearest) {
       send("POST", "/api/runs", {{"scenario", "33_zhang_fig5_ellipsoids"}, {"mode", "batch"}, {"steps", 20}});
   ASSERT_EQ(batch.status, 200);
   const std::string run = std::to_string(batch.json()["id"].get<long>());
-  const HttpResult started = send("POST", "/api/runs/" + run + "/replay", {{"mode", "frames"}});
+  const HttpResult started = send("POST", "/api/runs/" + run + "/replay", {{"mode", "frames"}, {"speed", 0.01}});
   ASSERT_EQ(started.status, 201) << started.body;
   WsClient ws(port(), started.json()["ws"].get<std::string>());
   const auto frame = ws.read_type("frame");

@@ -6,7 +6,11 @@
 # merged report must equal the report of the same sweep run unsharded.
 # Needs root (the daemons run as root) and Debian's slurm-wlm and munge
 # (scripts/install-deps). Exits 77 (ctest: skipped) with the reason only when
-# the daemons cannot be started here; stops every daemon it started.
+# the daemons cannot be started here; stops every daemon and job it started,
+# on every exit: a watchdog ends it (TERM, so the cleanup runs) 30 s before
+# ctest's 400 s timeout would kill it. The node is addressed as 127.0.0.1 by
+# a fixed name, so the machine's host name need not resolve. Every wait is
+# bounded and says what it waited for.
 # Usage: slurm_array_test.sh RRLAB_BINARY SPEC.json
 set -euo pipefail
 rrlab=$(readlink -f "$1")
@@ -20,21 +24,35 @@ done
 
 work=$(mktemp -d /tmp/rrlab-slurm.XXXXXX)
 chmod 755 "$work"
-host=$(hostname -s)
+node=rrlab-node  # slurmd -N: the node's name; its address is 127.0.0.1
 export SLURM_CONF="$work/slurm.conf"
-pids=()
+jobs=""
 cleanup() {
+  trap - EXIT INT TERM
+  [[ -n ${watchdog:-} ]] && { pkill -P "$watchdog" 2>/dev/null; kill "$watchdog" 2>/dev/null; }
+  [[ -n $jobs ]] && scancel $jobs 2>/dev/null
   for pidfile in "$work/slurmd.pid" "$work/slurmctld.pid" "$work/munged.pid"; do
-    [[ -s $pidfile ]] && kill "$(cat "$pidfile")" 2>/dev/null || true
+    [[ -s $pidfile ]] && kill "$(cat "$pidfile")" 2>/dev/null
   done
-  for pid in "${pids[@]}"; do kill "$pid" 2>/dev/null || true; done
-  sleep 1
+  # up to 10 s for them to go, then SIGKILL
+  for _ in $(seq 1 100); do
+    alive=0
+    for pidfile in "$work/slurmd.pid" "$work/slurmctld.pid" "$work/munged.pid"; do
+      [[ -s $pidfile ]] && kill -0 "$(cat "$pidfile")" 2>/dev/null && alive=1
+    done
+    ((alive)) || break
+    sleep 0.1
+  done
   for pidfile in "$work/slurmd.pid" "$work/slurmctld.pid" "$work/munged.pid"; do
-    [[ -s $pidfile ]] && kill -9 "$(cat "$pidfile")" 2>/dev/null || true
+    [[ -s $pidfile ]] && kill -9 "$(cat "$pidfile")" 2>/dev/null
   done
   rm -rf "$work"
 }
 trap cleanup EXIT
+trap 'echo "FAILED: stopped by a signal (the watchdog: 370 s)"; exit 1' INT TERM
+# ctest's TIMEOUT is 400 s and its kill leaves no chance to clean up: end first
+(sleep 370 & wait $!; kill -TERM $$ 2>/dev/null) >/dev/null 2>&1 &
+watchdog=$!
 
 # munge: its own key, socket and pid file in the work directory
 mkdir -p "$work/munge"
@@ -49,7 +67,7 @@ munge -n --socket="$work/munge/socket" | unmunge --socket="$work/munge/socket" >
 mkdir -p "$work/state" "$work/spool" "$work/log"
 cat > "$SLURM_CONF" <<CONF
 ClusterName=rrlab-test
-SlurmctldHost=$host
+SlurmctldHost=localhost(127.0.0.1)
 SlurmUser=root
 AuthType=auth/munge
 AuthInfo=socket=$work/munge/socket
@@ -70,17 +88,18 @@ SlurmctldPidFile=$work/slurmctld.pid
 SlurmdPidFile=$work/slurmd.pid
 SlurmctldLogFile=$work/log/slurmctld.log
 SlurmdLogFile=$work/log/slurmd.log
-NodeName=$host CPUs=$(nproc) State=UNKNOWN
-PartitionName=debug Nodes=$host Default=YES MaxTime=INFINITE State=UP
+NodeName=$node NodeAddr=127.0.0.1 NodeHostname=localhost CPUs=$(nproc) State=UNKNOWN
+PartitionName=debug Nodes=$node Default=YES MaxTime=INFINITE State=UP
 CONF
 
 slurmctld -c || skip "slurmctld did not start: $(tail -3 "$work/log/slurmctld.log" 2>/dev/null)"
-slurmd || skip "slurmd did not start: $(tail -3 "$work/log/slurmd.log" 2>/dev/null)"
+slurmd -N "$node" || skip "slurmd did not start: $(tail -3 "$work/log/slurmd.log" 2>/dev/null)"
 for _ in $(seq 1 60); do
   sinfo -h -o %T 2>/dev/null | grep -qE '^(idle|mixed|allocated)' && break
   sleep 0.5
 done
-sinfo -h -o %T | grep -qE '^(idle|mixed|allocated)' || skip "the node did not come up: $(sinfo 2>&1 | tail -2)"
+sinfo -h -o %T | grep -qE '^(idle|mixed|allocated)' ||
+  skip "the node did not come up within 30 s: $(sinfo 2>&1 | tail -2); slurmd: $(tail -2 "$work/log/slurmd.log" 2>/dev/null)"
 
 # the job array and the merge that waits for it, as deploy/slurm does
 out="$work/out"
@@ -88,15 +107,20 @@ mkdir -p "$out"
 array=$(sbatch --parsable --array=0-3 --output="$out/task-%a.log" --chdir="$out" \
   --export=ALL,RRLAB="$rrlab",SPEC="$spec",OUT="$out" \
   --wrap='"$RRLAB" sweep "$SPEC" --db "$OUT/shard-$SLURM_ARRAY_TASK_ID.db" --jobs 1')
-merge=$(sbatch --parsable --dependency=afterok:"$array" --output="$out/merge.log" --chdir="$out" \
+jobs="$array"
+merge=$(sbatch --parsable --dependency=afterok:"$array" --kill-on-invalid-dep=yes --output="$out/merge.log" --chdir="$out" \
   --export=ALL,RRLAB="$rrlab",OUT="$out" \
   --wrap='"$RRLAB" merge "$OUT/merged.db" "$OUT"/shard-*.db')
+jobs="$array $merge"
 echo "slurm: array job $array (4 tasks), merge job $merge"
-for _ in $(seq 1 600); do
-  [[ -z $(squeue -h -j "$array,$merge" 2>/dev/null) ]] && break
+# until squeue (which must answer) lists none of them; 240 s at most
+for _ in $(seq 1 480); do
+  listed=$(squeue -h -j "$array,$merge" -o '%i %T' 2>&1) || { echo "FAILED: squeue failed: $listed"; exit 1; }
+  [[ -z $listed ]] && break
   sleep 0.5
 done
-[[ -z $(squeue -h -j "$array,$merge" 2>/dev/null) ]] || { echo "FAILED: jobs still queued after 5 minutes"; squeue; exit 1; }
+[[ -z $listed ]] || { echo "FAILED: the jobs did not end within 240 s:"; echo "$listed"; tail -5 "$work/log/slurmctld.log"; exit 1; }
+jobs=""
 for i in 0 1 2 3; do
   [[ -s $out/shard-$i.db ]] || { echo "FAILED: task $i wrote no database"; cat "$out/task-$i.log" 2>/dev/null; exit 1; }
 done

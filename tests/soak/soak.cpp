@@ -189,7 +189,7 @@ void replay_client(unsigned short port) {
       if (r.status == 200 && r.json().value("identical", false) != true) problem("resimulation differs: " + r.body);
       continue;
     }
-    const HttpResult r = http_json(port, "POST", base + "/replay", {{"mode", "frames"}, {"speed", 4}});
+    const HttpResult r = http_json(port, "POST", base + "/replay", {{"mode", "frames"}, {"speed", 0.5}});  // 300 frames: 6 s or more, time to connect and read under load
     expect_status(r, 201, "frame replay");
     if (r.status != 201) {
       sleep_ms(500);

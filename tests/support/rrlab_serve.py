@@ -2,8 +2,10 @@
 tests (as tests/server/support/server_process.cpp does for the C++ ones) and
 stops it with SIGTERM."""
 
+import ctypes
 import os
 import re
+import select
 import shutil
 import signal
 import subprocess
@@ -11,6 +13,11 @@ import tempfile
 import time
 
 SOURCE_DIR = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
+
+def _end_with_parent():
+    """In the child: SIGTERM when the test process ends, however it ends."""
+    ctypes.CDLL("libc.so.6", use_errno=True).prctl(1, signal.SIGTERM)  # PR_SET_PDEATHSIG
 
 
 class Server:
@@ -21,8 +28,10 @@ class Server:
         self.process = subprocess.Popen(
             [binary, "serve", "--port", "0", "--db", self.db, "--scenarios", os.path.join(SOURCE_DIR, "scenarios"),
              "--web", os.path.join(SOURCE_DIR, "web"), *extra_args],
-            stdout=subprocess.PIPE, stderr=self.log, text=True)
-        line = self.process.stdout.readline()  # "rrlab: serving http://127.0.0.1:PORT/ (database ...)"
+            stdout=subprocess.PIPE, stderr=self.log, text=True, preexec_fn=_end_with_parent)
+        # "rrlab: serving http://127.0.0.1:PORT/ (database ...)", within 60 s
+        ready, _, _ = select.select([self.process.stdout], [], [], 60)
+        line = self.process.stdout.readline() if ready else "(nothing within 60 s)"
         match = re.search(r"serving (http://[^/ ]+)/", line)
         if not match:
             self.process.kill()

@@ -51,7 +51,17 @@ int run_child_interrupted(const std::string& spec, const std::string& db, size_t
   }
   ::kill(pid, SIGINT);
   int status = 0;
-  ::waitpid(pid, &status, 0);
+  // runs stop between two steps: the child exits at once; 60 s at most, then it is killed and reported
+  const auto exit_deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (::waitpid(pid, &status, WNOHANG) == 0) {
+    if (std::chrono::steady_clock::now() > exit_deadline) {
+      ADD_FAILURE() << "rrlab sweep did not exit within 60 s of SIGINT";
+      ::kill(pid, SIGKILL);
+      ::waitpid(pid, &status, 0);
+      return -1;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 

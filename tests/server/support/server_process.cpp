@@ -1,6 +1,8 @@
 #include "server_process.hpp"
 
+#include <poll.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -35,8 +37,12 @@ ServerProcess::ServerProcess(std::string db, std::vector<std::string> extra_args
   if (std::find(extra_args.begin(), extra_args.end(), "--scenarios") == extra_args.end())
     args.insert(args.end(), {"--scenarios", std::string(RRLAB_SOURCE_DIR) + "/scenarios"});
   args.insert(args.end(), extra_args.begin(), extra_args.end());
+  const pid_t parent = getpid();
   pid_ = fork();
   if (pid_ == 0) {
+    // the server ends with the test process, however that ends (ctest's timeout kills the test)
+    prctl(PR_SET_PDEATHSIG, SIGTERM);
+    if (getppid() != parent) _exit(127);
     dup2(out[1], STDOUT_FILENO);
     close(out[0]);
     close(out[1]);
@@ -47,11 +53,16 @@ ServerProcess::ServerProcess(std::string db, std::vector<std::string> extra_args
     _exit(127);
   }
   close(out[1]);
-  // the first line names the port: "rrlab: serving http://127.0.0.1:PORT/ ..."
+  // the first line names the port: "rrlab: serving http://127.0.0.1:PORT/ ..."; 60 s at most
   std::string line;
-  char c = 0;
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
-  while (read(out[0], &c, 1) == 1 && c != '\n' && std::chrono::steady_clock::now() < deadline) line += c;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  for (;;) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    pollfd ready{out[0], POLLIN, 0};
+    char c = 0;
+    if (left.count() <= 0 || poll(&ready, 1, int(left.count())) <= 0 || read(out[0], &c, 1) != 1 || c == '\n') break;
+    line += c;
+  }
   // keep draining stdout so the server never blocks on a full pipe
   std::thread([fd = out[0]] {
     char buf[4096];
@@ -60,8 +71,11 @@ ServerProcess::ServerProcess(std::string db, std::vector<std::string> extra_args
     close(fd);
   }).detach();
   const auto colon = line.rfind(':');
-  if (line.rfind("rrlab: serving", 0) != 0 || colon == std::string::npos)
-    throw std::runtime_error("rrlab serve did not start: \"" + line + "\"");
+  if (line.rfind("rrlab: serving", 0) != 0 || colon == std::string::npos) {
+    kill_hard();  // the destructor does not run for a constructor that throws
+    if (!dir_.empty()) std::system(("rm -rf '" + dir_ + "'").c_str());
+    throw std::runtime_error("rrlab serve did not print its address within 60 s: \"" + line + "\"");
+  }
   port_ = static_cast<unsigned short>(std::stoi(line.substr(colon + 1)));
 }
 
@@ -82,7 +96,18 @@ int ServerProcess::stop() {
   if (pid_ <= 0) return -1;
   ::kill(pid_, SIGTERM);
   int status = 0;
-  waitpid(pid_, &status, 0);
+  // 60 s for a clean stop, then SIGKILL: a hung shutdown is reported, not waited for until ctest's timeout
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (waitpid(pid_, &status, WNOHANG) == 0) {
+    if (std::chrono::steady_clock::now() > deadline) {
+      std::fprintf(stderr, "rrlab serve (pid %d) did not stop within 60 s of SIGTERM: killed\n", int(pid_));
+      ::kill(pid_, SIGKILL);
+      waitpid(pid_, &status, 0);
+      pid_ = -1;
+      return -1;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
   pid_ = -1;
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
