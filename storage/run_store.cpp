@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "storage/database.hpp"
+#include "storage/disk_reserve.hpp"
 #include "storage/migrations.hpp"
 
 namespace rrlab::storage {
@@ -37,16 +38,36 @@ RunRecord read_run(const Statement& s) {
 
 }  // namespace
 
-RunStore::RunStore(const std::string& path) : db_(std::make_unique<Database>(path)) {
-  db_->exec("PRAGMA journal_mode=WAL");
-  db_->exec("PRAGMA synchronous=NORMAL");
-  db_->exec("PRAGMA foreign_keys=ON");
-  Transaction tx(*db_);
-  migrated_from_ = migrate_to_current(*db_);
-  Statement mark = db_->prepare("UPDATE runs SET status = 'interrupted' WHERE status IN ('running', 'paused')");
-  mark.step();
-  interrupted_at_open_ = db_->changes();
-  tx.commit();
+RunStore::RunStore(const std::string& path, std::int64_t reserve_bytes)
+    : reserve_(std::make_unique<DiskReserve>(path + "-reserve", reserve_bytes)), db_(std::make_unique<Database>(path)) {
+  with_reserve([&] {  // opening on a full disk needs room for the journal too
+    {
+      // a new file gives deleted runs' pages back to the disk (set before any table exists)
+      Statement pages = db_->prepare("PRAGMA page_count");
+      if (pages.step() && pages.column_int(0) == 0) db_->exec("PRAGMA auto_vacuum=INCREMENTAL");
+    }
+    db_->exec("PRAGMA journal_mode=WAL");
+    db_->exec("PRAGMA synchronous=NORMAL");
+    db_->exec("PRAGMA foreign_keys=ON");
+    Transaction tx(*db_);
+    migrated_from_ = migrate_to_current(*db_);
+    Statement mark = db_->prepare("UPDATE runs SET status = 'interrupted' WHERE status IN ('running', 'paused')");
+    mark.step();
+    interrupted_at_open_ = db_->changes();
+    tx.commit();
+  });
+  std::vector<std::int64_t> unfinished;
+  {
+    Statement deleting = db_->prepare("SELECT id FROM runs WHERE status = 'deleting'");
+    while (deleting.step()) unfinished.push_back(deleting.column_int(0));
+  }
+  for (const std::int64_t id : unfinished) {
+    try {
+      finish_deleting(id);
+    } catch (const StorageError& e) {
+      if (!e.write_fault()) throw;  // a full or read-only file: finished at a later open; the run stays hidden
+    }
+  }
   {
     Statement total = db_->prepare("SELECT COALESCE(SUM(frame_bytes), 0) FROM runs");
     total.step();
@@ -77,6 +98,11 @@ std::optional<WriteFault> RunStore::write_fault() {
 }
 
 bool RunStore::probe_write() {
+  if (!reserve_->take()) {  // no room for the reserve: still full for anything but deletes
+    std::lock_guard lock(fault_mutex_);
+    fault_ = WriteFault{StorageFault::full, "no room for the reserve kept for deletes"};
+    return false;
+  }
   try {
     recording_faults([&] {
       std::lock_guard lock(mutex_);
@@ -199,9 +225,42 @@ void RunStore::add_frames(const std::vector<std::pair<std::int64_t, StoredFrame>
   });
 }
 
+void RunStore::with_reserve(const std::function<void()>& write) {
+  try {
+    recording_faults(write);
+  } catch (const StorageError& e) {
+    if (e.fault() != StorageFault::full || !reserve_->release()) throw;
+    recording_faults(write);
+  }
+}
+
 bool RunStore::delete_run(std::int64_t id) {
-  bool deleted = false;
-  recording_faults([&] {
+  bool marked = false;
+  with_reserve([&] {
+    std::lock_guard lock(mutex_);
+    db_->prepare("UPDATE runs SET status = 'deleting' WHERE id = ?").bind(1, id).step();
+    marked = db_->changes() == 1;
+  });
+  if (!marked) return false;
+  finish_deleting(id);
+  return true;
+}
+
+void RunStore::finish_deleting(std::int64_t id) {
+  constexpr int kFramesPerChunk = 512;  // about 0.6 MB of journal for a 64-joint arm's frames
+  for (bool more = true; more;) {
+    with_reserve([&] {
+      std::lock_guard lock(mutex_);
+      Transaction tx(*db_);
+      Statement chunk = db_->prepare(
+          "DELETE FROM frames WHERE run_id = ?1 AND seq IN (SELECT seq FROM frames WHERE run_id = ?1 ORDER BY seq LIMIT ?2)");
+      chunk.bind(1, id).bind(2, kFramesPerChunk).step();
+      more = db_->changes() == kFramesPerChunk;
+      tx.commit();
+    });
+    if (more) give_back_space();
+  }
+  with_reserve([&] {
     std::lock_guard lock(mutex_);
     Transaction tx(*db_);
     std::int64_t bytes = 0;
@@ -210,14 +269,30 @@ bool RunStore::delete_run(std::int64_t id) {
       read.bind(1, id);
       if (read.step()) bytes = read.column_int(0);
     }
-    db_->prepare("DELETE FROM frames WHERE run_id = ?").bind(1, id).step();
     db_->prepare("DELETE FROM events WHERE run_id = ?").bind(1, id).step();
     db_->prepare("DELETE FROM runs WHERE id = ?").bind(1, id).step();
-    deleted = db_->changes() == 1;
     tx.commit();
     total_frame_bytes_ -= bytes;
   });
-  return deleted;
+  give_back_space();
+  reserve_->take();
+}
+
+void RunStore::give_back_space() {
+  std::lock_guard lock(mutex_);
+  try {
+    db_->exec("PRAGMA wal_checkpoint(TRUNCATE)");
+    Statement mode = db_->prepare("PRAGMA auto_vacuum");
+    if (!mode.step() || mode.column_int(0) != 2) return;  // 2: incremental (files made before it: reused, not returned)
+    for (;;) {
+      Statement free_pages = db_->prepare("PRAGMA freelist_count");
+      if (!free_pages.step() || free_pages.column_int(0) == 0) break;
+      db_->exec("PRAGMA incremental_vacuum(256)");  // 1 MiB of pages at a time, the journal emptied after each
+      db_->exec("PRAGMA wal_checkpoint(TRUNCATE)");
+    }
+  } catch (const StorageError&) {
+    // a full disk or a reader holding the journal: the pages stay free in the file and are reused
+  }
 }
 
 void RunStore::replace_frame_data(std::int64_t run, std::int64_t seq, const std::string& data) {
@@ -227,7 +302,7 @@ void RunStore::replace_frame_data(std::int64_t run, std::int64_t seq, const std:
 
 std::optional<RunRecord> RunStore::run(std::int64_t id) {
   std::lock_guard lock(read_mutex_);
-  Statement s = read_db_->prepare(std::string("SELECT ") + kRunColumns + " FROM runs WHERE id = ?");
+  Statement s = read_db_->prepare(std::string("SELECT ") + kRunColumns + " FROM runs WHERE id = ? AND status != 'deleting'");
   s.bind(1, id);
   if (!s.step()) return std::nullopt;
   return read_run(s);
@@ -237,7 +312,8 @@ std::vector<RunRecord> RunStore::runs(const RunFilter& filter) {
   std::lock_guard lock(read_mutex_);
   Statement s = read_db_->prepare(std::string("SELECT ") + kRunColumns +
                              " FROM runs WHERE (?1 IS NULL OR scenario_name = ?1) AND (?2 IS NULL OR method = ?2)"
-                             " AND (?3 IS NULL OR status = ?3) ORDER BY id DESC LIMIT ?4 OFFSET ?5");
+                             " AND (?3 IS NULL OR status = ?3) AND status != 'deleting'"
+                             " ORDER BY id DESC LIMIT ?4 OFFSET ?5");
   if (filter.scenario) s.bind(1, *filter.scenario); else s.bind_null(1);
   if (filter.method) s.bind(2, *filter.method); else s.bind_null(2);
   if (filter.status) s.bind(3, *filter.status); else s.bind_null(3);

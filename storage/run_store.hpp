@@ -18,6 +18,7 @@
 namespace rrlab::storage {
 
 class Database;
+class DiskReserve;
 enum class StorageFault;
 
 // A write that failed because the disk is full or the file read-only (the
@@ -92,8 +93,10 @@ struct RunFilter {
 class RunStore {
  public:
   // Opens (creating if missing) and migrates; runs left "running" or "paused"
-  // by a previous process are marked "interrupted".
-  explicit RunStore(const std::string& path);
+  // by a previous process are marked "interrupted", and deletions a previous
+  // process left unfinished are finished. `reserve_bytes`: the room kept
+  // beside the file (PATH-reserve) for deletes on a full disk (disk_reserve.hpp).
+  explicit RunStore(const std::string& path, std::int64_t reserve_bytes = 8 << 20);
   ~RunStore();
 
   int interrupted_at_open() const { return interrupted_at_open_; }
@@ -166,10 +169,20 @@ class RunStore {
  private:
   // Runs a write; a StorageError with a write fault is recorded, then rethrown.
   void recording_faults(const std::function<void()>& write);
+  // Runs a write that makes room (a delete); on a full disk it gives back the
+  // reserve and tries once more.
+  void with_reserve(const std::function<void()>& write);
+  // The deletion of a run marked "deleting": its frames a chunk at a time (the
+  // journal stays small: a full disk needs little room), then its row.
+  void finish_deleting(std::int64_t id);
+  // Empties the journal and, in a file with incremental auto-vacuum, gives
+  // free pages back to the disk (stops quietly on a full disk).
+  void give_back_space();
 
   std::mutex mutex_, read_mutex_, fault_mutex_;
   std::atomic<std::int64_t> total_frame_bytes_{0};
   std::optional<WriteFault> fault_;  // guarded by fault_mutex_
+  std::unique_ptr<DiskReserve> reserve_;
   std::unique_ptr<Database> db_;       // writes (and integrity checks)
   std::unique_ptr<Database> read_db_;  // reads: exports never hold up the frame writer
   int interrupted_at_open_ = 0;

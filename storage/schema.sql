@@ -15,7 +15,7 @@ CREATE TABLE IF NOT EXISTS runs (
   seed             INTEGER NOT NULL,
   mode             TEXT NOT NULL,              -- live | batch | resimulation
   created          TEXT NOT NULL,              -- UTC, ISO 8601
-  status           TEXT NOT NULL,              -- running | paused | completed | stopped | interrupted | failed
+  status           TEXT NOT NULL,              -- running | paused | completed | stopped | interrupted | failed | deleting (hidden)
   frames           INTEGER NOT NULL DEFAULT 0, -- stored frames
   summary          TEXT,                       -- JSON, when ended
   dof              INTEGER NOT NULL,
