@@ -120,20 +120,23 @@ void RunManager::end_job() {
   jobs_done_.notify_all();
 }
 
+namespace {
+// A string field of a scenario, cut to `limit` bytes (whole UTF-8 characters,
+// then an ellipsis): a list answers summaries, however long a field is.
+std::string excerpt(const json& doc, const char* key, const std::string& otherwise, size_t limit) {
+  std::string text = doc.contains(key) && doc[key].is_string() ? doc[key].get<std::string>() : otherwise;
+  if (text.size() <= limit) return text;
+  size_t cut = limit;
+  while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0) == 0x80) --cut;
+  return text.substr(0, cut) + "\u2026";
+}
+}  // namespace
+
 json RunManager::scenario_summary(const std::string& name, const json& doc, bool builtin) {
-  constexpr size_t kExcerpt = 200;  // characters of the description
-  std::string description = doc.contains("description") && doc["description"].is_string()
-                                ? doc["description"].get<std::string>()
-                                : "";
-  if (description.size() > kExcerpt) {
-    size_t cut = kExcerpt;
-    while (cut > 0 && (static_cast<unsigned char>(description[cut]) & 0xC0) == 0x80) --cut;  // whole UTF-8 characters
-    description = description.substr(0, cut) + "\u2026";
-  }
   json summary = {{"name", name},
-                  {"title", doc.contains("name") && doc["name"].is_string() ? doc["name"].get<std::string>() : name},
-                  {"description", description},
-                  {"source", doc.contains("source") && doc["source"].is_string() ? doc["source"].get<std::string>() : ""},
+                  {"title", excerpt(doc, "name", name, 128)},
+                  {"description", excerpt(doc, "description", "", 200)},
+                  {"source", excerpt(doc, "source", "", 200)},
                   {"builtin", builtin},
                   {"kind", nullptr},
                   {"dof", nullptr},

@@ -175,6 +175,8 @@ TEST(Quotas, StoredScenariosAreCappedAndListedAsPagedSummaries) {
   json long_one = circle();
   long_one["name"] = "zz_long";
   long_one["description"] = std::string(300, 'd');
+  // a 900 KB source once made each page of the list carry it whole (100 such: 100 MB a page)
+  long_one["source"] = std::string(900 * 1024, 's');
   json other = circle();
   other["name"] = "zz_other";
   ASSERT_EQ(post(server, "/api/scenarios", long_one).status, 201);
@@ -216,6 +218,9 @@ TEST(Quotas, StoredScenariosAreCappedAndListedAsPagedSummaries) {
   EXPECT_FALSE(summary.contains("robot"));  // a summary, not the scenario
   const std::string excerpt = summary["description"];
   EXPECT_EQ(excerpt, std::string(200, 'd') + "\u2026");
+  EXPECT_EQ(summary["source"], std::string(200, 's') + "\u2026");
+  EXPECT_LT(get("/api/scenarios").body.size(), 64u * 1024u) << "the list carries more than summaries";
+  EXPECT_EQ(get("/api/scenarios/zz_long").json()["source"].get<std::string>().size(), 900u * 1024u);  // whole here
 
   EXPECT_EQ(get("/api/scenarios?limit=0").status, 400);
   EXPECT_EQ(get("/api/scenarios?limit=1001").status, 400);
