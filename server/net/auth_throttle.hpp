@@ -1,8 +1,11 @@
-// Slows down token guessing: an address that sent `limit` wrong tokens within
-// `window` is refused (429 with Retry-After) for every request that carries a
-// token, right or wrong, until that window ends, so that a guess answers
-// nothing either way. Requests without a token (static files, health) are not
-// affected. Plain types, no Beast: the rule is tested with given times.
+// Answers repeated wrong tokens cheaply: an address that sent `limit` wrong
+// tokens within `window` gets 429 with Retry-After for every further wrong
+// token until that window ends. The right token always passes, so that a
+// guesser sharing the holder's address (every local process shares
+// 127.0.0.1) cannot lock the holder out; what makes guessing infeasible is
+// the token's length (at least 16 characters: README, Access). Requests
+// without a token are not affected. Plain types, no Beast: the rule is tested
+// with given times.
 #pragma once
 
 #include <chrono>

@@ -203,7 +203,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
                          std::string(request[http::field::authorization]),
                          std::string(request[http::field::access_control_request_headers])});
     access_headers_ = access.headers;
-    if (access.token_presented) {  // token guessing: 429 for a while after too many wrong ones (net/auth_throttle.hpp)
+    if (access.wrong_token) {  // token guessing: 429 for a while after too many wrong ones (net/auth_throttle.hpp)
       const std::string address = remote_address();
       const auto now = AuthThrottle::Clock::now();
       if (const long wait = state_->auth_failures.blocked_for(address, now); wait > 0) {
@@ -213,7 +213,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
         slow.headers.emplace_back("Retry-After", std::to_string(wait));
         return send_api(slow);
       }
-      if (access.wrong_token) state_->auth_failures.failed(address, now);
+      state_->auth_failures.failed(address, now);
     }
     if (access.status >= 400) return send_api(error_response(ApiError(access.status, access.code, access.message)));
     if (!access.allowed()) {  // a CORS preflight
