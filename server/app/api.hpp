@@ -22,7 +22,10 @@ struct ApiRequest {
   std::map<std::string, std::string> query;
   std::string body;
   std::string content_type, accept;
-  std::string client;  // the Rrlab-Client header, if a valid name (app/controller.hpp); else empty
+  std::string client;   // the Rrlab-Client header, if a valid name (app/controller.hpp); else empty
+  std::string address;  // the peer's IP address
+  // Whose request this is, for per-client limits: the client name, else "@ADDRESS".
+  std::string owner() const { return client.empty() ? "@" + address : client; }
 };
 
 struct ApiResponse;

@@ -36,6 +36,14 @@ class Subscribers {
     std::lock_guard lock(mutex_);
     callbacks_.erase(id);
   }
+  std::size_t size() {
+    std::lock_guard lock(mutex_);
+    return callbacks_.size();
+  }
+  bool ever_added() {
+    std::lock_guard lock(mutex_);
+    return next_ > 0;
+  }
   void notify_all() {
     std::vector<std::function<void()>> callbacks;  // called unlocked: a callback may remove itself
     {

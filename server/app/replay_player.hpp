@@ -3,6 +3,7 @@
 // follow the scenario and the run's recorded obstacle events.
 #pragma once
 
+#include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <memory>
@@ -28,6 +29,16 @@ class ReplayPlayer final : public FrameSource, public std::enable_shared_from_th
   void wait_exited();  // after stop(): returns once the playback thread has ended
   bool exited();
   void set_id(std::int64_t id) { id_ = id; }
+  // Who started it (RunManager::add_replay), and since when.
+  void set_owner(std::string owner) { owner_ = std::move(owner); }
+  const std::string& owner() const { return owner_; }
+  std::chrono::steady_clock::time_point created() const { return created_; }
+  // A WebSocket client is connected, or none has been yet and it was made
+  // less than `grace` ago (its client is still connecting).
+  bool in_use(std::chrono::steady_clock::duration grace) {
+    return subscribers_.size() > 0 ||
+           (!subscribers_.ever_added() && std::chrono::steady_clock::now() - created_ < grace);
+  }
   std::int64_t run_id() const { return run_.id; }  // the stored run it plays
   bool playing();
 
@@ -52,6 +63,8 @@ class ReplayPlayer final : public FrameSource, public std::enable_shared_from_th
   std::unique_ptr<FrameGeometry> geometry_;  // links, nearest obstacles, ellipsoid of the shown q
   size_t next_event_ = 0;
   std::int64_t id_ = 0;
+  std::string owner_;
+  const std::chrono::steady_clock::time_point created_ = std::chrono::steady_clock::now();
   double display_hz_;
 
   mutable std::mutex mutex_;

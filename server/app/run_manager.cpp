@@ -432,19 +432,38 @@ json RunManager::delete_run(std::int64_t id) {
   return {{"deleted", id}};
 }
 
-std::int64_t RunManager::add_replay(std::shared_ptr<ReplayPlayer> player) {
+std::int64_t RunManager::add_replay(std::shared_ptr<ReplayPlayer> player, const std::string& owner) {
   std::lock_guard lock(mutex_);
   if (deleting_.count(player->run_id()))
     throw ApiError(409, "wrong_state", "run " + std::to_string(player->run_id()) + " is being deleted", "");
-  // drop the oldest replays beyond the limit
   std::erase_if(retired_, [](const auto& p) { return p->exited(); });
-  while (int(replays_.size()) >= limits_.max_replays) {
-    replays_.begin()->second->stop();
-    retired_.push_back(replays_.begin()->second);
-    replays_.erase(replays_.begin());
-  }
+  constexpr auto kConnecting = std::chrono::seconds(10);  // a new replay's client gets this long to connect
+  // Ends the oldest replay (of `only` when given) that nobody watches; false when there is none.
+  const auto end_oldest_unwatched = [&](const std::string* only) {
+    for (auto it = replays_.begin(); it != replays_.end(); ++it) {  // ids grow: oldest first
+      if ((only && it->second->owner() != *only) || it->second->in_use(kConnecting)) continue;
+      it->second->stop();
+      retired_.push_back(it->second);
+      replays_.erase(it);
+      return true;
+    }
+    return false;
+  };
+  const auto owned = [&] {
+    return std::count_if(replays_.begin(), replays_.end(), [&](const auto& r) { return r.second->owner() == owner; });
+  };
+  while (owned() >= limits_.max_replays_per_client)
+    if (!end_oldest_unwatched(&owner))
+      throw ApiError(429, "too_many_replays",
+                     "this client has " + std::to_string(limits_.max_replays_per_client) +
+                         " replays with a viewer (or made in the last 10 s and not yet connected to); close one first",
+                     "");
+  while (int(replays_.size()) >= limits_.max_replays)
+    if (!end_oldest_unwatched(nullptr))
+      throw ApiError(503, "busy", "every replay slot (" + std::to_string(limits_.max_replays) + ") has a viewer", "");
   const std::int64_t id = next_replay_++;
   player->set_id(id);
+  player->set_owner(owner);
   replays_[id] = std::move(player);
   return id;
 }

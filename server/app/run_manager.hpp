@@ -34,7 +34,8 @@ class ReplayPlayer;
 struct ServerLimits {
   int max_active_runs = 256;      // unfinished runs at once (503 beyond)
   int max_kept_finished = 64;     // finished groups kept in memory for their WebSocket clients
-  int max_replays = 32;
+  int max_replays = 32;           // at once; beyond, the oldest unwatched one ends (503 if every one is watched)
+  int max_replays_per_client = 8;  // per client name, or per address for requests without one
   long max_stored_frames = 1'000'000;        // --max-run-frames: frames one run may store
   std::int64_t max_run_bytes = 256ll << 20;  // --max-run-bytes: frame bytes one run may store
   std::int64_t max_total_bytes = 8ll << 30;  // --max-total-bytes: frame bytes of every run in the database
@@ -88,7 +89,12 @@ class RunManager {
   nlohmann::json delete_run(std::int64_t id);
 
   // Registers a replay (its id set before anyone can see it) and returns the id.
-  std::int64_t add_replay(std::shared_ptr<ReplayPlayer> player);
+  // Registers a replay started by `owner` (its client name, or "@ADDRESS"):
+  // beyond the owner's share its own oldest unwatched replay ends, beyond the
+  // total the oldest unwatched one; a replay with a WebSocket client, or made
+  // in the last 10 s and not yet connected to, is never ended for another.
+  // 429 / 503 when nothing can end.
+  std::int64_t add_replay(std::shared_ptr<ReplayPlayer> player, const std::string& owner);
   // Background jobs (re-simulations of source_run): counted against the
   // active-run limit, told to stop and waited for by stop_all(); the source
   // cannot be deleted until the job calls done_reading (before it answers, so

@@ -244,6 +244,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
     api.content_type = std::string(request[http::field::content_type]);
     api.accept = std::string(request[http::field::accept]);
     api.client = valid_client_name(std::string(request["Rrlab-Client"]));
+    api.address = remote_address();
     ApiResponse response = handle_api(state_->runs, state_->info, api);
     if (response.deferred) {
       stream_.expires_never();  // a batch run may take a while

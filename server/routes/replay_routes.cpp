@@ -105,7 +105,7 @@ ApiResponse post_replay(RouteContext& c) {
     throw ApiError(409, "wrong_state", "run " + std::to_string(run.id) + " is still running; stop it first", "id");
   if (mode == "resimulate") return resimulate_run(c, run);
   auto player = std::make_shared<ReplayPlayer>(c.runs.store(), run, speed, from, c.runs.limits().default_display_hz);
-  c.runs.add_replay(player);
+  c.runs.add_replay(player, c.request.owner());
   player->start();
   return json_response(201, player->status());
 }

@@ -69,5 +69,41 @@ TEST_F(Replay, BatchRunsTakeNoInputs) {
   EXPECT_EQ(wait_ended(started.json()["id"])["status"], "stopped");
 }
 
+// One client making replays fast cannot end another's: before, 32 replays
+// made in 0.03 s evicted a watched, playing replay (its stream froze and its
+// controls answered 404). Now a client has 8; past that its own oldest
+// unwatched replay ends, and one that is watched or new is never ended.
+TEST_F(Replay, OneClientCannotEvictAnothersWatchedReplay) {
+  const HttpResult batch = send("POST", "/api/runs", {{"scenario", "01_planar7_obstacles"}, {"mode", "batch"}, {"steps", 300}});
+  ASSERT_EQ(batch.status, 200);
+  const std::string replay_of = "/api/runs/" + std::to_string(batch.json()["id"].get<long>()) + "/replay";
+  const HttpResult watched = http(port(), "POST", replay_of, R"({"speed": 0.05})", "", {{"Rrlab-Client", "bob"}});
+  ASSERT_EQ(watched.status, 201) << watched.body;
+  const std::string control = "/api/replays/" + std::to_string(watched.json()["replay"].get<long>()) + "/control";
+  WsClient bob(port(), watched.json()["ws"].get<std::string>());
+  ASSERT_TRUE(bob.read_type("snapshot"));
+
+  int made = 0, refused = 0;
+  for (int i = 0; i < 40; ++i) {  // no client name: the address is the client
+    const HttpResult r = send("POST", replay_of, {{"speed", 0.05}});
+    if (r.status == 201) ++made;
+    if (r.status == 429) {
+      ++refused;
+      EXPECT_EQ(error_of(r)["code"], "too_many_replays");
+    }
+  }
+  EXPECT_EQ(made, 8);
+  EXPECT_EQ(refused, 32);
+  // bob's replay lives: its controls answer and its stream goes on
+  EXPECT_EQ(send("POST", control, {{"action", "seek"}, {"seq", 10}}).status, 200);
+  bool seen = false;
+  for (int i = 0; i < 100 && !seen; ++i) {
+    const auto frame = bob.read_type("frame");
+    ASSERT_TRUE(frame) << "bob's stream froze";
+    seen = (*frame)["seq"] == 10;
+  }
+  EXPECT_TRUE(seen);
+}
+
 }  // namespace
 }  // namespace rrlab::testing
