@@ -3,9 +3,9 @@
 // the run list, a live run's WebSocket, its controls — under the page's
 // Content-Security-Policy (a violation would be a console error and fail the test).
 // Usage: node access_test.mjs   (RRLAB_BINARY, RRLAB_SCREENSHOTS, CHROMIUM)
-import { suite, until, check, pageState } from './harness.mjs';
+import { suite, until, check, pageState, longScenario } from './harness.mjs';
 
-const TOKEN = 'lab-Token_4711';
+const TOKEN = 'lab-Token_4711-0123';
 const controllerOf = (page) => page.getAttribute('#control-note', 'data-controller');
 
 // Chromium logs every 401 answer as "Failed to load resource": those are the
@@ -45,7 +45,8 @@ await suite('access', [
   }],
 
   ['a wrong token is asked again, then a live run streams and obeys', async (t) => {
-    const run = await t.post('/api/runs', { scenario: '01_planar7_obstacles', mode: 'live', rate: 1 });
+    // 01 for 600 s: still live after the token rounds however slow the machine
+    const run = await t.post('/api/runs', { scenario: await longScenario(t), mode: 'live', rate: 1 });
     await t.page.goto(`${t.base}/?run=${run.id}`);
     await typeToken(t, 'wrong-token');
     await until(async () => (await t.page.textContent('#token-why')).includes('refused'), 'the refusal in the dialog');
@@ -61,7 +62,8 @@ await suite('access', [
   }],
 
   ['a second tab watches until it takes control', async (t) => {
-    const run = await t.post('/api/runs', { scenario: '01_planar7_obstacles', mode: 'live', rate: 1 });
+    // 01 for 600 s: still live after two page loads with the token however slow the machine
+    const run = await t.post('/api/runs', { scenario: await longScenario(t), mode: 'live', rate: 1 });
     const other = await t.page.context().browser().newPage({ viewport: { width: 1400, height: 900 } });
     try {
       // the first tab steers and so holds control

@@ -3,7 +3,7 @@
 // the keyboard joystick, compare, the replay scrubber, the run list, and
 // reconnecting after the socket drops.
 // Usage: node dashboard_test.mjs   (RRLAB_BINARY, RRLAB_SCREENSHOTS, CHROMIUM)
-import { suite, until, check, pageState } from './harness.mjs';
+import { suite, until, check, pageState, longScenario, storedLongScenario } from './harness.mjs';
 
 const canvasPixels = (page, lane = 0) => page.evaluate((i) => window.__rrlab.session.lanes[i].view.canvas.toDataURL(), lane);
 
@@ -16,7 +16,7 @@ async function openLive(t, scenario, extra = {}) {
 
 await suite('dashboard', [
   ['a live run opens from its link and animates', async (t) => {
-    const id = await openLive(t, '01_planar7_obstacles');
+    const id = await openLive(t, await longScenario(t));  // 01 for 600 s: live however slow the machine
     const first = await pageState.lane(t.page);
     const before = await canvasPixels(t.page);
     await t.screenshot('live');
@@ -35,6 +35,7 @@ await suite('dashboard', [
       return (Math.max(...xs) - Math.min(...xs)) * v.scale / v.width;
     });
     check(span > 0.2, `the arm fills the view (spans ${(span * 100).toFixed(0)}% of its width)`);
+    await t.post(`/api/runs/${id}/control`, { action: 'stop' });
   }],
 
   ['dragging an obstacle moves it on the server and it stays', async (t) => {
@@ -89,6 +90,9 @@ await suite('dashboard', [
     const first = await cell.screenshot();
     await t.screenshot('3d');
     await until(async () => !(await cell.screenshot()).equals(first), 'the 3D picture to change while the run plays');
+    // the drag acts on a paused run (inputs to it are applied): live however slow the machine (the run lasts 75 s)
+    await t.post(`/api/runs/${id}/control`, { action: 'pause' });
+    await until(async () => (await t.get(`/api/runs/${id}`)).status === 'paused', 'the run to pause');
     const grab = await t.page.evaluate(() => {
       const lane = window.__rrlab.session.lanes[0], view = lane.view;
       const index = lane.snapshot.obstacles.findIndex((o) => o.id === 'target_block');
@@ -106,6 +110,7 @@ await suite('dashboard', [
     await t.page.mouse.up();
     await until(async () => (await t.get(`/api/runs/${id}/events`)).some((e) => e.kind === 'obstacle' && e.payload.id === 'target_block'), 'the 3D drag to reach the server');
     await t.screenshot('3d-dragged');
+    await t.post(`/api/runs/${id}/control`, { action: 'stop' });
   }],
 
   ['multi_preview ghosts are drawn as arms from the server\'s link segments', async (t) => {
@@ -130,7 +135,7 @@ await suite('dashboard', [
   }],
 
   ['a slider and the method switch change the run on the server', async (t) => {
-    const id = await openLive(t, '01_planar7_obstacles');
+    const id = await openLive(t, '01_planar7_obstacles', { paused: true });  // a paused run stays live and takes inputs
     const slider = t.page.locator('.param input[type=range]').first();
     const name = (await slider.getAttribute('id')).replace('param-', '');
     const max = Number(await slider.getAttribute('max')), min = Number(await slider.getAttribute('min'));
@@ -161,21 +166,24 @@ await suite('dashboard', [
     const id = await openLive(t, '04_planar7_joystick');
     const before = (await pageState.lane(t.page)).target;
     await t.page.locator('#views').click({ position: { x: 5, y: 5 } });
-    await t.page.keyboard.down('ArrowUp');
-    await t.page.waitForTimeout(600);
-    await t.page.keyboard.up('ArrowUp');
+    await t.page.keyboard.down('ArrowUp');  // held until the target has moved
     await until(async () => (await pageState.lane(t.page)).target[1] > before[1] + 0.01, 'the target to move up');
+    await t.page.keyboard.up('ArrowUp');
     check((await t.get(`/api/runs/${id}/events`)).some((e) => e.kind === 'joystick'), 'joystick events are stored');
+    await t.post(`/api/runs/${id}/control`, { action: 'stop' });  // 3600 s otherwise
   }],
 
   ['a compare link animates both arms and a drag reaches both runs', async (t) => {
-    const group = await t.post('/api/compare', { scenario: '01_planar7_obstacles', methods: ['pinv', 'closest_point'], mode: 'live', rate: 1, paused: true });
+    const group = await t.post('/api/compare', { scenario: await longScenario(t), methods: ['pinv', 'closest_point'], mode: 'live', rate: 1, paused: true });
     const [a, b] = group.runs.map((r) => r.id);
     await t.page.goto(`${t.base}/?compare=${a},${b}`);
     await until(async () => (await pageState.lane(t.page, 0)) && (await pageState.lane(t.page, 1)), 'frames of both lanes');
     await t.page.click('[data-action=start]');
     const s0 = (await pageState.lane(t.page, 0)).step, s1 = (await pageState.lane(t.page, 1)).step;
     await until(async () => (await pageState.lane(t.page, 0)).step > s0 + 20 && (await pageState.lane(t.page, 1)).step > s1 + 20, 'both arms to animate');
+    // paused for the drag (inputs to a paused run are applied): the arms stand still under the mouse
+    await t.post(`/api/runs/${a}/control`, { action: 'pause' });
+    await until(async () => (await t.get(`/api/runs/${a}`)).status === 'paused' && (await t.get(`/api/runs/${b}`)).status === 'paused', 'the group to pause');
     check(await t.page.evaluate(() => document.querySelectorAll('#views .view-cell canvas').length) === 2, 'two views side by side');
     const lane = await pageState.lane(t.page, 1);
     const index = 1;
@@ -196,7 +204,8 @@ await suite('dashboard', [
   }],
 
   ['overlaid compare draws every arm on one view', async (t) => {
-    await t.page.goto(`${t.base}/?scenario=01_planar7_obstacles`);
+    // 01 stored for 600 s: its last lane's socket still finds it live however slow the page
+    await t.page.goto(`${t.base}/?scenario=${await storedLongScenario(t)}`);
     await t.page.waitForSelector('#compare-rows .compare-row');
     await t.page.click('#compare-add');
     await t.page.locator('#compare-rows .compare-row select').nth(2).selectOption('closest_point');
@@ -210,10 +219,12 @@ await suite('dashboard', [
     check(Math.abs(params - 0.2) < 1e-12, `the typed parameter reached the lane: ${params}`);
     await t.page.waitForTimeout(500);
     await t.screenshot('overlay');
+    await t.post(`/api/runs/${await t.page.evaluate(() => window.__rrlab.session.runIds[0])}/control`, { action: 'stop' });  // the whole group
   }],
 
   ['a 3D compare overlaid draws every lane; overlay toggles redraw', async (t) => {
-    await t.page.goto(`${t.base}/?scenario=02_spatial_xz_reach`);
+    // 02 stored for 600 s: both lanes' sockets still find it live however slow the page
+    await t.page.goto(`${t.base}/?scenario=${await storedLongScenario(t, '02_spatial_xz_reach')}`);
     await t.page.waitForSelector('#compare-rows .compare-row');
     await t.page.selectOption('#compare-layout', 'overlay');
     await t.page.click('#start-compare');
@@ -221,10 +232,10 @@ await suite('dashboard', [
     check(await t.page.evaluate(() => document.querySelectorAll('#views .view-cell').length) === 1, 'one 3D view');
     for (const key of ['nearest', 'manipulability', 'trace']) { await t.page.uncheck(`input[data-overlay=${key}]`); await t.page.check(`input[data-overlay=${key}]`); }
     const points = async () => (await t.page.evaluate(() => window.__rrlab.plots.pointCounts()));
-    await t.page.waitForTimeout(1000);
-    const counts = await points();
-    check(Object.values(counts).every((n) => n > 0), `plots gain points for both lanes: ${JSON.stringify(counts)}`);
+    await until(async () => { const c = await points(); return Object.keys(c).length && Object.values(c).every((n) => n > 0); },
+      'plots to gain points for both lanes');
     await t.screenshot('3d-overlay');
+    await t.post(`/api/runs/${await t.page.evaluate(() => window.__rrlab.session.runIds[0])}/control`, { action: 'stop' });  // the whole group
   }],
 
   ['an ended run takes no more inputs; a run with no frames says so', async (t) => {
@@ -279,11 +290,12 @@ await suite('dashboard', [
   }],
 
   ['the stream reconnects after it drops and resyncs', async (t) => {
-    await openLive(t, '01_planar7_obstacles');
+    const id = await openLive(t, await longScenario(t));  // outlives the drop and the back-off however slow the machine
     await t.page.evaluate(() => window.__rrlab.session.lanes[0].stream.socket.close());
     await until(async () => (await t.page.textContent('#connection')) !== 'live', 'the drop to show');
     const step = (await pageState.lane(t.page)).step;
     await until(async () => (await t.page.textContent('#connection')) === 'live', 'the stream to reconnect');
     await until(async () => (await pageState.lane(t.page)).step > step + 10, 'frames after reconnecting');
+    await t.post(`/api/runs/${id}/control`, { action: 'stop' });
   }],
 ]);

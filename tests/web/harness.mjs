@@ -23,14 +23,19 @@ export async function startServer({ token = '', args = [] } = {}) {
   const serveArgs = ['serve', '--port', '0', '--db', join(dir, 'web.db'), '--web', join(sourceDir, 'web'), ...args];
   if (token) serveArgs.push('--token', token);
   const server = spawn(binary, serveArgs, { stdio: ['ignore', 'pipe', 'inherit'] });
+  // on every way out: a failed start, the suite's end, an uncaught error, process.exit
+  const stop = () => { process.off('exit', stop); server.kill('SIGTERM'); rmSync(dir, { recursive: true, force: true }); };
+  process.on('exit', stop);
+  let timer;
   const base = await new Promise((ok, fail) => {
-    const timer = setTimeout(() => fail(new Error('rrlab serve did not start in 20 s')), 20000);
+    timer = setTimeout(() => fail(new Error('rrlab serve did not start in 20 s')), 20000);
     server.stdout.on('data', (chunk) => {
       const match = /serving (http:\/\/[^ ]+?)\/?\s/.exec(String(chunk));
       if (match) { clearTimeout(timer); ok(match[1]); }
     });
+    server.on('error', fail);
     server.on('exit', (code) => fail(new Error(`rrlab serve exited with ${code}`)));
-  });
+  }).catch((e) => { clearTimeout(timer); stop(); throw e; });
   const request = async (method, path, body) => {
     const headers = body ? { 'Content-Type': 'application/json' } : {};
     if (token) headers.Authorization = `Bearer ${token}`;
@@ -46,8 +51,38 @@ export async function startServer({ token = '', args = [] } = {}) {
     get: (path) => request('GET', path),
     post: (path, body) => request('POST', path, body),
     request,
-    stop: () => { server.kill('SIGTERM'); rmSync(dir, { recursive: true, force: true }); },
+    stop,
   };
+}
+
+// Stops live run `id` unless it has ended already (then the server answers 409).
+// For the end of a test that leaves a long run going: it would load the cores
+// under the tests that follow.
+export async function stopIfLive(t, id) {
+  try {
+    await t.post(`/api/runs/${id}/control`, { action: 'stop' });
+  } catch (e) {
+    if (!/: 409 /.test(e.message)) throw e;
+  }
+}
+
+// Catalogue scenario `name` made to last `seconds` (sent inline as `scenario`,
+// under its own name): a live run of it is still live when a test acts on it,
+// however slow the machine. A circle keeps its speed (more turns).
+export async function longScenario(t, name = '01_planar7_obstacles', seconds = 600) {
+  const scenario = await t.get(`/api/scenarios/${name}`);
+  const trajectory = scenario.task && scenario.task.trajectory;
+  if (trajectory && trajectory.type === 'circle') trajectory.turns = (trajectory.turns || 1) * seconds / scenario.duration;
+  return { ...scenario, duration: seconds };
+}
+
+// longScenario stored (POST /api/scenarios) as `<its name>_<seconds>s`, for a
+// test whose page starts the run from its picker; returns that name.
+export async function storedLongScenario(t, name = '01_planar7_obstacles', seconds = 600) {
+  const scenario = await longScenario(t, name, seconds);
+  scenario.name = `${scenario.name}_${seconds}s`;
+  await t.post('/api/scenarios', scenario).catch((e) => { if (!/: 409 /.test(e.message)) throw e; });  // 409: stored already
+  return scenario.name;
 }
 
 export async function launchBrowser() {
@@ -83,10 +118,11 @@ export function check(condition, message) {
 export async function suite(name, tests, options = {}) {
   mkdirSync(screenshotDir, { recursive: true });
   const server = await startServer(options);
-  const browser = await launchBrowser();
+  let browser = null;
   const only = process.env.RRLAB_WEB_ONLY;
   let passed = 0, failed = 0;
   try {
+    browser = await launchBrowser();
     for (const [title, body] of tests) {
       if (only && !title.includes(only)) continue;
       const page = await browser.newPage({ viewport: { width: 1400, height: 900 } });
@@ -124,8 +160,11 @@ export async function suite(name, tests, options = {}) {
       }
     }
   } finally {
-    await browser.close();
-    server.stop();
+    try {
+      if (browser) await browser.close();
+    } finally {
+      server.stop();
+    }
   }
   console.log(`${passed} passed, ${failed} failed`);
   process.exit(failed ? 1 : 0);

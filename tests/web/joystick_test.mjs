@@ -8,8 +8,8 @@ import { suite, until, check, pageState, screenshotDir } from './harness.mjs';
 
 const REACH = 2.8;  // seven 0.4 m links: full deflection is 0.1 · reach m/s
 
-async function openLive(t, scenario) {
-  const run = await t.post('/api/runs', { scenario, mode: 'live', rate: 1 });
+async function openLive(t, scenario, extra = {}) {
+  const run = await t.post('/api/runs', { scenario, mode: 'live', rate: 1, ...extra });
   await t.page.goto(`${t.base}/?run=${run.id}`);
   await until(() => pageState.lane(t.page), 'the first frame');
   return run.id;
@@ -22,6 +22,9 @@ async function openJoystick(t) {
 }
 
 const target = async (t) => (await pageState.lane(t.page)).target;
+// Waits (bounded) while a command is held until the page's target has moved
+// more than `by` along axis k from `from`: then it is released.
+const movedAlong = (t, from, k, by, what) => until(async () => (await target(t))[k] - from[k] > by, what);
 const joystickEvents = async (t, id) => (await t.get(`/api/runs/${id}/events`)).filter((e) => e.kind === 'joystick');
 // The last command stored is a zero one, and the target has stopped.
 async function released(t, id) {
@@ -37,8 +40,8 @@ await suite('joystick', [
   ['arrow keys move the target; one command per change; not while typing', async (t) => {
     const id = await openJoystick(t);
     const before = await target(t);
-    await t.page.keyboard.down('ArrowRight');
-    await t.page.waitForTimeout(500);  // auto-repeat keydowns arrive meanwhile
+    await t.page.keyboard.down('ArrowRight');  // held until the target has moved
+    await movedAlong(t, before, 0, 0.05, 'the target to move in +x while → is held');
     await t.page.keyboard.up('ArrowRight');
     await released(t, id);
     const after = await target(t);
@@ -68,7 +71,7 @@ await suite('joystick', [
     });
     await t.page.waitForSelector('.js-gamepad:not([hidden])');
     check((await t.page.textContent('.js-gamepad')).includes('🎮 gamepad connected: Emulated pad'), 'the indicator names the pad');
-    await t.page.waitForTimeout(500);
+    await movedAlong(t, before, 0, 0.05, 'the target to move in +x while the stick is held');
     await t.screenshot('gamepad');
     await panelShot(t, 'gamepad');
     await t.page.evaluate(() => { window.__pad.axes = [0.1, 0.05, 0, 0]; });  // inside the dead zone
@@ -93,7 +96,7 @@ await suite('joystick', [
     await t.page.mouse.move(cx, cy);
     await t.page.mouse.down();
     for (let k = 1; k <= 6; ++k) { await t.page.mouse.move(cx + 2 * k, cy - 10 * k); await t.page.waitForTimeout(25); }
-    await t.page.waitForTimeout(400);
+    await movedAlong(t, before, 1, 0.05, 'the target to move in +y while the pad is held');
     await t.screenshot('drag');
     await panelShot(t, 'drag');
     await t.page.mouse.up();
@@ -101,13 +104,13 @@ await suite('joystick', [
     const after = await target(t);
     check(after[1] - before[1] > 0.05, `dragging up moves the target in +y (${before[1].toFixed(3)} → ${after[1].toFixed(3)})`);
     const events = await joystickEvents(t, id);
-    check(events.length <= 14, `at most 20 commands a second (${events.length} for a 0.6 s drag)`);
+    check(events.length <= 14, `at most 20 commands a second, only on a change (${events.length} for a drag of 6 moves)`);
     check(/translate\(0px, 0px\)/.test(await t.page.$eval('.js-pad .js-knob', (k) => k.style.transform)), 'the knob springs back to the centre');
     await t.post(`/api/runs/${id}/control`, { action: 'stop' });
   }],
 
   ['a task that is not a joystick gets no commands', async (t) => {
-    const id = await openLive(t, '01_planar7_obstacles');
+    const id = await openLive(t, '01_planar7_obstacles', { paused: true });  // a paused run stays live: the stop below finds it
     check(await t.page.isHidden('#joystick-section'), 'the joystick panel is hidden');
     await t.page.keyboard.down('ArrowLeft');
     await t.page.waitForTimeout(200);
@@ -135,22 +138,21 @@ await suite('joystick', [
     const before = await lane();
     check(Array.isArray(before.target_quat), 'pose frames carry the target orientation');
     await t.page.locator('#views').click({ position: { x: 5, y: 5 } });
-    await t.page.keyboard.down('e');
-    await t.page.waitForTimeout(500);
-    await t.page.keyboard.up('e');
+    await t.page.keyboard.down('e');  // held until the target has risen
     await until(async () => (await lane()).target[2] > before.target[2] + 0.02, 'the target to rise in z');
-    await t.page.keyboard.down('Shift');
+    await t.page.keyboard.up('e');
+    await t.page.keyboard.down('Shift');  // held until the orientation has turned
     await t.page.keyboard.down('ArrowRight');
-    await t.page.waitForTimeout(500);
-    await t.page.keyboard.up('ArrowRight');
-    await t.page.keyboard.up('Shift');
     await until(async () => {
       const q = (await lane()).target_quat, p = before.target_quat;
       return Math.abs(q[0] * p[0] + q[1] * p[1] + q[2] * p[2] + q[3] * p[3]) < 0.9999;
     }, 'the target orientation to turn');
+    await t.page.keyboard.up('ArrowRight');
+    await t.page.keyboard.up('Shift');
     const events = await joystickEvents(t, id);
     check(events.some((e) => e.payload.linear.length === 3 && e.payload.linear[2] > 0), 'a command with +z was sent');
     check(events.some((e) => e.payload.angular && e.payload.angular.some((w) => w !== 0)), 'a command with an angular rate was sent');
     await t.screenshot('pose');
+    await t.post(`/api/runs/${id}/control`, { action: 'stop' });  // 3600 s otherwise
   }],
 ]);
