@@ -27,6 +27,7 @@ struct ServeOptions {
   std::size_t body_limit = 1 << 20;
   int ws_stall_ms = 5000;  // a WebSocket write pending this long drops the client
   std::size_t export_memory = 64 << 20;  // bytes all streamed exports may hold at once (128 KiB each)
+  int connections_per_address = 256, max_websockets = 1024, websockets_per_address = 128, websockets_per_client = 32;
   // quotas (server/app/run_manager.hpp ServerLimits has the defaults' reasons)
   long max_run_frames = 1'000'000;
   std::int64_t max_run_bytes = 256ll << 20;
@@ -35,6 +36,7 @@ struct ServeOptions {
   std::int64_t max_scenarios = 1000;
   std::int64_t test_db_max_pages = 0;  // tests only: PRAGMA max_page_count on the write connection (0: none)
   bool test_db_read_only = false;       // tests only: PRAGMA query_only on the write connection
+  int test_build_delay_ms = 0;          // tests only: each scenario build waits this long first
   std::vector<std::string> allow_hosts, allow_origins;  // beyond this server's own (net/request_guard.hpp)
   std::string token;             // --token or RRLAB_TOKEN: required for changes, WebSocket inputs and reads
   bool public_read = false;      // reads need no token

@@ -27,6 +27,19 @@ int main(int argc, char** argv) {
                         "bytes all streamed frame exports may hold at once, 128 KiB each (default 67108864 = 64 MiB, "
                         "512 exports; beyond: 503 busy)")
       ->check(CLI::Range(std::size_t(128) << 10, std::size_t(1) << 40));
+  serve_cmd->add_option("--connections-per-address", serve.connections_per_address,
+                        "TCP connections one address may hold (default 256; at the cap its oldest connection that "
+                        "waits for a request is closed for a new one)")
+      ->check(CLI::Range(4, 65536));
+  serve_cmd->add_option("--max-websockets", serve.max_websockets,
+                        "WebSocket clients in all (default 1024; a sixteenth kept for clients that may steer)")
+      ->check(CLI::Range(16, 65536));
+  serve_cmd->add_option("--websockets-per-address", serve.websockets_per_address,
+                        "WebSocket clients one address may hold (default 128)")
+      ->check(CLI::Range(1, 65536));
+  serve_cmd->add_option("--websockets-per-client", serve.websockets_per_client,
+                        "WebSocket clients of one client name (default 32)")
+      ->check(CLI::Range(1, 65536));
   serve_cmd->add_option("--max-run-frames", serve.max_run_frames,
                         "frames one run may store (default 1000000; a request for more steps is 413)")
       ->check(CLI::Range(1L, 100'000'000L));
@@ -48,6 +61,10 @@ int main(int argc, char** argv) {
                         "full disk")
       ->check(CLI::Range(std::int64_t(1), std::int64_t(1) << 40))
       ->group("");  // hidden from --help
+  serve_cmd->add_option("--test-build-delay-ms", serve.test_build_delay_ms,
+                        "tests only: every request that builds scenarios waits this long on the builder pool")
+      ->check(CLI::Range(0, 600000))
+      ->group("");  // hidden
   serve_cmd->add_flag("--test-db-read-only", serve.test_db_read_only,
                       "TESTS ONLY: refuse every write to the database (PRAGMA query_only), as a read-only file would")
       ->group("");

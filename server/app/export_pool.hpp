@@ -7,22 +7,20 @@
 // one chunk and nothing more.
 #pragma once
 
-#include <condition_variable>
 #include <cstddef>
-#include <deque>
 #include <functional>
 #include <memory>
 #include <mutex>
-#include <thread>
-#include <vector>
+
+#include "app/worker_pool.hpp"
 
 namespace rrlab::server {
 
 class ExportPool {
  public:
-  // `threads` workers; `budget` bytes that all exports together may reserve.
-  ExportPool(int threads, std::size_t budget);
-  ~ExportPool();  // stop()
+  // `threads` workers (below the I/O threads' priority); `budget` bytes that
+  // all exports together may reserve.
+  ExportPool(int threads, std::size_t budget) : budget_(budget), workers_(threads, 5) {}
   ExportPool(const ExportPool&) = delete;
   ExportPool& operator=(const ExportPool&) = delete;
 
@@ -48,24 +46,20 @@ class ExportPool {
 
   // Runs `task` on a worker (tasks run in the order posted). After stop(),
   // tasks are dropped.
-  void post(std::function<void()> task);
+  void post(std::function<void()> task) { workers_.post(std::move(task)); }
 
   // Drops queued tasks and joins the workers (a task under way finishes
   // first). Called before the run store goes away.
-  void stop();
-  bool stopping();  // stop() has begun
+  void stop() { workers_.stop(); }
+  bool stopping() { return workers_.stopping(); }  // stop() has begun
 
  private:
   void release(std::size_t bytes);
-  void work();
 
   const std::size_t budget_;
   mutable std::mutex mutex_;
-  std::condition_variable wake_;
-  std::deque<std::function<void()>> tasks_;
   std::size_t reserved_ = 0;
-  bool stopping_ = false;
-  std::vector<std::thread> workers_;
+  WorkerPool workers_;  // last: stopped (joined) before the budget goes
 };
 
 }  // namespace rrlab::server

@@ -7,6 +7,7 @@
 #include "scenario/json_reader.hpp"
 #include "sim/run_inputs.hpp"
 #include "storage/database.hpp"
+#include "methods/step_cost.hpp"
 #include "storage/frame_codec.hpp"
 #include "storage/frame_writer.hpp"
 #include "storage/run_store.hpp"
@@ -60,6 +61,13 @@ class RunGroup::LaneSource final : public FrameSource {
   int lane_;
 };
 
+// ---- estimates ----
+
+LaneEstimate estimate_lane(const Scenario& scenario, std::int64_t steps, std::int64_t frame_bytes) {
+  return {scenario.model.dof(), obstacle_equivalents(scenario.scene), steps, frame_bytes,
+          method_step_factor(scenario) * link_mesh_factor(scenario.model)};
+}
+
 // ---- the storage budget ----
 
 std::int64_t StorageBudget::stored() const { return store_.total_frame_bytes() + writer_.queued_bytes(); }
@@ -86,9 +94,8 @@ RunGroup::RunGroup(RunServices services, const std::vector<Scenario>& scenarios,
   if (services_.admit) {
     std::vector<LaneEstimate> estimates;
     for (size_t i = 0; i < scenarios.size(); ++i)
-      estimates.push_back({scenarios[i].model.dof(), std::int64_t(scenarios[i].scene.obstacles.size()),
-                           std::int64_t(lanes_[i].sim->total_steps()),
-                           std::int64_t(storage::pack_frame(lanes_[i].sim->frame()).size())});
+      estimates.push_back(estimate_lane(scenarios[i], std::int64_t(lanes_[i].sim->total_steps()),
+                                        std::int64_t(storage::pack_frame(lanes_[i].sim->frame()).size())));
     const std::vector<std::int64_t> reserved = services_.admit(estimates);
     for (size_t i = 0; i < scenarios.size() && i < reserved.size(); ++i) lanes_[i].reserved = reserved[i];
   }

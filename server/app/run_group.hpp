@@ -60,10 +60,14 @@ class StorageBudget {
 // still hold then) and the bytes of one packed frame.
 struct LaneEstimate {
   int dof = 0;
-  std::int64_t obstacles = 0;
+  double obstacles = 0;  // primitive-obstacle equivalents (methods/step_cost.hpp)
   std::int64_t steps = 0;
   std::int64_t frame_bytes = 0;
+  double factor = 1;     // the method's and the mesh links' step cost (methods/step_cost.hpp)
 };
+
+// The estimate of a scenario's run of `steps` steps, frames of `frame_bytes`.
+LaneEstimate estimate_lane(const Scenario& scenario, std::int64_t steps, std::int64_t frame_bytes);
 
 struct RunServices {
   storage::RunStore& store;

@@ -77,7 +77,7 @@ int RunManager::active_locked() const {
 }
 
 double run_cost(const LaneEstimate& lane) {
-  return double(lane.dof) * double(lane.obstacles + 1) * double(lane.steps);
+  return double(lane.dof) * (lane.obstacles + 1) * double(lane.steps) * lane.factor;
 }
 
 void RunManager::check_writable() {
@@ -297,11 +297,22 @@ std::string mib(std::int64_t bytes) {
 
 // The request's cost and storage against the limits, before anything is
 // stored or started; reserves each lane's estimated bytes from the budget.
-std::vector<std::int64_t> RunManager::admit(const std::vector<LaneEstimate>& lanes) {
+std::int64_t RunManager::admit_work(const std::vector<LaneEstimate>& lanes, bool frames) {
+  std::lock_guard start_lock(start_mutex_);
+  std::int64_t total = 0;
+  for (const std::int64_t bytes : admit(lanes, frames)) total += bytes;
+  return total;
+}
+
+void RunManager::release_reserved(std::int64_t bytes) { budget_.release(bytes); }
+
+std::vector<std::int64_t> RunManager::admit(const std::vector<LaneEstimate>& lanes, bool frames) {
   double cost = 0;
   std::int64_t bytes = 0;
   std::vector<std::int64_t> reserve;
   for (const LaneEstimate& lane : lanes) {
+    cost += run_cost(lane);
+    if (!frames) continue;
     if (lane.steps > limits_.max_stored_frames)
       throw ApiError(413, "run_too_large",
                      "max_run_frames: " + std::to_string(lane.steps) + " steps would store " +
@@ -318,17 +329,23 @@ std::vector<std::int64_t> RunManager::admit(const std::vector<LaneEstimate>& lan
                      "steps",
                      {{"limit", "max_run_bytes"}, {"requested", lane_bytes}, {"allowed", limits_.max_run_bytes},
                       {"frames", lane.steps}, {"frame_bytes", lane.frame_bytes}});
-    cost += run_cost(lane);
     bytes += lane_bytes;
     reserve.push_back(lane_bytes);
   }
   if (cost > limits_.max_run_cost) {
     char text[64];
     std::snprintf(text, sizeof text, "%.6g", cost);
-    std::string message = "max_run_cost: the estimate DOF x (obstacles + 1) x steps";
-    for (const LaneEstimate& lane : lanes)
-      message += (&lane == &lanes.front() ? " = " : " + ") + std::to_string(lane.dof) + " x (" +
-                 std::to_string(lane.obstacles) + " + 1) x " + std::to_string(lane.steps);
+    std::string message = "max_run_cost: the estimate DOF x (obstacles + 1) x steps x method factor";
+    const auto number = [](double v) {
+      char out[32];
+      std::snprintf(out, sizeof out, "%.4g", v);
+      return std::string(out);
+    };
+    if (lanes.size() > 8) message += ", summed over " + std::to_string(lanes.size()) + " runs,";
+    else
+      for (const LaneEstimate& lane : lanes)
+        message += (&lane == &lanes.front() ? " = " : " + ") + std::to_string(lane.dof) + " x (" +
+                   number(lane.obstacles) + " + 1) x " + std::to_string(lane.steps) + " x " + number(lane.factor);
     char allowed[64];
     std::snprintf(allowed, sizeof allowed, "%.6g", limits_.max_run_cost);
     throw ApiError(413, "run_too_large",

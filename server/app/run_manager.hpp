@@ -47,8 +47,9 @@ struct ServerLimits {
   double default_display_hz = 60;
 };
 
-// A run's cost estimate: DOF x (obstacles + 1) x steps (the +1: a run without
-// obstacles still costs its kinematics).
+// A run's cost estimate: DOF x (obstacles + 1) x steps x the method's factor
+// (the +1: a run without obstacles still costs its kinematics; obstacles and
+// the factor: methods/step_cost.hpp).
 double run_cost(const LaneEstimate& lane);
 
 class RunManager {
@@ -94,6 +95,12 @@ class RunManager {
   // total the oldest unwatched one; a replay with a WebSocket client, or made
   // in the last 10 s and not yet connected to, is never ended for another.
   // 429 / 503 when nothing can end.
+  // Admits work that is not a run group (a re-simulation, a sweep) against
+  // the same quotas as runs: 413 / 507 as for runs. Returns the frame bytes it
+  // reserved of --max-total-bytes, for release_reserved() once its frames are stored.
+  std::int64_t admit_work(const std::vector<LaneEstimate>& lanes, bool frames);
+  void release_reserved(std::int64_t bytes);
+
   std::int64_t add_replay(std::shared_ptr<ReplayPlayer> player, const std::string& owner);
   // Background jobs (re-simulations of source_run): counted against the
   // active-run limit, told to stop and waited for by stop_all(); the source
@@ -113,7 +120,9 @@ class RunManager {
 
  private:
   void prune_locked();
-  std::vector<std::int64_t> admit(const std::vector<LaneEstimate>& lanes);  // under start_mutex_
+  // Checks `lanes` against the quotas and reserves their frame bytes; `frames`
+  // false: they store summaries only (no per-run frame limits apply).
+  std::vector<std::int64_t> admit(const std::vector<LaneEstimate>& lanes, bool frames = true);  // under start_mutex_
   nlohmann::json scenario_summary(const std::string& name, const nlohmann::json& doc, bool builtin);
   int active_locked() const;  // unfinished runs (lanes) and jobs
 

@@ -1,12 +1,15 @@
 #include "app/sweep_jobs.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <map>
 #include <vector>
 
 #include "app/api.hpp"
 #include "app/run_manager.hpp"
 #include "app/thread_priority.hpp"
 #include "scenario/scenario.hpp"
+#include "sweep/sweep_case.hpp"
 #include "sweep/sweep_expansion.hpp"
 #include "sweep/sweep_report.hpp"
 #include "sweep/sweep_report_json.hpp"
@@ -53,6 +56,32 @@ struct SweepJobs::Job {
 
 SweepJobs::SweepJobs(RunManager& runs, std::string scenarios_dir) : runs_(runs), scenarios_dir_(std::move(scenarios_dir)) {}
 
+// A sweep is admitted like the runs it makes (summaries only: no frame
+// limits): its cost estimate, summed over every run, against
+// --max-run-cost. Runs of one scenario entry and method configuration cost
+// alike: the first case of each stands for the others.
+void SweepJobs::admit(const Job& job) {
+  std::map<std::pair<size_t, size_t>, LaneEstimate> by_kind;
+  std::vector<LaneEstimate> lanes;
+  lanes.reserve(job.cases.size());
+  for (const sweep::SweepCase& c : job.cases) {
+    auto it = by_kind.find({c.entry, c.config});
+    if (it == by_kind.end()) {
+      LaneEstimate estimate;
+      try {
+        const Scenario scenario = sweep::scenario_of_case(job.spec, c);
+        const std::int64_t steps = job.spec.steps ? *job.spec.steps : std::llround(scenario.duration / scenario.dt);
+        estimate = estimate_lane(scenario, steps, 0);
+      } catch (const std::exception&) {
+        // a case that cannot be built fails when it runs, at no cost
+      }
+      it = by_kind.emplace(std::make_pair(c.entry, c.config), estimate).first;
+    }
+    lanes.push_back(it->second);
+  }
+  runs_.admit_work(lanes, false);
+}
+
 SweepJobs::~SweepJobs() { stop_all(); }
 
 json SweepJobs::start(const json& body, int jobs) {
@@ -71,6 +100,7 @@ json SweepJobs::start(const json& body, int jobs) {
                        std::to_string(kMaxRunsPerSweep) + " (the command line has no limit)",
                    "scenarios");
   job->cases = sweep::expand_sweep(job->spec);
+  admit(*job);
   // one core stays for live runs
   const int cores = int(std::max(1u, std::thread::hardware_concurrency()));
   job->jobs = std::clamp(jobs, 1, std::max(1, cores - 1));

@@ -36,6 +36,7 @@ class SweepJobs {
 
  private:
   struct Job;
+  void admit(const Job& job);  // its cost against the run quotas (413 beyond)
   nlohmann::json status_of(Job& job);
 
   RunManager& runs_;

@@ -12,6 +12,7 @@
 #include <fstream>
 #include <iterator>
 #include <string_view>
+#include <thread>
 
 #include "app/controller.hpp"
 #include "app/replay_player.hpp"
@@ -65,6 +66,26 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
       : stream_(std::move(socket)), state_(std::move(state)) {}
 
   void run() {
+    // one of the address's connections (net/peer_limits.hpp): refused at its cap unless an idle one makes room
+    address_ = remote_address();
+    std::weak_ptr<HttpSession> weak = shared_from_this();
+    hold_ = state_->peers.connection(
+        address_, {[weak] {
+                     const auto self = weak.lock();
+                     return self && self->waiting_for_request_.load();
+                   },
+                   [weak] {
+                     if (auto self = weak.lock())
+                       net::post(self->stream_.get_executor(), [self] {
+                         beast::error_code ec;
+                         self->stream_.socket().close(ec);
+                       });
+                   }});
+    if (!hold_) {
+      beast::error_code ec;
+      stream_.socket().close(ec);
+      return;
+    }
     net::dispatch(stream_.get_executor(), [self = shared_from_this()] { self->guarded([&] { self->read(); }); });
   }
 
@@ -81,6 +102,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   }
 
   void read() {
+    waiting_for_request_ = true;
     parser_.emplace();
     parser_->body_limit(state_->limits.body_limit);
     parser_->header_limit(static_cast<std::uint32_t>(state_->limits.header_limit));
@@ -116,6 +138,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   }
 
   void on_header() {
+    waiting_for_request_ = false;
     const auto& header = parser_->get();
     if (header.target().size() > state_->limits.url_limit) return refuse_url_too_long();
     if (!parser_->is_done() && expects_continue(header)) return send_continue();
@@ -245,7 +268,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
     api.accept = std::string(request[http::field::accept]);
     api.client = valid_client_name(std::string(request["Rrlab-Client"]));
     api.address = remote_address();
-    ApiResponse response = handle_api(state_->runs, state_->info, api);
+    ApiResponse response = builds_scenarios(api) ? on_builders(std::move(api)) : handle_api(state_->runs, state_->info, api);
     if (response.deferred) {
       stream_.expires_never();  // a batch run may take a while
       auto self = shared_from_this();
@@ -257,6 +280,31 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
     }
     if (response.stream) return send_stream(response);
     send_api(response);
+  }
+
+  // A request that builds scenarios, answered from the builder pool: the I/O
+  // threads go on answering others meanwhile (503 busy when its queue is full).
+  ApiResponse on_builders(ApiRequest api) {
+    ApiResponse later;
+    later.deferred = [state = state_, api = std::move(api)](Responder respond) {
+      ++state->building;
+      const bool queued = state->builders.post([state, api, respond] {
+        if (state->limits.test_build_delay.count() > 0) std::this_thread::sleep_for(state->limits.test_build_delay);
+        ApiResponse response = handle_api(state->runs, state->info, api);
+        --state->building;
+        if (response.deferred)
+          response.deferred(respond);  // a batch run's answer comes when it ends
+        else
+          respond(std::move(response));
+      });
+      if (!queued) {
+        --state->building;
+        ApiResponse busy = error_response(ApiError(503, "busy", "too many scenarios are being built; try again", ""));
+        busy.headers.emplace_back("Retry-After", "1");
+        respond(std::move(busy));
+      }
+    };
+    return later;
   }
 
   // A streamed answer in flight: its body, its reservation of the export
@@ -427,11 +475,12 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
       source = state_->runs.replay(*replay);
     }
     if (!source) return send_error(404, "no live run or replay at " + path);
-    if (state_->websockets.load() >= state_->limits.max_websockets)
-      return send_error(503, "too many WebSocket clients");
+    std::string refused;
+    PeerLimits::Hold socket_hold = state_->peers.websocket(address_, client, may_steer, refused);
+    if (!socket_hold) return send_error(503, refused);
     double display_hz = state_->runs.limits().default_display_hz;
     start_websocket_session(std::move(stream_), state_, std::move(source), std::move(request), display_hz,
-                            {may_steer, client});
+                            {may_steer, client}, {std::move(hold_), std::move(socket_hold)});
   }
 
   template <typename Response>
@@ -469,6 +518,9 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   beast::tcp_stream stream_;
   beast::flat_buffer buffer_;
   std::shared_ptr<ServerState> state_;
+  std::string address_;
+  PeerLimits::Hold hold_;                         // this connection's place among its address's
+  std::atomic<bool> waiting_for_request_{false};  // between requests: may be closed for a newer connection
   std::optional<http::request_parser<http::string_body>> parser_;
   std::vector<std::pair<std::string, std::string>> access_headers_;  // CORS, for an --allow-origin origin
   bool keep_alive_ = true, drain_after_write_ = false, drained_once_ = false;

@@ -48,9 +48,13 @@ int serve(const ServeOptions& options) {
     net_limits.body_limit = options.body_limit;
     net_limits.ws_stall_timeout = std::chrono::milliseconds(options.ws_stall_ms);
     net_limits.export_budget = options.export_memory;
+    net_limits.test_build_delay = std::chrono::milliseconds(options.test_build_delay_ms);
+    net_limits.peers = {options.connections_per_address, options.max_websockets, options.websockets_per_address,
+                        options.websockets_per_client};
     auto state = std::make_shared<ServerState>(runs, ServerInfo{RRLAB_VERSION, std::chrono::steady_clock::now()},
                                                find_dir(options.web_dir, "web"), net_limits);
     state->info.websockets = &state->websockets;
+    state->info.building = &state->building;
     net::io_context ioc(options.threads);
     const unsigned short port = start_listener(ioc, options.host, options.port, state);
     // the listener accepts nothing before ioc.run(): the bound port is known in time
@@ -70,7 +74,8 @@ int serve(const ServeOptions& options) {
     for (int i = 1; i < options.threads; ++i) pool.emplace_back([&] { ioc.run(); });
     ioc.run();
     for (auto& t : pool) t.join();
-    state->exports.stop();  // no export worker may read the store once it goes
+    state->builders.stop();  // no scenario is built, nor a run started, once the manager stops
+    state->exports.stop();   // no export worker may read the store once it goes
     runs.stop_all();
     writer.flush();
     std::cout << "rrlab: stopped" << std::endl;

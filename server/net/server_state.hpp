@@ -7,7 +7,9 @@
 
 #include "app/export_pool.hpp"
 #include "app/run_manager.hpp"
+#include "app/worker_pool.hpp"
 #include "net/auth_throttle.hpp"
+#include "net/peer_limits.hpp"
 #include "net/request_guard.hpp"
 #include "routes/routes.hpp"
 
@@ -21,7 +23,7 @@ struct NetLimits {
   std::size_t ws_message_limit = 64 << 10;            // bytes per incoming WebSocket message
   int ws_messages_per_second = 200;                   // incoming, per socket (errors beyond)
   std::chrono::milliseconds ws_stall_timeout{5000};   // a write pending this long drops the client
-  int max_websockets = 1024;
+  PeerCaps peers;  // connections and WebSockets per peer (net/peer_limits.hpp)
   // Streamed exports (GET /api/runs/{id}/frames): chunks of about this many
   // bytes; each export reserves twice that (its chunk, and the frame it may
   // run over by) from a budget shared by all (503 with Retry-After beyond).
@@ -29,6 +31,11 @@ struct NetLimits {
   std::size_t export_chunk = 64 << 10;
   std::size_t export_budget = 64 << 20;  // serve --export-memory
   int export_threads = 2;
+  // Building scenarios (parsing, URDF and mesh files, simulators): off the I/O
+  // threads, at most this many requests waiting (503 busy beyond).
+  int builder_threads = 2;
+  std::size_t builder_queue = 64;
+  std::chrono::milliseconds test_build_delay{0};  // tests only: each build waits this long first
 };
 
 struct ServerState {
@@ -41,7 +48,10 @@ struct ServerState {
   AccessConfig access;  // Host/Origin/Content-Type rules (net/request_guard.hpp)
   AuthThrottle auth_failures;  // wrong tokens per address (429 beyond)
   std::atomic<int> websockets{0};
+  std::atomic<int> building{0};  // requests on the builder pool
+  PeerLimits peers{limits.peers};
   ExportPool exports{limits.export_threads, limits.export_budget};
+  WorkerPool builders{limits.builder_threads, 0, limits.builder_queue};
 };
 
 }  // namespace rrlab::server

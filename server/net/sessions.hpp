@@ -6,6 +6,7 @@
 #include <boost/beast/core.hpp>
 #include <boost/beast/http.hpp>
 #include <boost/beast/websocket.hpp>
+#include <array>
 #include <memory>
 
 #include "app/frame_source.hpp"
@@ -29,10 +30,11 @@ struct WebSocketClient {
   std::string name;
 };
 
-// Takes over an upgraded connection and streams `source` to it.
+// Takes over an upgraded connection and streams `source` to it; `holds`: its
+// places among the peer limits (the connection's and the WebSocket's), kept while it lives.
 void start_websocket_session(beast::tcp_stream&& stream, std::shared_ptr<ServerState> state,
                              std::shared_ptr<FrameSource> source, http::request<http::string_body>&& request,
-                             double display_hz, WebSocketClient client);
+                             double display_hz, WebSocketClient client, std::array<PeerLimits::Hold, 2> holds);
 
 // Accepts connections on host:port (0: ephemeral); returns the bound port.
 unsigned short start_listener(net::io_context& ioc, const std::string& host, unsigned short port,

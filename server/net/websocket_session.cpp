@@ -21,8 +21,10 @@ using Clock = std::chrono::steady_clock;
 class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
  public:
   WebSocketSession(beast::tcp_stream&& stream, std::shared_ptr<ServerState> state,
-                   std::shared_ptr<FrameSource> source, double display_hz, WebSocketClient client)
-      : client_(std::move(client)),
+                   std::shared_ptr<FrameSource> source, double display_hz, WebSocketClient client,
+                   std::array<PeerLimits::Hold, 2> holds)
+      : holds_(std::move(holds)),
+        client_(std::move(client)),
         ws_(std::move(stream)),
         state_(std::move(state)),
         source_(std::move(source)),
@@ -188,6 +190,7 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
     beast::get_lowest_layer(ws_).socket().close(ec);
   }
 
+  std::array<PeerLimits::Hold, 2> holds_;  // released last: the peer limits count this socket until it is gone
   WebSocketClient client_;
   std::uint64_t controller_connection_ = 0;
   websocket::stream<beast::tcp_stream> ws_;
@@ -208,9 +211,9 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
 
 void start_websocket_session(beast::tcp_stream&& stream, std::shared_ptr<ServerState> state,
                              std::shared_ptr<FrameSource> source, http::request<http::string_body>&& request,
-                             double display_hz, WebSocketClient client) {
+                             double display_hz, WebSocketClient client, std::array<PeerLimits::Hold, 2> holds) {
   std::make_shared<WebSocketSession>(std::move(stream), std::move(state), std::move(source), display_hz,
-                                     std::move(client))
+                                     std::move(client), std::move(holds))
       ->run(std::move(request));
 }
 

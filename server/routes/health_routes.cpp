@@ -9,7 +9,8 @@ ApiResponse get_health(RouteContext& c) {
   return json_response(200, {{"status", "ok"},
                              {"version", c.info.version},
                              {"uptime_s", uptime},
-                             {"websockets", c.info.websockets ? c.info.websockets->load() : 0}});
+                             {"websockets", c.info.websockets ? c.info.websockets->load() : 0},
+                             {"building", c.info.building ? c.info.building->load() : 0}});
 }
 
 ApiResponse get_methods(RouteContext&) { return json_response(200, methods_json()); }

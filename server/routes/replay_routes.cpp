@@ -19,10 +19,25 @@ namespace {
 
 ApiResponse resimulate_run(RouteContext& c, const storage::RunRecord& run) {
   RunManager& runs = c.runs;
-  runs.begin_job(run.id);  // 503 when too many runs are active
+  // a re-simulation stores a copy of the run's frames: admitted like a run of as many steps
+  std::int64_t reserved = 0;
+  try {
+    const std::int64_t frame_bytes = run.frames > 0 ? (run.frame_bytes + run.frames - 1) / run.frames : 0;
+    reserved = runs.admit_work({estimate_lane(scenario_of_run(run), run.frames, frame_bytes)}, true);
+  } catch (const ApiError&) {
+    throw;
+  } catch (...) {
+    rethrow_as_api_error("", 422);  // a stored scenario this rrlab can no longer build
+  }
+  try {
+    runs.begin_job(run.id);  // 503 when too many runs are active
+  } catch (...) {
+    runs.release_reserved(reserved);
+    throw;
+  }
   ApiResponse response;
-  response.deferred = [&runs, run](Responder respond) {
-    const auto job = [&runs, run, respond]() mutable {
+  response.deferred = [&runs, run, reserved](Responder respond) {
+    const auto job = [&runs, run, respond, reserved]() mutable {
       std::int64_t id = 0;
       try {
         storage::NewRun fresh;
@@ -66,12 +81,14 @@ ApiResponse resimulate_run(RouteContext& c, const storage::RunRecord& run) {
       // before stop_all() returns and the server destroys its I/O context (ASan
       // caught the session's socket closed through the freed context at shutdown)
       respond = nullptr;
+      runs.release_reserved(reserved);  // its frames are stored (counted there) or it failed
       runs.end_job();
     };
     try {
       std::thread(job).detach();
     } catch (const std::exception& e) {
       runs.done_reading(run.id);
+      runs.release_reserved(reserved);
       runs.end_job();
       respond(error_response(ApiError(503, "busy", std::string("cannot start a thread: ") + e.what(), "")));
     }

@@ -11,17 +11,20 @@ struct Route {
   const char* verb;
   const char* pattern;  // "{}" matches one path segment
   RouteHandler handler;
+  // Builds scenarios (parsing, URDF and mesh files, simulators) or their
+  // summaries: handled on the builder pool, never on an I/O thread.
+  bool builds = false;
 };
 
 constexpr Route kRoutes[] = {
     {"GET", "/api/health", get_health},
     {"GET", "/api/methods", get_methods},
     {"GET", "/api/openapi.json", get_openapi},
-    {"GET", "/api/scenarios", list_scenarios},
-    {"POST", "/api/scenarios", post_scenario},
-    {"POST", "/api/scenarios/validate", validate_scenario},  // the literal before the {} pattern
+    {"GET", "/api/scenarios", list_scenarios, true},
+    {"POST", "/api/scenarios", post_scenario, true},
+    {"POST", "/api/scenarios/validate", validate_scenario, true},  // the literal before the {} pattern
     {"GET", "/api/scenarios/{}", get_scenario},
-    {"POST", "/api/runs", post_run},
+    {"POST", "/api/runs", post_run, true},
     {"GET", "/api/runs", list_runs},
     {"GET", "/api/runs/{}", get_run},
     {"DELETE", "/api/runs/{}", delete_run},
@@ -29,17 +32,17 @@ constexpr Route kRoutes[] = {
     {"GET", "/api/runs/{}/events", get_run_events},
     {"POST", "/api/runs/{}/control", post_control},
     {"PATCH", "/api/runs/{}/params", patch_params},
-    {"POST", "/api/runs/{}/obstacles", post_obstacle},
+    {"POST", "/api/runs/{}/obstacles", post_obstacle, true},
     {"PUT", "/api/runs/{}/obstacles/{}", put_obstacle},
     {"DELETE", "/api/runs/{}/obstacles/{}", delete_obstacle},
     {"POST", "/api/runs/{}/joystick", post_joystick},
     {"POST", "/api/runs/{}/method", post_method},
     {"GET", "/api/runs/{}/frames", get_frames},
-    {"POST", "/api/runs/{}/replay", post_replay},
+    {"POST", "/api/runs/{}/replay", post_replay, true},
     {"GET", "/api/replays/{}", get_replay},
     {"POST", "/api/replays/{}/control", post_replay_control},
-    {"POST", "/api/compare", post_compare},
-    {"POST", "/api/sweeps", post_sweep},
+    {"POST", "/api/compare", post_compare, true},
+    {"POST", "/api/sweeps", post_sweep, true},
     {"GET", "/api/sweeps", list_sweeps},
     {"GET", "/api/sweeps/{}", get_sweep},
     {"POST", "/api/sweeps/{}/control", post_sweep_control},
@@ -78,6 +81,16 @@ std::vector<RouteInfo> api_routes() {
   std::vector<RouteInfo> routes;
   for (const Route& route : kRoutes) routes.push_back({route.verb, route.pattern});
   return routes;
+}
+
+bool builds_scenarios(const ApiRequest& request) {
+  std::string_view path = request.path;
+  while (path.size() > 1 && path.back() == '/') path.remove_suffix(1);
+  const std::vector<std::string_view> parts = segments(path);
+  std::vector<std::string> captures;
+  for (const Route& route : kRoutes)
+    if (request.method == route.verb && match(route.pattern, parts, captures)) return route.builds;
+  return false;
 }
 
 std::int64_t RouteContext::id(size_t index) const {

@@ -18,6 +18,7 @@ struct ServerInfo {
   std::string version;
   std::chrono::steady_clock::time_point started;
   const std::atomic<int>* websockets = nullptr;  // connected WebSocket clients
+  const std::atomic<int>* building = nullptr;    // requests queued or under way on the builder pool
 };
 
 struct RouteContext {
@@ -39,6 +40,9 @@ ApiResponse handle_api(RunManager& runs, const ServerInfo& info, const ApiReques
 struct RouteInfo {
   std::string verb, pattern;
 };
+// Whether the request's route builds scenarios (or their summaries): the
+// network layer then answers it from the builder pool, off the I/O threads.
+bool builds_scenarios(const ApiRequest& request);
 std::vector<RouteInfo> api_routes();
 
 // openapi_routes.cpp: GET /api/openapi.json, the OpenAPI 3.1 document of every

@@ -165,6 +165,52 @@ TEST(Quotas, TheTotalIsCountedFromTheDatabaseAndFreedByDeletion) {
   EXPECT_EQ(error_of(again)["stored"], 410 * bpf);
 }
 
+// A re-simulation stores a copy of its run's frames: it is admitted against
+// --max-total-bytes like a run (before, four re-simulations of one run stored
+// 4.3 times the quota).
+TEST(Quotas, ReSimulationsCountAgainstTheTotal) {
+  ServerProcess server("", {"--max-total-bytes", "150000"});
+  const std::int64_t bpf = frame_bytes_of(server);  // 10 frames stored
+  const HttpResult run = post(server, "/api/runs", batch(circle(), 300));
+  ASSERT_EQ(run.status, 200) << run.body;
+  const std::string replay = "/api/runs/" + std::to_string(run.json()["id"].get<long>()) + "/replay";
+  // 310 frames stored; a copy of 300 would take the total past 150000 bytes
+  ASSERT_GT(610 * bpf, 150000) << "the frames got smaller: make the run longer";
+  const HttpResult refused = post(server, replay, {{"mode", "resimulate"}});
+  ASSERT_EQ(refused.status, 507) << refused.body;
+  EXPECT_EQ(error_of(refused)["limit"], "max_total_bytes");
+  EXPECT_EQ(stored_runs(server), 2u);
+}
+
+// Sweeps and costly methods are admitted by what they cost: before, a sweep of
+// 1e7-step runs was accepted (202), and a multi_preview comparison with
+// population 200 was estimated as cheaply as pinv.
+TEST(Quotas, SweepsAndCostlyMethodsAreAdmittedByTheirCost) {
+  ServerProcess server;
+  json seeds = json::array();
+  for (int s = 1; s <= 100; ++s) seeds.push_back(s);
+  const json sweep = {{"name", "too_big"}, {"scenarios", {"01_planar7_obstacles"}}, {"methods", {"pinv"}},
+                      {"seeds", seeds}, {"steps", 10000000}, {"success", {{"collision", false}}}};
+  const HttpResult refused_sweep = post(server, "/api/sweeps", sweep);  // 100 x 7 x 4 x 1e7 = 2.8e10
+  ASSERT_EQ(refused_sweep.status, 413) << refused_sweep.body;
+  EXPECT_EQ(error_of(refused_sweep)["limit"], "max_run_cost");
+  EXPECT_NE(error_of(refused_sweep)["message"].get<std::string>().find("summed over 100 runs"), std::string::npos);
+
+  const json costly = {{"name", "multi_preview"}, {"params", {{"population", 200}}}};
+  const HttpResult refused_compare = post(server, "/api/compare",
+                                          {{"scenario", "01_planar7_obstacles"}, {"methods", {costly, "pinv"}},
+                                           {"steps", 200000}, {"mode", "batch"}});
+  ASSERT_EQ(refused_compare.status, 413) << refused_compare.body;  // 7 x 4 x 2e5 x (7201 + 1) = 4.0e10
+  EXPECT_EQ(error_of(refused_compare)["limit"], "max_run_cost");
+  EXPECT_NE(error_of(refused_compare)["message"].get<std::string>().find("x 7201"), std::string::npos)
+      << error_of(refused_compare)["message"];
+  // the same comparison of two cheap methods fits
+  const HttpResult cheap = post(server, "/api/compare",
+                                {{"scenario", "01_planar7_obstacles"}, {"methods", {"dls", "pinv"}}, {"steps", 2000},
+                                 {"mode", "batch"}});
+  EXPECT_EQ(cheap.status, 200) << cheap.body;
+}
+
 TEST(Quotas, StoredScenariosAreCappedAndListedAsPagedSummaries) {
   ServerProcess server("", {"--max-scenarios", "2"});
   const auto get = [&](const std::string& target) { return http(server.port(), "GET", target); };

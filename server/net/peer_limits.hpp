@@ -1,0 +1,73 @@
+// What one peer may hold, so that one client cannot take what every other
+// needs: TCP connections per address, and WebSockets per address, per client
+// name and in all, with a reserve of WebSockets that only clients that may
+// steer (a token holder, or anyone on a server without a token) can use, so
+// that tokenless watchers under --public-read never lock the holder out.
+//
+// At its connection cap an address makes room by closing its own oldest
+// connection that is only waiting for a request's header (half-sent or
+// idle): a flood of stalled connections from an address does not keep that
+// address's real requests (every local process shares 127.0.0.1) waiting.
+// Plain types, no Beast: the rules are tested as a unit.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+
+namespace rrlab::server {
+
+struct PeerCaps {
+  int connections_per_address = 256;  // serve --connections-per-address
+  int websockets = 1024;              // serve --max-websockets
+  int websockets_per_address = 128;   // serve --websockets-per-address
+  int websockets_per_client = 32;     // serve --websockets-per-client (per client name)
+  // WebSockets kept for clients that may steer: a sixteenth of the total
+  int websocket_reserve() const { return websockets / 16; }
+};
+
+class PeerLimits {
+ public:
+  explicit PeerLimits(PeerCaps caps = {}) : caps_(caps) {}
+
+  // Held while a connection or WebSocket lives; released with its last copy.
+  using Hold = std::shared_ptr<void>;
+
+  // How the limits may close a connection to make room for a newer one.
+  struct Closable {
+    std::function<bool()> waiting_for_request;  // true: it may be closed (no request under way)
+    std::function<void()> close;
+  };
+
+  // A connection from `address`; null when the address is at its cap and none
+  // of its connections can be closed for it.
+  Hold connection(const std::string& address, Closable closable);
+  // A WebSocket from `address` of client `client` ("": unnamed, a client of
+  // its own); `may_steer`: may use the reserve. Null with the reason in
+  // `refused` when over a cap.
+  Hold websocket(const std::string& address, const std::string& client, bool may_steer, std::string& refused);
+
+  int connections(const std::string& address);
+  int websockets();
+  const PeerCaps& caps() const { return caps_; }
+
+ private:
+  struct Counts {
+    int websockets = 0;
+    std::map<std::uint64_t, Closable> connections;  // by id: oldest first
+  };
+  void release_connection(const std::string& address, std::uint64_t id);
+  void release_websocket(const std::string& address, const std::string& client);
+
+  const PeerCaps caps_;
+  std::mutex mutex_;
+  std::map<std::string, Counts> addresses_;
+  std::map<std::string, int> clients_;  // WebSockets per client name
+  int websockets_ = 0;
+  std::uint64_t next_ = 0;
+};
+
+}  // namespace rrlab::server
