@@ -14,6 +14,7 @@ DiskReserve::DiskReserve(std::string path, std::int64_t bytes)
 }
 
 bool DiskReserve::take() {
+  std::lock_guard lock(mutex_);
   if (held_ || disabled_) return true;
   const int fd = ::open(path_.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC, 0600);
   if (fd < 0) {
@@ -32,6 +33,7 @@ bool DiskReserve::take() {
 }
 
 bool DiskReserve::release() {
+  std::lock_guard lock(mutex_);
   if (!held_) return false;
   held_ = false;
   return std::remove(path_.c_str()) == 0;

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstdint>
+#include <mutex>
 #include <string>
 
 namespace rrlab::storage {
@@ -18,7 +19,10 @@ class DiskReserve {
 
   // Takes the room at once if it can (an existing reserve file is kept).
   DiskReserve(std::string path, std::int64_t bytes);
-  bool held() const { return held_; }
+  bool held() {
+    std::lock_guard lock(mutex_);
+    return held_;
+  }
   // Gives the room back (removes the file); false when there was none.
   bool release();
   // Takes the room again if the disk has it; true when held, or when this
@@ -26,6 +30,7 @@ class DiskReserve {
   bool take();
 
  private:
+  std::mutex mutex_;  // a delete may release while a probe takes
   std::string path_;
   std::int64_t bytes_;
   bool held_ = false, disabled_ = false;

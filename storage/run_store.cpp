@@ -56,18 +56,7 @@ RunStore::RunStore(const std::string& path, std::int64_t reserve_bytes)
     interrupted_at_open_ = db_->changes();
     tx.commit();
   });
-  std::vector<std::int64_t> unfinished;
-  {
-    Statement deleting = db_->prepare("SELECT id FROM runs WHERE status = 'deleting'");
-    while (deleting.step()) unfinished.push_back(deleting.column_int(0));
-  }
-  for (const std::int64_t id : unfinished) {
-    try {
-      finish_deleting(id);
-    } catch (const StorageError& e) {
-      if (!e.write_fault()) throw;  // a full or read-only file: finished at a later open; the run stays hidden
-    }
-  }
+  finish_pending_deletes();
   {
     Statement total = db_->prepare("SELECT COALESCE(SUM(frame_bytes), 0) FROM runs");
     total.step();
@@ -118,8 +107,11 @@ bool RunStore::probe_write() {
     if (e.write_fault()) return false;
     throw;
   }
-  std::lock_guard lock(fault_mutex_);
-  fault_.reset();
+  {
+    std::lock_guard lock(fault_mutex_);
+    fault_.reset();
+  }
+  finish_pending_deletes();  // deletes that met a full disk end now that there is room
   return true;
 }
 
@@ -234,6 +226,22 @@ void RunStore::with_reserve(const std::function<void()>& write) {
   }
 }
 
+void RunStore::finish_pending_deletes() {
+  std::vector<std::int64_t> pending;
+  {
+    std::lock_guard lock(mutex_);
+    Statement deleting = db_->prepare("SELECT id FROM runs WHERE status = 'deleting'");
+    while (deleting.step()) pending.push_back(deleting.column_int(0));
+  }
+  for (const std::int64_t id : pending) {
+    try {
+      finish_deleting(id);
+    } catch (const StorageError& e) {
+      if (!e.write_fault()) throw;  // a full or read-only file: finished later; the run stays hidden
+    }
+  }
+}
+
 bool RunStore::delete_run(std::int64_t id) {
   bool marked = false;
   with_reserve([&] {
@@ -258,7 +266,13 @@ void RunStore::finish_deleting(std::int64_t id) {
       more = db_->changes() == kFramesPerChunk;
       tx.commit();
     });
-    if (more) give_back_space();
+    if (more) {
+      std::lock_guard lock(mutex_);
+      try {
+        db_->exec("PRAGMA wal_checkpoint(PASSIVE)");  // the journal's room is reused by the next chunk
+      } catch (const StorageError&) {
+      }
+    }
   }
   with_reserve([&] {
     std::lock_guard lock(mutex_);
@@ -279,17 +293,26 @@ void RunStore::finish_deleting(std::int64_t id) {
 }
 
 void RunStore::give_back_space() {
-  std::lock_guard lock(mutex_);
+  // the write lock one statement at a time: the frame writer goes on between them
+  const auto locked = [&](const char* sql) {
+    std::lock_guard lock(mutex_);
+    db_->exec(sql);
+  };
   try {
-    db_->exec("PRAGMA wal_checkpoint(TRUNCATE)");
-    Statement mode = db_->prepare("PRAGMA auto_vacuum");
-    if (!mode.step() || mode.column_int(0) != 2) return;  // 2: incremental (files made before it: reused, not returned)
-    for (;;) {
-      Statement free_pages = db_->prepare("PRAGMA freelist_count");
-      if (!free_pages.step() || free_pages.column_int(0) == 0) break;
-      db_->exec("PRAGMA incremental_vacuum(256)");  // 1 MiB of pages at a time, the journal emptied after each
-      db_->exec("PRAGMA wal_checkpoint(TRUNCATE)");
+    bool incremental = false;
+    {
+      std::lock_guard lock(mutex_);
+      Statement mode = db_->prepare("PRAGMA auto_vacuum");
+      incremental = mode.step() && mode.column_int(0) == 2;  // files made before it: pages reused, not returned
     }
+    for (bool free_pages = incremental; free_pages;) {
+      locked("PRAGMA incremental_vacuum(256)");  // 1 MiB of pages at a time
+      locked("PRAGMA wal_checkpoint(PASSIVE)");
+      std::lock_guard lock(mutex_);
+      Statement count = db_->prepare("PRAGMA freelist_count");
+      free_pages = count.step() && count.column_int(0) > 0;
+    }
+    locked("PRAGMA wal_checkpoint(TRUNCATE)");  // the journal's own room back to the disk
   } catch (const StorageError&) {
     // a full disk or a reader holding the journal: the pages stay free in the file and are reused
   }

@@ -95,8 +95,9 @@ class RunStore {
   // Opens (creating if missing) and migrates; runs left "running" or "paused"
   // by a previous process are marked "interrupted", and deletions a previous
   // process left unfinished are finished. `reserve_bytes`: the room kept
-  // beside the file (PATH-reserve) for deletes on a full disk (disk_reserve.hpp).
-  explicit RunStore(const std::string& path, std::int64_t reserve_bytes = 8 << 20);
+  // beside the file (PATH-reserve) for deletes on a full disk (disk_reserve.hpp;
+  // the server keeps 8 MiB, the command line none).
+  explicit RunStore(const std::string& path, std::int64_t reserve_bytes = 0);
   ~RunStore();
 
   int interrupted_at_open() const { return interrupted_at_open_; }
@@ -115,7 +116,7 @@ class RunStore {
   // Deletes a run with its frames and events in one transaction; false when
   // there is no such run. Whether it may be deleted (not live) is the caller's
   // business. Runs that name it (source_run, compare_group) keep the number.
-  bool delete_run(std::int64_t id);
+  bool delete_run(std::int64_t id);  // also finishes a deletion of `id` that a full disk interrupted
 
   // Overwrites one stored frame's blob (tests of verification only).
   void replace_frame_data(std::int64_t run, std::int64_t seq, const std::string& data);
@@ -175,6 +176,8 @@ class RunStore {
   // The deletion of a run marked "deleting": its frames a chunk at a time (the
   // journal stays small: a full disk needs little room), then its row.
   void finish_deleting(std::int64_t id);
+  // Finishes the deletions a full disk (or an earlier process) left: their runs stay hidden meanwhile.
+  void finish_pending_deletes();
   // Empties the journal and, in a file with incremental auto-vacuum, gives
   // free pages back to the disk (stops quietly on a full disk).
   void give_back_space();

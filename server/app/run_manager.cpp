@@ -398,7 +398,10 @@ json RunManager::delete_run(std::int64_t id) {
   {
     std::lock_guard lock(mutex_);
     const auto run = store_.run(id);
-    if (!run) throw ApiError(404, "not_found", "no " + run_name, "id");
+    if (!run) {
+      if (store_.delete_run(id)) return {{"deleted", id}};  // a deletion a full disk interrupted, finished now
+      throw ApiError(404, "not_found", "no " + run_name, "id");
+    }
     std::shared_ptr<RunGroup> ended_group;  // dropped from memory once deleted, if it holds this run alone
     for (const auto& group : groups_) {
       if (group->lane_of(id) < 0) continue;

@@ -89,18 +89,18 @@ class RunManager {
   // or ended replays are closed.
   nlohmann::json delete_run(std::int64_t id);
 
-  // Registers a replay (its id set before anyone can see it) and returns the id.
-  // Registers a replay started by `owner` (its client name, or "@ADDRESS"):
-  // beyond the owner's share its own oldest unwatched replay ends, beyond the
-  // total the oldest unwatched one; a replay with a WebSocket client, or made
-  // in the last 10 s and not yet connected to, is never ended for another.
-  // 429 / 503 when nothing can end.
   // Admits work that is not a run group (a re-simulation, a sweep) against
   // the same quotas as runs: 413 / 507 as for runs. Returns the frame bytes it
-  // reserved of --max-total-bytes, for release_reserved() once its frames are stored.
+  // reserved of --max-total-bytes, for release_reserved() as its frames are stored.
   std::int64_t admit_work(const std::vector<LaneEstimate>& lanes, bool frames);
   void release_reserved(std::int64_t bytes);
 
+  // Registers a replay started by `owner` (its client name, or "@ADDRESS";
+  // its id set before anyone can see it) and returns the id: beyond the
+  // owner's share its own oldest unwatched replay ends, beyond the total the
+  // oldest unwatched one; a replay with a WebSocket client, or made in the
+  // last 10 s and not yet connected to, is never ended for another. 429 / 503
+  // when nothing can end.
   std::int64_t add_replay(std::shared_ptr<ReplayPlayer> player, const std::string& owner);
   // Background jobs (re-simulations of source_run): counted against the
   // active-run limit, told to stop and waited for by stop_all(); the source

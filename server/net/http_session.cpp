@@ -69,14 +69,14 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
     // one of the address's connections (net/peer_limits.hpp): refused at its cap unless an idle one makes room
     address_ = remote_address();
     std::weak_ptr<HttpSession> weak = shared_from_this();
+    // the flag is shared, not the session: the limits test it under their lock,
+    // where the session's last reference must never be dropped (its end takes that lock)
     hold_ = state_->peers.connection(
-        address_, {[weak] {
-                     const auto self = weak.lock();
-                     return self && self->waiting_for_request_.load();
-                   },
+        address_, {[waiting = waiting_for_request_] { return waiting->load(); },
                    [weak] {
                      if (auto self = weak.lock())
                        net::post(self->stream_.get_executor(), [self] {
+                         if (!self->waiting_for_request_->load()) return;  // a request arrived meanwhile
                          beast::error_code ec;
                          self->stream_.socket().close(ec);
                        });
@@ -102,7 +102,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   }
 
   void read() {
-    waiting_for_request_ = true;
+    *waiting_for_request_ = true;
     parser_.emplace();
     parser_->body_limit(state_->limits.body_limit);
     parser_->header_limit(static_cast<std::uint32_t>(state_->limits.header_limit));
@@ -138,7 +138,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   }
 
   void on_header() {
-    waiting_for_request_ = false;
+    *waiting_for_request_ = false;
     const auto& header = parser_->get();
     if (header.target().size() > state_->limits.url_limit) return refuse_url_too_long();
     if (!parser_->is_done() && expects_continue(header)) return send_continue();
@@ -268,7 +268,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
     api.accept = std::string(request[http::field::accept]);
     api.client = valid_client_name(std::string(request["Rrlab-Client"]));
     api.address = remote_address();
-    ApiResponse response = builds_scenarios(api) ? on_builders(std::move(api)) : handle_api(state_->runs, state_->info, api);
+    ApiResponse response = is_slow(api) ? on_workers(std::move(api)) : handle_api(state_->runs, state_->info, api);
     if (response.deferred) {
       stream_.expires_never();  // a batch run may take a while
       auto self = shared_from_this();
@@ -282,15 +282,20 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
     send_api(response);
   }
 
-  // A request that builds scenarios, answered from the builder pool: the I/O
-  // threads go on answering others meanwhile (503 busy when its queue is full).
-  ApiResponse on_builders(ApiRequest api) {
+  // Slow work (routes/routes.hpp is_slow), answered from the worker pool: the
+  // I/O threads go on answering others meanwhile (503 busy when its queue is full).
+  ApiResponse on_workers(ApiRequest api) {
     ApiResponse later;
-    later.deferred = [state = state_, api = std::move(api)](Responder respond) {
+    later.deferred = [state = state_, api = std::move(api)](Responder respond) mutable {
       ++state->building;
-      const bool queued = state->builders.post([state, api, respond] {
-        if (state->limits.test_build_delay.count() > 0) std::this_thread::sleep_for(state->limits.test_build_delay);
-        ApiResponse response = handle_api(state->runs, state->info, api);
+      const bool queued = state->workers.post([state, api = std::move(api), respond] {
+        ApiResponse response;
+        try {
+          if (state->limits.test_build_delay.count() > 0) std::this_thread::sleep_for(state->limits.test_build_delay);
+          response = handle_api(state->runs, state->info, api);
+        } catch (...) {  // handle_api answers every error; only an allocation failure lands here
+          response = error_response(ApiError(500, "internal", "the request could not be handled", ""));
+        }
         --state->building;
         if (response.deferred)
           response.deferred(respond);  // a batch run's answer comes when it ends
@@ -299,7 +304,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
       });
       if (!queued) {
         --state->building;
-        ApiResponse busy = error_response(ApiError(503, "busy", "too many scenarios are being built; try again", ""));
+        ApiResponse busy = error_response(ApiError(503, "busy", "too much slow work is waiting; try again", ""));
         busy.headers.emplace_back("Retry-After", "1");
         respond(std::move(busy));
       }
@@ -520,7 +525,8 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   std::shared_ptr<ServerState> state_;
   std::string address_;
   PeerLimits::Hold hold_;                         // this connection's place among its address's
-  std::atomic<bool> waiting_for_request_{false};  // between requests: may be closed for a newer connection
+  // between requests: may be closed for a newer connection (net/peer_limits.hpp)
+  std::shared_ptr<std::atomic<bool>> waiting_for_request_ = std::make_shared<std::atomic<bool>>(false);
   std::optional<http::request_parser<http::string_body>> parser_;
   std::vector<std::pair<std::string, std::string>> access_headers_;  // CORS, for an --allow-origin origin
   bool keep_alive_ = true, drain_after_write_ = false, drained_once_ = false;

@@ -9,6 +9,7 @@
 
 #include "cli.hpp"
 #include "net/sessions.hpp"
+#include "storage/disk_reserve.hpp"
 #include "storage/frame_writer.hpp"
 #include "storage/migrations.hpp"
 #include "storage/run_store.hpp"
@@ -31,7 +32,7 @@ int serve(const ServeOptions& options) {
           "--allow-anonymous if the network is trusted, or bind --host 127.0.0.1");
     const std::filesystem::path db(options.db);
     if (db.has_parent_path()) std::filesystem::create_directories(db.parent_path());
-    storage::RunStore store(options.db);
+    storage::RunStore store(options.db, storage::DiskReserve::kDefaultBytes);  // room for deletes on a full disk
     if (options.test_db_max_pages > 0) store.set_max_page_count(options.test_db_max_pages);
     if (options.test_db_read_only) store.set_query_only();
     storage::FrameWriter writer(store);
@@ -74,7 +75,7 @@ int serve(const ServeOptions& options) {
     for (int i = 1; i < options.threads; ++i) pool.emplace_back([&] { ioc.run(); });
     ioc.run();
     for (auto& t : pool) t.join();
-    state->builders.stop();  // no scenario is built, nor a run started, once the manager stops
+    state->workers.stop();   // no scenario is built, nor a run started or deleted, once the manager stops
     state->exports.stop();   // no export worker may read the store once it goes
     runs.stop_all();
     writer.flush();

@@ -31,11 +31,11 @@ struct NetLimits {
   std::size_t export_chunk = 64 << 10;
   std::size_t export_budget = 64 << 20;  // serve --export-memory
   int export_threads = 2;
-  // Building scenarios (parsing, URDF and mesh files, simulators): off the I/O
-  // threads, at most this many requests waiting (503 busy beyond).
-  int builder_threads = 2;
-  std::size_t builder_queue = 64;
-  std::chrono::milliseconds test_build_delay{0};  // tests only: each build waits this long first
+  // Slow work (building scenarios, deleting runs): off the I/O threads, at
+  // most this many requests waiting (503 busy beyond).
+  int worker_threads = 2;
+  std::size_t worker_queue = 64;
+  std::chrono::milliseconds test_build_delay{0};  // tests only: each slow request waits this long first
 };
 
 struct ServerState {
@@ -48,10 +48,10 @@ struct ServerState {
   AccessConfig access;  // Host/Origin/Content-Type rules (net/request_guard.hpp)
   AuthThrottle auth_failures;  // wrong tokens per address (429 beyond)
   std::atomic<int> websockets{0};
-  std::atomic<int> building{0};  // requests on the builder pool
+  std::atomic<int> building{0};  // requests on the worker pool (/api/health "building")
   PeerLimits peers{limits.peers};
   ExportPool exports{limits.export_threads, limits.export_budget};
-  WorkerPool builders{limits.builder_threads, 0, limits.builder_queue};
+  WorkerPool workers{limits.worker_threads, 0, limits.worker_queue};
 };
 
 }  // namespace rrlab::server

@@ -23,10 +23,10 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
   WebSocketSession(beast::tcp_stream&& stream, std::shared_ptr<ServerState> state,
                    std::shared_ptr<FrameSource> source, double display_hz, WebSocketClient client,
                    std::array<PeerLimits::Hold, 2> holds)
-      : holds_(std::move(holds)),
-        client_(std::move(client)),
+      : client_(std::move(client)),
         ws_(std::move(stream)),
         state_(std::move(state)),
+        holds_(std::move(holds)),
         source_(std::move(source)),
         tick_(ws_.get_executor()),
         period_(std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / display_hz))) {
@@ -190,11 +190,11 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
     beast::get_lowest_layer(ws_).socket().close(ec);
   }
 
-  std::array<PeerLimits::Hold, 2> holds_;  // released last: the peer limits count this socket until it is gone
   WebSocketClient client_;
   std::uint64_t controller_connection_ = 0;
   websocket::stream<beast::tcp_stream> ws_;
   std::shared_ptr<ServerState> state_;
+  std::array<PeerLimits::Hold, 2> holds_;  // after state_ (which owns the limits): released before it
   std::shared_ptr<FrameSource> source_;
   beast::flat_buffer buffer_;
   net::steady_timer tick_;

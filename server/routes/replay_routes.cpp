@@ -1,6 +1,7 @@
 // Replay: stream a run's stored frames (mode "frames", to /ws/replays/{id})
 // or re-simulate it from its recorded events into a new run and compare every
 // frame byte for byte (mode "resimulate").
+#include <algorithm>
 #include <thread>
 
 #include "app/replay_player.hpp"
@@ -37,7 +38,7 @@ ApiResponse resimulate_run(RouteContext& c, const storage::RunRecord& run) {
   }
   ApiResponse response;
   response.deferred = [&runs, run, reserved](Responder respond) {
-    const auto job = [&runs, run, respond, reserved]() mutable {
+    const auto job = [&runs, run, respond, reserved]() mutable {  // reserved: what is left of the reservation
       std::int64_t id = 0;
       try {
         storage::NewRun fresh;
@@ -56,6 +57,10 @@ ApiResponse resimulate_run(RouteContext& c, const storage::RunRecord& run) {
             resimulate(runs.store(), run, [&](std::int64_t seq, const Frame& f, const std::string& packed) {
               if (runs.stopping()) throw std::runtime_error("the server is stopping");
               runs.writer().push(id, storage::stored_frame(seq, f, packed));
+              // a pushed frame counts as stored: its share of the reservation goes (as a run's does)
+              const std::int64_t used = std::min<std::int64_t>(reserved, std::int64_t(packed.size()));
+              runs.release_reserved(used);
+              reserved -= used;
             });
         runs.writer().flush();
         json summary = summary_to_json(result.summary);
@@ -81,7 +86,7 @@ ApiResponse resimulate_run(RouteContext& c, const storage::RunRecord& run) {
       // before stop_all() returns and the server destroys its I/O context (ASan
       // caught the session's socket closed through the freed context at shutdown)
       respond = nullptr;
-      runs.release_reserved(reserved);  // its frames are stored (counted there) or it failed
+      runs.release_reserved(reserved);  // what its frames did not use (or all of it when it failed)
       runs.end_job();
     };
     try {

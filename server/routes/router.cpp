@@ -11,9 +11,10 @@ struct Route {
   const char* verb;
   const char* pattern;  // "{}" matches one path segment
   RouteHandler handler;
-  // Builds scenarios (parsing, URDF and mesh files, simulators) or their
-  // summaries: handled on the builder pool, never on an I/O thread.
-  bool builds = false;
+  // Slow work: builds scenarios (parsing, URDF and mesh files, simulators) or
+  // their summaries, or deletes a run's frames: handled on the worker pool,
+  // never on an I/O thread.
+  bool slow = false;
 };
 
 constexpr Route kRoutes[] = {
@@ -27,13 +28,13 @@ constexpr Route kRoutes[] = {
     {"POST", "/api/runs", post_run, true},
     {"GET", "/api/runs", list_runs},
     {"GET", "/api/runs/{}", get_run},
-    {"DELETE", "/api/runs/{}", delete_run},
+    {"DELETE", "/api/runs/{}", delete_run, true},
     {"GET", "/api/runs/{}/record", get_run_record},
     {"GET", "/api/runs/{}/events", get_run_events},
     {"POST", "/api/runs/{}/control", post_control},
     {"PATCH", "/api/runs/{}/params", patch_params},
     {"POST", "/api/runs/{}/obstacles", post_obstacle, true},
-    {"PUT", "/api/runs/{}/obstacles/{}", put_obstacle},
+    {"PUT", "/api/runs/{}/obstacles/{}", put_obstacle, true},
     {"DELETE", "/api/runs/{}/obstacles/{}", delete_obstacle},
     {"POST", "/api/runs/{}/joystick", post_joystick},
     {"POST", "/api/runs/{}/method", post_method},
@@ -83,13 +84,13 @@ std::vector<RouteInfo> api_routes() {
   return routes;
 }
 
-bool builds_scenarios(const ApiRequest& request) {
+bool is_slow(const ApiRequest& request) {
   std::string_view path = request.path;
   while (path.size() > 1 && path.back() == '/') path.remove_suffix(1);
   const std::vector<std::string_view> parts = segments(path);
   std::vector<std::string> captures;
   for (const Route& route : kRoutes)
-    if (request.method == route.verb && match(route.pattern, parts, captures)) return route.builds;
+    if (request.method == route.verb && match(route.pattern, parts, captures)) return route.slow;
   return false;
 }
 

@@ -18,7 +18,7 @@ struct ServerInfo {
   std::string version;
   std::chrono::steady_clock::time_point started;
   const std::atomic<int>* websockets = nullptr;  // connected WebSocket clients
-  const std::atomic<int>* building = nullptr;    // requests queued or under way on the builder pool
+  const std::atomic<int>* building = nullptr;    // slow requests queued or under way on the worker pool
 };
 
 struct RouteContext {
@@ -40,9 +40,10 @@ ApiResponse handle_api(RunManager& runs, const ServerInfo& info, const ApiReques
 struct RouteInfo {
   std::string verb, pattern;
 };
-// Whether the request's route builds scenarios (or their summaries): the
-// network layer then answers it from the builder pool, off the I/O threads.
-bool builds_scenarios(const ApiRequest& request);
+// Whether the request's route is slow work (it builds scenarios or their
+// summaries, or deletes a run's frames): the network layer then answers it
+// from the worker pool, off the I/O threads.
+bool is_slow(const ApiRequest& request);
 std::vector<RouteInfo> api_routes();
 
 // openapi_routes.cpp: GET /api/openapi.json, the OpenAPI 3.1 document of every

@@ -92,8 +92,9 @@ TEST_F(Replay, OneClientCannotEvictAnothersWatchedReplay) {
       EXPECT_EQ(error_of(r)["code"], "too_many_replays");
     }
   }
-  EXPECT_EQ(made, 8);
-  EXPECT_EQ(refused, 32);
+  // 8 at once; more only where a slow machine let an unconnected one pass its 10 s
+  EXPECT_GE(made, 8);
+  EXPECT_EQ(made + refused, 40);
   // bob's replay lives: its controls answer and its stream goes on
   EXPECT_EQ(send("POST", control, {{"action", "seek"}, {"seq", 10}}).status, 200);
   bool seen = false;

@@ -16,6 +16,7 @@
 #include <string>
 
 #include "storage/database.hpp"
+#include "storage/disk_reserve.hpp"
 #include "storage/run_store.hpp"
 #include "temp_store_test.hpp"
 
@@ -107,7 +108,7 @@ TEST_F(FullDisk, DeletingRunsWorksAndTheSpaceComesBackAlsoAfterARestart) {
   const std::string db = disk.path("rrlab.db");
   std::int64_t small = 0, big = 0;
   {
-    RunStore store(db);
+    RunStore store(db, DiskReserve::kDefaultBytes);  // as the server opens it
     small = store.create_run(new_run());
     store.add_frames(frames(small, 100, 0));
     store.finish_run(small, "completed", "{}");
@@ -117,7 +118,7 @@ TEST_F(FullDisk, DeletingRunsWorksAndTheSpaceComesBackAlsoAfterARestart) {
   // the rest of the disk filled by something else; then a restart on the full disk
   fill_with_a_file(disk.path("other-data"));
   EXPECT_LT(disk.free_bytes(), 64 << 10);
-  RunStore store(db);
+  RunStore store(db, DiskReserve::kDefaultBytes);
   EXPECT_FALSE(store.probe_write());
   // the documented remedy: delete a run
   const std::int64_t free_before = disk.free_bytes();

@@ -104,7 +104,9 @@ TEST(SweepRunner, AStopRequestStartsNoRun) {
 // A stop ends the run in progress between two steps: before, a worker
 // finished its run first (16 s for a 5e6-step run; a server with 1e7-step
 // sweep runs went on 60 s after SIGTERM). One case of 1e7 steps (minutes)
-// ends unstored and uncounted as a failure once stop is set.
+// ends unstored and uncounted as a failure once stop is set. The stop may
+// come before the run starts (then this is AStopRequestStartsNoRun again);
+// Simulator.RunToEndStopsBetweenSteps checks the step-level stop exactly.
 TEST(SweepRunner, AStopEndsTheRunInProgress) {
   testing::TempDir dir;
   nlohmann::json doc = small_spec("long");
