@@ -36,7 +36,7 @@ double step_us(const Scenario& scenario, int steps) {
   return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count() / steps;
 }
 
-void method_step(benchmark::State& state, const std::string& file, const std::string& method,
+void costed_method_step(benchmark::State& state, const std::string& file, const std::string& method,
                  std::vector<std::pair<std::string, double>> params) {
   const Scenario scenario = with_method(file, method, params);
   const double pinv_us = step_us(with_method(file, "pinv", {}), 400);
@@ -53,7 +53,7 @@ void register_all() {
   for (const char* file : {"01_planar7_obstacles.json", "03_dh7_pose.json"}) {
     for (const char* method : {"pinv", "dls", "gpm", "task_priority", "sr_task_priority", "closest_point",
                                "posture_generation", "qp_constraints", "ccp_voronoi", "direct_search", "multi_preview"})
-      benchmark::RegisterBenchmark((std::string("BM_method_step/") + file + "/" + method).c_str(), method_step, file,
+      benchmark::RegisterBenchmark((std::string("BM_method_step/") + file + "/" + method).c_str(), costed_method_step, file,
                                    method, std::vector<std::pair<std::string, double>>{});
     const std::vector<std::pair<std::string, std::vector<std::pair<std::string, double>>>> variants = {
         {"multi_preview", {{"population", 100}}},  {"multi_preview", {{"generations", 4}}},
@@ -63,7 +63,7 @@ void register_all() {
       benchmark::RegisterBenchmark((std::string("BM_method_step/") + file + "/" + method + "/" + params[0].first + "=" +
                                     std::to_string(int(params[0].second)))
                                        .c_str(),
-                                   method_step, file, method, params);
+                                   costed_method_step, file, method, params);
   }
 }
 

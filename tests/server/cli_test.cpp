@@ -16,8 +16,8 @@ namespace {
 
 using nlohmann::json;
 
-using Result = rrlab::testing::CommandResult;
-Result rrlab(const std::string& args) { return rrlab::testing::run_rrlab(args); }
+using Result = rrlab::testing::CliRun;
+Result rrlab(const std::string& args) { return rrlab::testing::run_cli(args); }
 
 std::string scenario(const std::string& name) { return std::string(RRLAB_SOURCE_DIR) + "/scenarios/" + name; }
 

@@ -19,13 +19,13 @@ using nlohmann::json;
 namespace uf = urdf_faults;
 
 // Writes the scenario next to the fixture URDFs and runs one step of it.
-CommandResult run_in(const uf::Catalogue& catalogue, const json& doc) {
+CliRun run_in(const uf::Catalogue& catalogue, const json& doc) {
   const std::string file = catalogue.dir + "/scenario.json";
   std::ofstream(file) << doc.dump();
-  return run_rrlab("run " + file + " --steps 1");
+  return run_cli("run " + file + " --steps 1");
 }
 
-void expect_refused(const CommandResult& r, const uf::Fault& fault) {
+void expect_refused(const CliRun& r, const uf::Fault& fault) {
   EXPECT_EQ(r.code, 2) << fault.name << ": " << r.out << r.err;
   EXPECT_TRUE(r.out.empty()) << fault.name << ": " << r.out;  // no summary
   EXPECT_NE(r.err.find("rrlab: error: " + fault.path + ": "), std::string::npos) << fault.name << ": " << r.err;
@@ -37,7 +37,7 @@ void expect_refused(const CommandResult& r, const uf::Fault& fault) {
 TEST(CliUrdf, TheFixturesRunWhenNothingIsWrong) {
   const uf::Catalogue catalogue;
   for (const json& robot : {json{{"urdf", uf::chain()}}, json{{"file", "robots/good.urdf"}}}) {
-    const CommandResult r = run_in(catalogue, uf::scenario(robot));
+    const CliRun r = run_in(catalogue, uf::scenario(robot));
     ASSERT_EQ(r.code, 0) << robot.dump().substr(0, 40) << ": " << r.err;
     EXPECT_EQ(json::parse(r.out)["steps"], 1);
   }

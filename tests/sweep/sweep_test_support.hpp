@@ -68,8 +68,8 @@ inline std::map<std::string, nlohmann::json> stored_runs(storage::RunStore& stor
   return out;
 }
 
-using CommandResult = rrlab::testing::CommandResult;
+using CommandResult = rrlab::testing::CliRun;
 // Runs `rrlab ARGS`, capturing stdout and stderr.
-inline CommandResult rrlab(const std::string& args) { return rrlab::testing::run_rrlab(args); }
+inline CommandResult rrlab(const std::string& args) { return rrlab::testing::run_cli(args); }
 
 }  // namespace rrlab::sweep::testing

@@ -9,10 +9,13 @@
 #include "collision/polygon.hpp"
 #include "kinematics/kinematics.hpp"
 #include "model/model.hpp"
+#include "engine/collision/collision_test_support.hpp"
 
 namespace rrlab {
 namespace {
 
+using collision_testing::expect_consistent;
+using collision_testing::scene_of;
 using Eigen::Vector2d;
 using Eigen::Vector3d;
 using Eigen::VectorXd;
@@ -71,12 +74,6 @@ Eigen::Matrix3d rotation_z(double angle) {
   return Eigen::AngleAxisd(angle, Vector3d::UnitZ()).toRotationMatrix();
 }
 
-Scene scene_of(std::vector<Obstacle> obstacles) {
-  Scene scene;
-  scene.obstacles = std::move(obstacles);
-  return scene;
-}
-
 // One planar link from the origin along the angle q (rad).
 Model one_link(double length, double radius = 0.0) {
   return make_planar({{length, radius}}, Vector2d::Zero());
@@ -97,16 +94,6 @@ DistanceTable one_link_distances(double length, double angle, const Obstacle& ob
 }
 
 Vector3d xy(double x, double y) { return {x, y, 0.0}; }
-
-// Nearest points, normal and distance agree: the link point sits at the
-// segment distance (capsule distance + radius) from the obstacle point along
-// the unit normal.
-void expect_consistent(const LinkObstacleDistance& pair, double radius) {
-  EXPECT_NEAR(pair.normal.norm(), 1.0, 1e-12);
-  const Vector3d gap = pair.on_link - pair.on_obstacle;
-  EXPECT_NEAR((gap - (pair.distance + radius) * pair.normal).norm(), 0.0, 1e-9)
-      << "gap " << gap.transpose() << " normal " << pair.normal.transpose();
-}
 
 void expect_pair(const LinkObstacleDistance& pair, double distance, const Vector3d& on_link,
                  const Vector3d& on_obstacle, const Vector3d& normal, double tolerance = kExact) {

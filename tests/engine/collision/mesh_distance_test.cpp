@@ -20,7 +20,7 @@ constexpr double kRadius = 0.05, kLength = 0.4;
 
 // The capsule of kRadius around the z segment [0, kLength] as a mesh
 // (collision/mesh_shapes.hpp): 64 vertices around, 16 rings per cap.
-TriangleMesh capsule_mesh() { return rrlab::capsule_mesh(kRadius, kLength, 64, 16); }
+TriangleMesh test_capsule() { return capsule_mesh(kRadius, kLength, 64, 16); }
 
 // A two-joint arm whose second link is the capsule, as a mesh or a cylinder primitive.
 std::string arm_urdf(const std::string& geometry) {
@@ -49,7 +49,7 @@ class MeshLink : public ::testing::Test {
   void SetUp() override {
     dir_ = std::filesystem::temp_directory_path() / ("rrlab_mesh_" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir_);
-    write_obj(capsule_mesh(), (dir_ / "capsule.obj").string());
+    write_obj(test_capsule(), (dir_ / "capsule.obj").string());
   }
   void TearDown() override { std::filesystem::remove_all(dir_); }
   Scenario load(const std::string& geometry) {
@@ -61,7 +61,7 @@ class MeshLink : public ::testing::Test {
 
 TEST_F(MeshLink, LoadsWithScale) {
   const TriangleMesh m = load_mesh_file((dir_ / "capsule.obj").string(), Eigen::Vector3d(2, 1, 1));
-  EXPECT_EQ(m.triangles.size(), capsule_mesh().triangles.size());
+  EXPECT_EQ(m.triangles.size(), test_capsule().triangles.size());
   double max_x = 0;
   for (const auto& v : m.vertices) max_x = std::max(max_x, v.x());
   EXPECT_NEAR(max_x, 2 * kRadius, 1e-6);

@@ -9,6 +9,7 @@
 #include <random>
 
 #include "collision/collision_world.hpp"
+#include "engine/collision/collision_test_support.hpp"
 #include "collision/mesh_loader.hpp"
 #include "collision/mesh_shapes.hpp"
 #include "engine/test_models.hpp"
@@ -17,6 +18,8 @@
 namespace rrlab {
 namespace {
 
+using collision_testing::expect_consistent;
+using collision_testing::scene_of;
 using Eigen::Vector3d;
 
 Obstacle posed(Obstacle o, const Vector3d& position, const Eigen::Matrix3d& rotation) {
@@ -63,21 +66,7 @@ struct OneSegment {
   }
 };
 
-Scene scene_of(std::vector<Obstacle> obstacles) {
-  Scene scene;
-  scene.obstacles = std::move(obstacles);
-  return scene;
-}
-
 const Eigen::Matrix3d kTurn = Eigen::AngleAxisd(0.7, Vector3d(1, 2, 3).normalized()).toRotationMatrix();
-
-// on_link is on the axis, on_obstacle on the mesh, and the unit normal joins them.
-void expect_consistent(const LinkObstacleDistance& pair, double radius) {
-  EXPECT_NEAR(pair.normal.norm(), 1.0, 1e-12);
-  if (pair.distance + radius > 1e-9) {
-    EXPECT_NEAR((pair.on_link - pair.on_obstacle - (pair.distance + radius) * pair.normal).norm(), 0.0, 1e-9);
-  }
-}
 
 TEST(MeshObstacle, BoxMeshEqualsTheBoxPrimitive) {
   const Vector3d size(0.4, 0.3, 0.2), centre(0.1, -0.2, 0.3);

@@ -11,9 +11,9 @@
 namespace rrlab {
 namespace {
 
-const Polygon2 kSquare{{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+const Polygon2 kUnitSquare{{0, 0}, {1, 0}, {1, 1}, {0, 1}};
 // L: a 2 x 1 foot and a 1 x 1 leg on its left end; reflex corner at (1, 1).
-const Polygon2 kLShape{{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
+const Polygon2 kLPolygon{{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
 // U: 3 wide, 2 high, a 1 x 1 notch from the top in the middle.
 const Polygon2 kUShape{{0, 0}, {3, 0}, {3, 2}, {2, 2}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
 
@@ -59,17 +59,17 @@ void expect_exact_cover(const Polygon2& polygon, const std::vector<Polygon2>& pa
 }
 
 TEST(Polygon, SignedAreaFollowsOrientation) {
-  EXPECT_DOUBLE_EQ(signed_area(kSquare), 1.0);
-  EXPECT_DOUBLE_EQ(signed_area(reversed(kSquare)), -1.0);
-  EXPECT_DOUBLE_EQ(signed_area(kLShape), 3.0);
+  EXPECT_DOUBLE_EQ(signed_area(kUnitSquare), 1.0);
+  EXPECT_DOUBLE_EQ(signed_area(reversed(kUnitSquare)), -1.0);
+  EXPECT_DOUBLE_EQ(signed_area(kLPolygon), 3.0);
   EXPECT_DOUBLE_EQ(signed_area(kUShape), 5.0);
 }
 
 TEST(Polygon, Convexity) {
-  EXPECT_TRUE(is_convex(kSquare));
-  EXPECT_TRUE(is_convex(reversed(kSquare)));
+  EXPECT_TRUE(is_convex(kUnitSquare));
+  EXPECT_TRUE(is_convex(reversed(kUnitSquare)));
   EXPECT_TRUE(is_convex({{0, 0}, {1, 0}, {2, 0}, {2, 1}}));  // a straight vertex is fine
-  EXPECT_FALSE(is_convex(kLShape));
+  EXPECT_FALSE(is_convex(kLPolygon));
   EXPECT_FALSE(is_convex(kUShape));
   EXPECT_FALSE(is_convex({{0, 0}, {1, 1}, {1, 0}, {0, 1}}));  // bow-tie
   // pentagram: every turn is left, yet it winds twice
@@ -82,19 +82,19 @@ TEST(Polygon, Convexity) {
 }
 
 TEST(Polygon, ConvexInputIsItsOwnDecomposition) {
-  const auto parts = convex_decomposition(kSquare);
+  const auto parts = convex_decomposition(kUnitSquare);
   ASSERT_EQ(parts.size(), 1u);
-  EXPECT_EQ(parts[0], kSquare);
-  const auto clockwise = convex_decomposition(reversed(kSquare));
+  EXPECT_EQ(parts[0], kUnitSquare);
+  const auto clockwise = convex_decomposition(reversed(kUnitSquare));
   ASSERT_EQ(clockwise.size(), 1u);
   EXPECT_GT(signed_area(clockwise[0]), 0);  // returned counter-clockwise
 }
 
 TEST(Polygon, DecomposesLShape) {
-  const auto parts = convex_decomposition(kLShape);
+  const auto parts = convex_decomposition(kLPolygon);
   EXPECT_EQ(parts.size(), 2u);  // one reflex vertex: one diagonal suffices
-  expect_exact_cover(kLShape, parts);
-  expect_exact_cover(reversed(kLShape), convex_decomposition(reversed(kLShape)));
+  expect_exact_cover(kLPolygon, parts);
+  expect_exact_cover(reversed(kLPolygon), convex_decomposition(reversed(kLPolygon)));
 }
 
 TEST(Polygon, DecomposesUShape) {
@@ -126,8 +126,8 @@ TEST(Polygon, DecomposesRandomStarShapedPolygons) {
 }
 
 TEST(Polygon, ValidPolygonsHaveNoProblem) {
-  EXPECT_EQ(polygon_problem(kSquare), "");
-  EXPECT_EQ(polygon_problem(reversed(kLShape)), "");
+  EXPECT_EQ(polygon_problem(kUnitSquare), "");
+  EXPECT_EQ(polygon_problem(reversed(kLPolygon)), "");
   EXPECT_EQ(polygon_problem(kUShape), "");
 }
 

@@ -7,7 +7,7 @@
 namespace rrlab {
 namespace {
 
-Obstacle polygon(std::vector<Eigen::Vector2d> pts, Eigen::Vector3d velocity = Eigen::Vector3d::Zero()) {
+Obstacle moving_polygon(std::vector<Eigen::Vector2d> pts, Eigen::Vector3d velocity = Eigen::Vector3d::Zero()) {
   Obstacle o;
   o.shape = ShapeKind::polygon;
   o.points = std::move(pts);
@@ -22,8 +22,8 @@ struct Buffers {
 
 TEST(VoronoiPoints, Ex3NarrowGapGivesThePapersTwoPoints) {
   Scene scene;
-  scene.obstacles = {polygon({{1.4, 0.0}, {1.6, 0.0}, {1.6, 0.8}, {1.4, 0.8}}),
-                     polygon({{1.4, 1.2}, {1.6, 1.2}, {1.6, 2.0}, {1.4, 2.0}})};
+  scene.obstacles = {moving_polygon({{1.4, 0.0}, {1.6, 0.0}, {1.6, 0.8}, {1.4, 0.8}}),
+                     moving_polygon({{1.4, 1.2}, {1.6, 1.2}, {1.6, 2.0}, {1.4, 2.0}})};
   Buffers buf;
   voronoi_control_points(scene, 0.0, buf.a, buf.b, buf.out);
   ASSERT_EQ(buf.out.size(), 2u);  // the two equal gaps (0.4), in either order
@@ -34,8 +34,8 @@ TEST(VoronoiPoints, Ex3NarrowGapGivesThePapersTwoPoints) {
 
 TEST(VoronoiPoints, Ex2SmallestGapMidpointMovesWithTheTriangle) {
   Scene scene;
-  scene.obstacles = {polygon({{1.4, 1.4}, {1.6, 2.0}, {0.9, 1.9}}, {0.1, 0, 0}),
-                     polygon({{0.9, 0.3}, {1.4, 0.3}, {1.4, 0.8}, {0.9, 0.8}})};
+  scene.obstacles = {moving_polygon({{1.4, 1.4}, {1.6, 2.0}, {0.9, 1.9}}, {0.1, 0, 0}),
+                     moving_polygon({{0.9, 0.3}, {1.4, 0.3}, {1.4, 0.8}, {0.9, 0.8}})};
   Buffers buf;
   voronoi_control_points(scene, 0.0, buf.a, buf.b, buf.out);
   ASSERT_EQ(buf.out.size(), 1u);  // (1.4, 1.4)–(1.4, 0.8): gap 0.6
@@ -57,7 +57,7 @@ TEST(VoronoiPoints, GapToAWallIsHalfWayToTheWall) {
   wall.shape = ShapeKind::wall;
   wall.position = {0, 0, 0};
   wall.normal = {0, 1, 0};  // floor y = 0, free side y > 0
-  scene.obstacles = {polygon({{1.0, 0.6}, {2.0, 0.6}, {2.0, 1.0}, {1.0, 1.0}}), wall};
+  scene.obstacles = {moving_polygon({{1.0, 0.6}, {2.0, 0.6}, {2.0, 1.0}, {1.0, 1.0}}), wall};
   Buffers buf;
   voronoi_control_points(scene, 0.0, buf.a, buf.b, buf.out);
   ASSERT_EQ(buf.out.size(), 2u);  // the two lower corners tie
@@ -82,7 +82,7 @@ TEST(VoronoiPoints, SphereGapsCountFromTheSurface) {
 
 TEST(VoronoiPoints, NearestVertexOfTheLShape) {
   Scene scene;
-  scene.obstacles = {polygon({{2.0, 0.0}, {2.0, 0.5}, {1.5, 0.5}, {1.5, 1.1}, {2.6, 1.1}, {2.6, 0.0}})};
+  scene.obstacles = {moving_polygon({{2.0, 0.0}, {2.0, 0.5}, {1.5, 0.5}, {1.5, 1.1}, {2.6, 1.1}, {2.6, 0.0}})};
   std::vector<ControlPoint> scratch;
   const NearestObstaclePoint np = nearest_obstacle_point(scene, {1.0, 0.4, 0}, 0.0, false, scratch);
   ASSERT_TRUE(np.found);
@@ -97,7 +97,7 @@ TEST(VoronoiPoints, NearestVertexOfTheLShape) {
 // obstacle moved; indices that name nothing give found = false.
 TEST(VoronoiPoints, CandidateByIndexFollowsTheNearestVertex) {
   Scene scene;
-  scene.obstacles = {polygon({{2.0, 0.0}, {2.0, 0.5}, {1.5, 0.5}, {1.5, 1.1}, {2.6, 1.1}, {2.6, 0.0}}, {0.1, 0, 0})};
+  scene.obstacles = {moving_polygon({{2.0, 0.0}, {2.0, 0.5}, {1.5, 0.5}, {1.5, 1.1}, {2.6, 1.1}, {2.6, 0.0}}, {0.1, 0, 0})};
   std::vector<ControlPoint> scratch;
   const Eigen::Vector3d p(1.2, 0.4, 0);
   const NearestObstaclePoint nearest = nearest_obstacle_point(scene, p, 0.0, false, scratch);

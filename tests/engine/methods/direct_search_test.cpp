@@ -44,7 +44,7 @@ SearchRun run_file(const std::string& file) {
   return run_sim(sim);
 }
 
-TEST(DirectSearch, KapoorSquareAndCircleAreTrackedIn6d) {
+TEST(DirectSearchPaper, KapoorSquareAndCircleAreTrackedIn6d) {
   const SearchRun r = run_file("scenarios/22_kapoor_square_circle.json");
   double max_position = 0, max_orientation = 0;
   int min_feasible = 81, switched = 0;
@@ -66,7 +66,7 @@ TEST(DirectSearch, KapoorSquareAndCircleAreTrackedIn6d) {
               max_position, max_orientation, min_feasible, switched, r.frames.size());
 }
 
-TEST(DirectSearch, DmRuleShiftsWeightsAndKeepsDexterityBelowTheEqualWeightPeak) {
+TEST(DirectSearchPaper, DmRuleShiftsWeightsAndKeepsDexterityBelowTheEqualWeightPeak) {
   // relative threshold: the paper switched at 250 of the more than 300 its
   // equal-weight run reached (0.83); here 0.83 of scenario 22's peak DM at
   // the same characteristic length L = 0.4 m

@@ -14,16 +14,16 @@
 
 namespace rrlab::testing {
 
-struct CommandResult {
+struct CliRun {
   int code = -1;
   std::string out, err;
 };
 
-inline CommandResult run_rrlab(const std::string& args) {
+inline CliRun run_cli(const std::string& args) {
   const std::string err_file =
       std::filesystem::temp_directory_path() / ("rrlab_err_" + std::to_string(::getpid()));
   const std::string cmd = std::string(RRLAB_BINARY) + " " + args + " 2>" + err_file;
-  CommandResult r;
+  CliRun r;
   FILE* pipe = ::popen(cmd.c_str(), "r");
   std::array<char, 4096> buf{};
   size_t n;
