@@ -1,16 +1,17 @@
 #include "sweep/sweep_case.hpp"
 
-#include "methods/registry_json.hpp"
 #include "scenario/generators.hpp"
 #include "sim/recorder.hpp"
 #include "sim/simulator.hpp"
 #include "storage/frame_codec.hpp"
+#include "storage/quotas.hpp"
+#include "storage/resimulation.hpp"
 
 namespace rrlab::sweep {
 
 namespace {
 
-constexpr size_t kMaxStoredFrames = 1'000'000;  // per run, as the server stores at most
+constexpr size_t kMaxStoredFrames = Quotas{}.max_run_frames;  // per run, as the server stores at most
 
 // Frames as stored, numbered from 0 like `rrlab run --db`.
 class FrameCollector : public Recorder {
@@ -59,15 +60,7 @@ CaseResult run_case(const SweepSpec& spec, const SweepCase& c, bool with_frames,
   if (with_frames) result.run.frames.reserve(size_t(std::min<long>(sim.total_steps(), kMaxStoredFrames)));
   result.summary = run_to_end(sim, with_frames ? &collector : nullptr, stop);
 
-  storage::NewRun& run = result.run.run;
-  run.scenario_name = scenario.name;
-  run.scenario_json = scenario.json.dump();
-  run.method = sim.method_name();
-  run.params_json = param_values_json(sim.method()).dump();
-  run.mode = "batch";
-  run.seed = scenario.seed;
-  run.dof = sim.model().dof();
-  run.diagnostic_names_json = nlohmann::json(sim.diagnostic_names()).dump();
+  result.run.run = storage::new_run_of(scenario, sim, "batch");
   result.run.summary_json = summary_to_json(result.summary).dump();
 
   const bool success = judge_success(spec.success, result.summary);

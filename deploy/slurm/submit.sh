@@ -6,7 +6,7 @@ here=$(cd "$(dirname "$0")" && pwd)
 spec=$(readlink -f "$1")
 out=$(mkdir -p "$2" && cd "$2" && pwd)
 tasks=${3:-16}
-rrlab=${RRLAB:-$(command -v rrlab || echo "$here/../../build/server/rrlab")}
+rrlab=${RRLAB:-$(command -v rrlab || echo "$here/../../build/cli/rrlab")}
 array=$(sbatch --parsable --array=0-$((tasks - 1)) --chdir="$out" \
   --export=ALL,RRLAB="$rrlab",SPEC="$spec",OUT="$out" "$here/sweep.sbatch")
 merge=$(sbatch --parsable --dependency=afterok:"$array" --chdir="$out" \

@@ -41,6 +41,7 @@
 #include <Eigen/LU>
 #include <Eigen/QR>
 #include <algorithm>
+#include <array>
 #include <string>
 #include <cmath>
 #include <limits>
@@ -52,22 +53,7 @@
 namespace rrlab {
 namespace {
 
-enum {
-  kMode,
-  kIntegrator,
-  kGain,
-  kHysteresis,
-  kCcpLink,  // then kCcpAt, and link/at pairs for CCPs 2..kMaxCcp
-  kSwitch = kCcpLink + 10,
-  kMidpoints,
-  kNewtonIters,
-  kLagrangeStart
-};
-enum { kDI, kDM, kHybrid };
-enum { kRk4, kLagrangian };
 constexpr int kMaxCcp = 5;
-enum { kClimb, kTheta0 };
-static_assert(kSwitch == kCcpLink + 2 * kMaxCcp, "one link/at parameter pair per CCP");
 constexpr double kTiny = 1e-12;
 // Defaults fitted to Sezgin et al.'s Table 1 (Ex1, L-shape, the three
 // one-CCP cases): the (gain, hysteresis) pair that minimises the mean over 35
@@ -79,6 +65,22 @@ constexpr double kCcpDefaultGain = 10.75;
 constexpr double kCcpDefaultHysteresis = 0.1;
 
 class CcpVoronoi final : public Method {
+  // Parameters and labels by name (Method::slot). CCP 1's link and position
+  // are ccp_link and ccp_at, CCP n's ccpn_link and ccpn_at.
+  const ParamSlot kMode = slot("mode"), kIntegrator = slot("integrator"), kGain = slot("gain"),
+                  kHysteresis = slot("hysteresis"), kSwitch = slot("switch_distance"),
+                  kMidpoints = slot("edge_midpoints"), kNewtonIters = slot("newton_iterations"),
+                  kLagrangeStart = slot("lagrangian_start");
+  const int kDM = label(kMode, "DM"), kHybrid = label(kMode, "hybrid"), kRk4 = label(kIntegrator, "rk4"),
+            kClimb = label(kLagrangeStart, "climb");
+  const std::array<ParamSlot, kMaxCcp> kCcpLink = ccp_slots("link"), kCcpAt = ccp_slots("at");
+
+  std::array<ParamSlot, kMaxCcp> ccp_slots(const std::string& what) const {
+    std::array<ParamSlot, kMaxCcp> slots;
+    for (int i = 0; i < kMaxCcp; ++i) slots[i] = slot(i == 0 ? "ccp_" + what : "ccp" + std::to_string(i + 1) + "_" + what);
+    return slots;
+  }
+
  public:
   explicit CcpVoronoi(const MethodContext& ctx)
       : Method(ccp_voronoi_params()),
@@ -120,7 +122,7 @@ class CcpVoronoi final : public Method {
     newton_residual_ = declare_diagnostic("newton_residual");
     for (int i = 2; i < kMaxCcp; ++i) target_distance_[i] = declare_diagnostic("ccp" + std::to_string(i + 1) + "_target_distance");
     vertex_switches_ = declare_diagnostic("vertex_switches");
-    for (int i = 0; i < kMaxCcp; ++i) valid_link_[i] = p(kCcpLink + 2 * i);
+    for (int i = 0; i < kMaxCcp; ++i) valid_link_[i] = p(kCcpLink[i]);
   }
 
   void step(const StepInput& in, StepOutput& out) override {
@@ -146,15 +148,16 @@ class CcpVoronoi final : public Method {
 
  protected:
   // A CCP on a link the arm does not have is refused (the previous value stays).
-  void on_param_changed(int index) override {
-    if (index < kCcpLink || index >= kCcpLink + 2 * kMaxCcp || (index - kCcpLink) % 2 != 0) return;
-    const int slot = (index - kCcpLink) / 2;
-    const std::string name = slot == 0 ? "ccp_link" : "ccp" + std::to_string(slot + 1) + "_link";
-    if (p(index) > links_) {
-      set_param(name, valid_link_[slot]);
-      throw ParamError(name, name + ": the arm has " + std::to_string(links_) + " links");
+  void on_param_changed(ParamSlot changed) override {
+    for (int i = 0; i < kMaxCcp; ++i) {
+      if (changed != kCcpLink[i]) continue;
+      const std::string name = specs()[size_t(changed.index)].name;
+      if (p(changed) > links_) {
+        set_param(name, valid_link_[i]);
+        throw ParamError(name, name + ": the arm has " + std::to_string(links_) + " links");
+      }
+      valid_link_[i] = p(changed);
     }
-    valid_link_[slot] = p(index);
   }
 
  private:
@@ -172,9 +175,9 @@ class CcpVoronoi final : public Method {
     ccp_count_ = 0;
     // defaults beyond a short arm's last link fall on its last link
     for (int i = 0; i < kMaxCcp; ++i) {
-      const double link = p(kCcpLink + 2 * i);
+      const double link = p(kCcpLink[i]);
       if (link < 1) continue;
-      ccps_[ccp_count_++] = {std::min(int(link), links_) - 1, p(kCcpLink + 2 * i + 1)};
+      ccps_[ccp_count_++] = {std::min(int(link), links_) - 1, p(kCcpAt[i])};
     }
   }
 

@@ -14,9 +14,10 @@
 namespace rrlab {
 namespace {
 
-enum { kInfluence, kGain, kLambda };
-
 class ClosestPoint final : public Method {
+  // Parameters by name (Method::slot).
+  const ParamSlot kInfluence = slot("influence"), kGain = slot("gain"), kLambda = slot("secondary_lambda");
+
  public:
   explicit ClosestPoint(const MethodContext& ctx)
       : Method(closest_point_params()),

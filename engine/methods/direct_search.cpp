@@ -70,10 +70,6 @@
 namespace rrlab {
 namespace {
 
-enum {
-  kDelta, kMask, kWJra, kWJvm, kWDm, kWObstacle, kDmFraction, kDmReference, kIterations, kTolerance, kDmLength,
-  kBlockSwitch
-};
 enum { kJra, kJvm, kDm, kObstacle, kCriteria };
 
 constexpr int kMaxPerturbed = 6;
@@ -81,6 +77,12 @@ constexpr int kMaxOptions = 729;  // 3^6
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 class DirectSearch final : public Method {
+  // Parameters by name (Method::slot).
+  const ParamSlot kDelta = slot("delta"), kMask = slot("perturb_mask"), kWJra = slot("w_jra"), kWJvm = slot("w_jvm"),
+                  kWDm = slot("w_dm"), kWObstacle = slot("w_obstacle"), kDmFraction = slot("dm_rule_fraction"),
+                  kDmReference = slot("dm_rule_reference"), kIterations = slot("newton_iterations"),
+                  kTolerance = slot("tolerance"), kDmLength = slot("dm_length"), kBlockSwitch = slot("block_switch");
+
  public:
   explicit DirectSearch(const MethodContext& ctx)
       : Method(direct_search_params()),
@@ -290,9 +292,9 @@ class DirectSearch final : public Method {
     return feasible;
   }
 
-  void on_param_changed(int index) override {
-    if (index == kMask) choose_joints();
-    if (index == kDmFraction || index == kDmReference) rule_active_ = false;
+  void on_param_changed(ParamSlot changed) override {
+    if (changed == kMask) choose_joints();
+    if (changed == kDmFraction || changed == kDmReference) rule_active_ = false;
   }
 
   // DM = σmax/σmin with the position rows of pose tasks divided by the characteristic length L.

@@ -8,9 +8,11 @@
 namespace rrlab {
 namespace {
 
-enum { kLambda, kDamping, kW0 };
-
 class Dls final : public Method {
+  // Parameters and labels by name (Method::slot).
+  const ParamSlot kLambda = slot("lambda"), kDamping = slot("damping"), kW0 = slot("w0");
+  const int kAdaptive = label(kDamping, "adaptive");
+
  public:
   explicit Dls(const MethodContext& ctx)
       : Method(dls_params()),
@@ -21,7 +23,7 @@ class Dls final : public Method {
 
   void step(const StepInput& in, StepOutput& out) override {
     double lambda = p(kLambda);
-    if (choice(kDamping) == 1) {
+    if (choice(kDamping) == kAdaptive) {
       conditioning_.compute(in.task_jacobian);
       const double w = conditioning_.manipulability();
       lambda = w < p(kW0) ? p(kLambda) * (1.0 - w / p(kW0)) : 0.0;

@@ -15,10 +15,11 @@
 namespace rrlab {
 namespace {
 
-enum { kGradient, kGain, kInfluence };
-enum { kJointRange, kManipulability, kDistance };
-
 class Gpm final : public Method {
+  // Parameters and labels by name (Method::slot).
+  const ParamSlot kGradient = slot("gradient"), kGain = slot("gain"), kInfluence = slot("influence");
+  const int kJointRange = label(kGradient, "joint_range"), kManipulability = label(kGradient, "manipulability");
+
  public:
   explicit Gpm(const MethodContext& ctx)
       : Method(gpm_params()),
@@ -39,11 +40,10 @@ class Gpm final : public Method {
 
   void step(const StepInput& in, StepOutput& out) override {
     double criterion = 0;
-    switch (choice(kGradient)) {
-      case kJointRange: criterion = joint_range_gradient(in.state.q); break;
-      case kManipulability: criterion = manipulability_gradient(in); break;
-      case kDistance: criterion = distance_gradient(in); break;
-    }
+    const int gradient = choice(kGradient);
+    if (gradient == kJointRange) criterion = joint_range_gradient(in.state.q);
+    else if (gradient == kManipulability) criterion = manipulability_gradient(in);
+    else criterion = distance_gradient(in);  // "distance"
     inverse_.factor_pinv(in.task_jacobian);
     inverse_.apply(in.ref.xdot, out.qdot);             // J⁺ẋ
     inverse_.null_project(gradient_, null_motion_);    // (I − J⁺J) z

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 
 namespace rrlab {
 
@@ -53,7 +54,20 @@ void Method::set_param(std::string_view name, double value) {
   const std::string problem = param_problem(specs_[index], value);
   if (!problem.empty()) throw ParamError(std::string(name), std::string(name) + ": " + problem);
   values_[index] = value;
-  on_param_changed(index);
+  on_param_changed(ParamSlot{index});
+}
+
+ParamSlot Method::slot(std::string_view name) const {
+  const int index = find_param(specs_, name);
+  if (index < 0) throw std::logic_error("the method reads a parameter '" + std::string(name) + "' it does not declare");
+  return ParamSlot{index};
+}
+
+int Method::label(ParamSlot choice, std::string_view label) const {
+  const int value = choice_index(specs_.at(size_t(choice.index)), label);
+  if (value < 0)
+    throw std::logic_error("parameter '" + specs_.at(size_t(choice.index)).name + "' has no label '" + std::string(label) + "'");
+  return value;
 }
 
 double Method::param(std::string_view name) const {

@@ -96,6 +96,15 @@ struct MethodContext {
   std::uint64_t seed = 1;  // the scenario's seed: the only source of randomness
 };
 
+// A parameter of a method, found by its name in the method's spec list when
+// the method is built. A name the list lacks throws std::logic_error, and every
+// method is built by the tests: code and spec list cannot disagree on a
+// position.
+struct ParamSlot {
+  int index = -1;
+  bool operator==(const ParamSlot&) const = default;
+};
+
 class Method {
  public:
   virtual ~Method() = default;
@@ -111,11 +120,15 @@ class Method {
 
  protected:
   explicit Method(std::vector<ParamSpec> specs);
-  double p(int index) const { return values_[index]; }
-  int choice(int index) const { return static_cast<int>(values_[index]); }
+  // The parameter called `name` (std::logic_error if the spec list has none).
+  ParamSlot slot(std::string_view name) const;
+  // The value of enumeration `choice`'s label (std::logic_error if it has none).
+  int label(ParamSlot choice, std::string_view label) const;
+  double p(ParamSlot s) const { return values_[s.index]; }
+  int choice(ParamSlot s) const { return static_cast<int>(values_[s.index]); }
   int declare_diagnostic(std::string name);
   // Called after a parameter changed (recompute cached values).
-  virtual void on_param_changed(int /*index*/) {}
+  virtual void on_param_changed(ParamSlot /*changed*/) {}
 
  private:
   std::vector<ParamSpec> specs_;

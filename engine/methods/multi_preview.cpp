@@ -32,16 +32,19 @@
 namespace rrlab {
 namespace {
 
-enum {
-  kPreviews, kPreviewTime, kK1, kK2, kK3, kKv, kPopulation, kGenerations, kMutation,
-  kPotentialWidth, kPotentialHeight, kWarmup, kPlanInterval
-};
 constexpr int kMaxPreviews = 3;
 constexpr int kMaxPopulation = 200;
 constexpr double kPlanJointSpeed = 0.5;  // rad/s (m/s): reachability bound of the planner without velocity limits
 constexpr double kUnreachablePenalty = 1e3;  // AMSIP lost per rad a plan step exceeds that bound
 
 class MultiPreview final : public Method {
+  // Parameters by name (Method::slot); preview i's weight is kK[i].
+  const ParamSlot kPreviews = slot("previews"), kPreviewTime = slot("preview_time"), kKv = slot("kv"),
+                  kPopulation = slot("population"), kGenerations = slot("generations"), kMutation = slot("mutation"),
+                  kPotentialWidth = slot("potential_width"), kPotentialHeight = slot("potential_height"),
+                  kWarmup = slot("warmup_generations"), kPlanInterval = slot("plan_interval");
+  const ParamSlot kK[kMaxPreviews] = {slot("k1"), slot("k2"), slot("k3")};
+
  public:
   explicit MultiPreview(const MethodContext& ctx)
       : Method(multi_preview_params()),
@@ -97,14 +100,14 @@ class MultiPreview final : public Method {
     } else {
       // Zhang eq. 24–25: v = K_v [Σ k_i q̃_d(t_i*) − q]
       double weight_sum = 0;
-      for (int i = 0; i < previews; ++i) weight_sum += p(kK1 + i);
+      for (int i = 0; i < previews; ++i) weight_sum += p(kK[i]);
       target_.setZero();
       for (int i = 0; i < previews; ++i) {
         const double ahead = (i + 1) * p(kPreviewTime);
         evaluations += evolve_preview(in, i, t + ahead, ahead, settings);
         previews_[i] = populations_[i].best();
         unwrap_near(in.state.q, previews_[i]);
-        const double k = weight_sum > 0 ? p(kK1 + i) / weight_sum : 1.0 / previews;
+        const double k = weight_sum > 0 ? p(kK[i]) / weight_sum : 1.0 / previews;
         target_ += k * previews_[i];
         out.overlays.ghosts[i] = populations_[i].best();
         preview_s_[i] = populations_[i].best_evaluation().amsip;
@@ -260,10 +263,10 @@ class MultiPreview final : public Method {
     }
   }
 
-  void on_param_changed(int index) override {
+  void on_param_changed(ParamSlot changed) override {
     // a new path-planning request (previews set to 0 again, a new knot spacing or
     // potential) replans from the arm's configuration at that step
-    if (index == kPreviews || index == kPlanInterval || index == kPotentialWidth || index == kPotentialHeight)
+    if (changed == kPreviews || changed == kPlanInterval || changed == kPotentialWidth || changed == kPotentialHeight)
       plan_.resize(n_, 0);
   }
 

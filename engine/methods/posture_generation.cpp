@@ -86,14 +86,16 @@
 namespace rrlab {
 namespace {
 
-enum {
-  kEta, kOmega, kDelta, kLimit, kInfluence, kLambda, kWCollision, kWAdjacent, kWLimits, kWConnection,
-  kWElastic, kElasticFirst
-};
 constexpr int kMaxJointsPerLink = 3;
 constexpr double kDeg = M_PI / 180.0;
 
 class PostureGeneration final : public Method {
+  // Parameters by name (Method::slot).
+  const ParamSlot kEta = slot("eta"), kOmega = slot("omega"), kDelta = slot("delta"), kLimit = slot("limit_deg"),
+                  kInfluence = slot("influence_deg"), kLambda = slot("lambda"), kWCollision = slot("w_collision"),
+                  kWAdjacent = slot("w_adjacent"), kWLimits = slot("w_limits"), kWConnection = slot("w_connection"),
+                  kWElastic = slot("w_elastic"), kElasticFirst = slot("elastic_first_link");
+
  public:
   explicit PostureGeneration(const MethodContext& ctx)
       : Method(posture_generation_params()),
@@ -156,6 +158,8 @@ class PostureGeneration final : public Method {
 
  private:
   // r_i of one link (eq. 29 with eq. 13's J_c); records Γ1..Γ4, γ1, γ2.
+  // Stays whole (over 100 lines): it follows Chen et al.'s eq. 13-29 in their
+  // order for one link, each term next to the one it is summed with.
   Eigen::Vector3d link_motion(const StepInput& in, int l, const Eigen::Vector3d& xdot_next) {
     const KinematicsData& kin = in.kin;
     const Eigen::Vector3d o = kin.link_end.col(l) - kin.link_start.col(l);

@@ -89,18 +89,6 @@
 namespace rrlab {
 namespace {
 
-enum {
-  kSafety,
-  kBuffer,
-  kEta,
-  kSigmaS,
-  kSlackWeight,
-  kApproach,
-  kClearanceGain,
-  kLimitGain,
-  kLimitBuffer,
-  kMaxStep
-};
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kShrink = 1.0 - 1e-9;
@@ -110,6 +98,12 @@ constexpr double kRangeMargin = 1e-9;  // rad (m): the range bound stays this fa
 double bell(double x) { return 0.5 * (1.0 - std::cos(M_PI * std::clamp(x, 0.0, 1.0))); }
 
 class QpConstraints final : public Method {
+  // Parameters by name (Method::slot).
+  const ParamSlot kSafety = slot("d_s"), kBuffer = slot("sigma"), kEta = slot("eta"), kSigmaS = slot("sigma_s"),
+                  kSlackWeight = slot("slack_weight"), kApproach = slot("approach_rate"),
+                  kClearanceGain = slot("clearance_gain"), kLimitGain = slot("limit_gain"),
+                  kLimitBuffer = slot("limit_buffer"), kMaxStep = slot("max_step");
+
  public:
   explicit QpConstraints(const MethodContext& ctx)
       : Method(qp_constraints_params()),
@@ -248,8 +242,8 @@ class QpConstraints final : public Method {
     relaxed_->H.block(n_, n_, m_, m_) *= p(kSlackWeight);
     relaxed_->H(n_ + m_, n_ + m_) = 1e3 * p(kSlackWeight);  // obstacles before the task
   }
-  void on_param_changed(int index) override {
-    if (index == kSlackWeight && relaxed_) set_slack_weight();
+  void on_param_changed(ParamSlot changed) override {
+    if (changed == kSlackWeight && relaxed_) set_slack_weight();
   }
 
   // Qiu eq 21–24: when σ_min ≤ σ_s, remove the component of ẋ that drives

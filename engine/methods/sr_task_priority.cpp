@@ -11,9 +11,12 @@
 namespace rrlab {
 namespace {
 
-enum { kLambda, kSecondary, kInfluence, kGain, kProjector };
-
 class SrTaskPriority final : public Method {
+  // Parameters and labels by name (Method::slot).
+  const ParamSlot kLambda = slot("lambda"), kSecondary = slot("secondary"), kInfluence = slot("influence"),
+                  kGain = slot("gain"), kProjector = slot("projector");
+  const int kObstacleTask = label(kSecondary, "obstacle"), kExactProjector = label(kProjector, "exact");
+
  public:
   explicit SrTaskPriority(const MethodContext& ctx)
       : Method(sr_task_priority_params()),
@@ -34,11 +37,11 @@ class SrTaskPriority final : public Method {
     const double lambda = p(kLambda);
     primary_.factor_dls(in.task_jacobian, lambda);
     primary_.apply(in.ref.xdot, out.qdot);  // J_E* ẋ_E, eq. (8)
-    RightInverse& projector = choice(kProjector) == 0 ? projector_ : primary_;
-    if (choice(kProjector) == 0) projector_.factor_pinv(in.task_jacobian);
+    RightInverse& projector = choice(kProjector) == kExactProjector ? projector_ : primary_;
+    if (choice(kProjector) == kExactProjector) projector_.factor_pinv(in.task_jacobian);
 
     bool active = false;
-    if (choice(kSecondary) == 0) {
+    if (choice(kSecondary) == kObstacleTask) {
       const DistanceTask task = distance_task(in, p(kInfluence), p(kGain), scratch_, j2_);
       out.diag.values[distance_] = task.distance;
       if (task.active) {

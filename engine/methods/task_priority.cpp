@@ -10,9 +10,12 @@
 namespace rrlab {
 namespace {
 
-enum { kSecondary, kInfluence, kGain, kLambda };
-
 class TaskPriority final : public Method {
+  // Parameters and labels by name (Method::slot).
+  const ParamSlot kSecondary = slot("secondary"), kInfluence = slot("influence"), kGain = slot("gain"),
+                  kLambda = slot("secondary_lambda");
+  const int kObstacleTask = label(kSecondary, "obstacle");
+
  public:
   explicit TaskPriority(const MethodContext& ctx)
       : Method(task_priority_params()),
@@ -34,7 +37,7 @@ class TaskPriority final : public Method {
     primary_.factor_pinv(in.task_jacobian);
     primary_.apply(in.ref.xdot, out.qdot);  // J₁⁺ẋ₁
     bool active = false;
-    if (choice(kSecondary) == 0) {
+    if (choice(kSecondary) == kObstacleTask) {
       const DistanceTask task = distance_task(in, p(kInfluence), p(kGain), scratch_, j2_);
       out.diag.values[distance_] = task.distance;
       if (task.active) {

@@ -1,5 +1,5 @@
 // A scenario: robot, obstacles, task and method, loaded from the JSON
-// contract (README, Scenarios) with errors that name the JSON path.
+// contract (docs/scenario-format.md) with errors that name the JSON path.
 #pragma once
 
 #include <Eigen/Core>

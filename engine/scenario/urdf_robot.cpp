@@ -55,6 +55,9 @@ std::string read_confined_file(const std::string& file, const std::string& dir, 
   return text.str();
 }
 
+// Stays whole (over 100 lines): the robot object's keys are read and checked
+// in one pass, in the order the scenario format lists them, so that each
+// error names the first bad key.
 Model parse_urdf_robot(JsonObject& robot, double radians_per_unit, const std::string& dir, std::string& urdf_text) {
   const bool has_file = robot.has("file"), has_text = robot.has("urdf");
   if (has_file == has_text)

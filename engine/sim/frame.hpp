@@ -52,7 +52,7 @@ struct Summary {
   StepTimeStats step_us;
 };
 
-// The run summary JSON of `rrlab run` (README, Command line); non-finite numbers are written as null.
+// The run summary JSON of `rrlab run` (docs/cli.md, run); non-finite numbers are written as null.
 nlohmann::json summary_to_json(const Summary& summary);
 nlohmann::json finite_or_null(double value);
 nlohmann::json finite_or_null(const Eigen::VectorXd& values);  // an array

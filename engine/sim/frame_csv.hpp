@@ -1,4 +1,4 @@
-// The frame CSV (the README's `--out` columns), shared by `rrlab run --out` and the frames export:
+// The frame CSV (the `--out` columns of docs/cli.md), shared by `rrlab run --out` and the frames export:
 // step,t,q1..qn,qdot1..qdotn,ee_x,ee_y,ee_z,task_error,min_distance,collided,
 // then orientation_error, min_distance_link (1-based, 0: none), joint_limit_margin,
 // manipulability, condition_number, the method's diagnostics and, when asked, step_us.

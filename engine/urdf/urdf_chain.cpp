@@ -16,7 +16,7 @@ namespace rrlab {
 
 namespace {
 
-std::string quoted(const std::string& s) { return "'" + s + "'"; }
+std::string in_quotes(const std::string& s) { return "'" + s + "'"; }
 
 // urdfdom gives its reasons for refusing a document only to console_bridge's
 // output handler (stderr by default). This handler, installed once for the
@@ -70,7 +70,7 @@ void check_structure(const std::string& xml) {
   for (const TiXmlElement* l = robot->FirstChildElement("link"); l; l = l->NextSiblingElement("link")) {
     const char* name = l->Attribute("name");
     if (!name) throw UrdfError("a <link> has no name (line " + std::to_string(l->Row()) + ")");
-    if (!links.insert(name).second) throw UrdfError("link " + quoted(name) + " is defined twice");
+    if (!links.insert(name).second) throw UrdfError("link " + in_quotes(name) + " is defined twice");
     if (links.size() > kMaxUrdfLinks)
       throw UrdfError("the URDF has more than " + std::to_string(kMaxUrdfLinks) + " links");
   }
@@ -85,17 +85,17 @@ void check_structure(const std::string& xml) {
     auto link_of = [&](const char* element) -> std::string {
       const TiXmlElement* e = j->FirstChildElement(element);
       const char* link = e ? e->Attribute("link") : nullptr;
-      if (!link) throw UrdfError("joint " + quoted(joint) + " has no <" + element + " link=\"...\">");
+      if (!link) throw UrdfError("joint " + in_quotes(joint) + " has no <" + element + " link=\"...\">");
       if (!links.count(link))
-        throw UrdfError("joint " + quoted(joint) + " names " + element + " link " + quoted(link) +
+        throw UrdfError("joint " + in_quotes(joint) + " names " + element + " link " + in_quotes(link) +
                         ", which is not defined");
       return link;
     };
     const std::string parent = link_of("parent"), child = link_of("child");
-    if (parent == child) throw UrdfError("joint " + quoted(joint) + " connects link " + quoted(child) + " to itself");
+    if (parent == child) throw UrdfError("joint " + in_quotes(joint) + " connects link " + in_quotes(child) + " to itself");
     if (joint_of.count(child))
-      throw UrdfError("link " + quoted(child) + " is the child of two joints (" + quoted(joint_of[child]) + " and " +
-                      quoted(joint) + ")");
+      throw UrdfError("link " + in_quotes(child) + " is the child of two joints (" + in_quotes(joint_of[child]) + " and " +
+                      in_quotes(joint) + ")");
     parent_of[child] = parent;
     joint_of[child] = joint;
   }
@@ -112,8 +112,8 @@ void check_structure(const std::string& xml) {
       const auto [seen, first_time] = walk_of.emplace(it->second, walk);
       if (first_time) continue;
       if (seen->second == walk)
-        throw UrdfError("the joints form a cycle through link " + quoted(it->second) + " (joint " +
-                        quoted(joint_of[it->second]) + ")");
+        throw UrdfError("the joints form a cycle through link " + in_quotes(it->second) + " (joint " +
+                        in_quotes(joint_of[it->second]) + ")");
       break;  // an earlier walk went on from here
     }
   }
@@ -145,6 +145,8 @@ double primitive_radius(const urdf::Geometry& g) {
 
 }  // namespace
 
+// Stays whole (over 100 lines): the chain from base to tip is walked once,
+// each joint checked and converted where it is met.
 UrdfChain read_urdf_chain(const std::string& xml, const std::string& base_link, const std::string& tip_link) {
   check_structure(xml);
   std::string urdfdom_errors;
@@ -156,7 +158,7 @@ UrdfChain read_urdf_chain(const std::string& xml, const std::string& base_link, 
 
   UrdfChain chain;
   chain.base_link = base_link.empty() ? model->getRoot()->name : base_link;
-  if (!model->getLink(chain.base_link)) throw UrdfError("base_link " + quoted(chain.base_link) + " is not a link of the URDF", "base_link");
+  if (!model->getLink(chain.base_link)) throw UrdfError("base_link " + in_quotes(chain.base_link) + " is not a link of the URDF", "base_link");
   chain.tip_link = tip_link;
   if (tip_link.empty()) {
     std::vector<urdf::LinkSharedPtr> links;
@@ -166,21 +168,21 @@ UrdfChain read_urdf_chain(const std::string& xml, const std::string& base_link, 
       if (l->child_joints.empty()) leaves.push_back(l->name);
     if (leaves.size() != 1) {
       std::string names;
-      for (const auto& n : leaves) names += (names.empty() ? "" : ", ") + quoted(n);
+      for (const auto& n : leaves) names += (names.empty() ? "" : ", ") + in_quotes(n);
       throw UrdfError("the URDF has " + std::to_string(leaves.size()) + " leaf links (" + names + "); name the tip_link",
                       "tip_link");
     }
     chain.tip_link = leaves.front();
   }
   urdf::LinkConstSharedPtr tip = model->getLink(chain.tip_link);
-  if (!tip) throw UrdfError("tip_link " + quoted(chain.tip_link) + " is not a link of the URDF", "tip_link");
+  if (!tip) throw UrdfError("tip_link " + in_quotes(chain.tip_link) + " is not a link of the URDF", "tip_link");
 
   // Walk up from the tip to the base, then read the joints base to tip.
   std::vector<urdf::LinkConstSharedPtr> path;  // tip ... (child of base)
   for (urdf::LinkConstSharedPtr l = tip; l->name != chain.base_link;) {
     path.push_back(l);
     l = l->getParent();
-    if (!l) throw UrdfError("tip_link " + quoted(chain.tip_link) + " is not below base_link " + quoted(chain.base_link) +
+    if (!l) throw UrdfError("tip_link " + in_quotes(chain.tip_link) + " is not below base_link " + in_quotes(chain.base_link) +
                       " (base_link must be an ancestor of tip_link)",
                       "tip_link");
   }
@@ -198,8 +200,8 @@ UrdfChain read_urdf_chain(const std::string& xml, const std::string& base_link, 
   };
   for (const urdf::LinkConstSharedPtr& link : path) {
     const urdf::Joint& j = *link->parent_joint;
-    const std::string name = quoted(j.name);
-    if (j.mimic) throw UrdfError("joint " + name + " is a mimic joint (of " + quoted(j.mimic->joint_name) + "); mimic joints are not supported");
+    const std::string name = in_quotes(j.name);
+    if (j.mimic) throw UrdfError("joint " + name + " is a mimic joint (of " + in_quotes(j.mimic->joint_name) + "); mimic joints are not supported");
     if (j.type == urdf::Joint::FLOATING || j.type == urdf::Joint::PLANAR)
       throw UrdfError("joint " + name + " is a " + (j.type == urdf::Joint::FLOATING ? "floating" : "planar") +
                       " joint; only revolute, continuous, prismatic and fixed joints are supported");
@@ -240,7 +242,7 @@ UrdfChain read_urdf_chain(const std::string& xml, const std::string& base_link, 
     }
   }
   if (chain.joints.empty())
-    throw UrdfError("no revolute, continuous or prismatic joint between " + quoted(chain.base_link) + " and " + quoted(chain.tip_link));
+    throw UrdfError("no revolute, continuous or prismatic joint between " + in_quotes(chain.base_link) + " and " + in_quotes(chain.tip_link));
   close_segment();
   chain.tip = pending;
   const int n = static_cast<int>(chain.joints.size());

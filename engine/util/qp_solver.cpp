@@ -248,6 +248,10 @@ bool QpSolver::inequality_active(int row) const { return is_active_[me_cap_ + ro
 bool QpSolver::lower_active(int i) const { return is_active_[me_cap_ + mi_cap_ + i]; }
 bool QpSolver::upper_active(int i) const { return is_active_[me_cap_ + mi_cap_ + n_ + i]; }
 
+// Stays whole (over 100 lines): Goldfarb & Idnani's dual active-set loop
+// (choose a violated constraint, step in primal and dual space, drop a
+// blocking constraint or add the chosen one) in the paper's order; its steps
+// share the working set and the J, R factors, which a split would pass around.
 QpStatus QpSolver::solve(const QpProblem& p) {
   me_ = p.eq_count;
   mi_ = p.ineq_count;

@@ -3,7 +3,7 @@
 #include <cctype>
 #include <vector>
 
-#include "app/api.hpp"
+#include "routes/api.hpp"
 
 namespace rrlab::server {
 

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <thread>
 
-#include "app/api.hpp"
-#include "app/resimulation.hpp"
+#include "routes/api.hpp"
+#include "storage/resimulation.hpp"
 #include "app/stream_json.hpp"
 #include "scenario/json_reader.hpp"
 #include "sim/run_inputs.hpp"
@@ -23,7 +23,7 @@ ReplayPlayer::ReplayPlayer(storage::RunStore& store, const storage::RunRecord& r
   if (from < 0 || from >= run_.frames)
     throw ApiError(400, "invalid", "must be in [0, " + std::to_string(run_.frames - 1) + "]", "from");
   try {
-    sim_ = std::make_unique<Simulator>(scenario_of_run(run_));
+    sim_ = std::make_unique<Simulator>(storage::scenario_of_run(run_));
     geometry_ = std::make_unique<FrameGeometry>(sim_->model(), sim_->scene(), sim_->scenario().task.space);
   } catch (const std::exception& e) {
     throw ApiError(409, "wrong_state", std::string("the stored scenario no longer loads: ") + e.what(), "");
@@ -69,7 +69,7 @@ void ReplayPlayer::wait_exited() {
 void ReplayPlayer::show_locked(std::int64_t seq) {
   if (seq == shown_) return;
   if (seq < shown_) {  // seeking back: replay the scene's events from the start
-    sim_ = std::make_unique<Simulator>(scenario_of_run(run_));
+    sim_ = std::make_unique<Simulator>(storage::scenario_of_run(run_));
     next_event_ = 0;
     ++scene_version_;
   }

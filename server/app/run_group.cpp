@@ -1,7 +1,7 @@
 #include "app/run_group.hpp"
 
-#include "app/api.hpp"
-#include "app/resimulation.hpp"
+#include "routes/api.hpp"
+#include "storage/resimulation.hpp"
 #include "app/stream_json.hpp"
 #include "methods/registry_json.hpp"
 #include "scenario/json_reader.hpp"
@@ -102,7 +102,7 @@ RunGroup::RunGroup(RunServices services, const std::vector<Scenario>& scenarios,
   try {
     for (size_t i = 0; i < scenarios.size(); ++i) {
       Lane& lane = lanes_[i];
-      storage::NewRun run = new_run_of(scenarios[i], *lane.sim, options_.mode);
+      storage::NewRun run = storage::new_run_of(scenarios[i], *lane.sim, options_.mode);
       run.source_run = options_.source_run;
       if (options_.compare && i > 0) run.compare_group = lanes_[0].run_id;
       lane.run_id = services_.store.create_run(run);

@@ -20,6 +20,7 @@
 #include "app/controller.hpp"
 #include "app/frame_geometry.hpp"
 #include "app/frame_source.hpp"
+#include "storage/quotas.hpp"
 #include "storage/run_store.hpp"
 #include "scenario/scenario.hpp"
 #include "sim/simulator.hpp"
@@ -72,8 +73,8 @@ LaneEstimate estimate_lane(const Scenario& scenario, std::int64_t steps, std::in
 struct RunServices {
   storage::RunStore& store;
   storage::FrameWriter& writer;
-  long max_stored_frames = 1'000'000;          // per run (serve --max-run-frames)
-  std::int64_t max_run_bytes = 256ll << 20;    // per run (serve --max-run-bytes)
+  long max_stored_frames = Quotas{}.max_run_frames;       // per run (serve --max-run-frames)
+  std::int64_t max_run_bytes = Quotas{}.max_run_bytes;    // per run (serve --max-run-bytes)
   StorageBudget* budget = nullptr;             // total (serve --max-total-bytes); null: none
   // Called with every lane's estimate once the simulators are built and
   // before any run is stored: throws ApiError to refuse the request; returns

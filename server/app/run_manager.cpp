@@ -313,12 +313,12 @@ std::vector<std::int64_t> RunManager::admit(const std::vector<LaneEstimate>& lan
   for (const LaneEstimate& lane : lanes) {
     cost += run_cost(lane);
     if (!frames) continue;
-    if (lane.steps > limits_.max_stored_frames)
+    if (lane.steps > limits_.max_run_frames)
       throw ApiError(413, "run_too_large",
                      "max_run_frames: " + std::to_string(lane.steps) + " steps would store " +
                          std::to_string(lane.steps) + " frames; a run may store at most " +
-                         std::to_string(limits_.max_stored_frames) + " (serve --max-run-frames): ask for fewer steps",
-                     "steps", {{"limit", "max_run_frames"}, {"requested", lane.steps}, {"allowed", limits_.max_stored_frames}});
+                         std::to_string(limits_.max_run_frames) + " (serve --max-run-frames): ask for fewer steps",
+                     "steps", {{"limit", "max_run_frames"}, {"requested", lane.steps}, {"allowed", limits_.max_run_frames}});
     const std::int64_t lane_bytes = lane.steps * lane.frame_bytes;
     if (lane_bytes > limits_.max_run_bytes)
       throw ApiError(413, "run_too_large",
@@ -375,7 +375,7 @@ std::shared_ptr<RunGroup> RunManager::start_group(const std::vector<Scenario>& l
       throw ApiError(503, "busy", "at most " + std::to_string(limits_.max_active_runs) +
                                       " runs may be active at once; stop or wait for some", "");
   }
-  RunServices services{store_, writer_, limits_.max_stored_frames, limits_.max_run_bytes, &budget_,
+  RunServices services{store_, writer_, limits_.max_run_frames, limits_.max_run_bytes, &budget_,
                        [this](const std::vector<LaneEstimate>& estimates) { return admit(estimates); }};
   auto group = std::make_shared<RunGroup>(services, lanes, options);
   group->start();  // registered only once its thread runs

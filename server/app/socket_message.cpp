@@ -1,6 +1,6 @@
 #include "app/socket_message.hpp"
 
-#include "app/api.hpp"
+#include "routes/api.hpp"
 #include "app/controller.hpp"
 
 namespace rrlab::server {

@@ -5,7 +5,7 @@
 #include <map>
 #include <vector>
 
-#include "app/api.hpp"
+#include "routes/api.hpp"
 #include "app/run_manager.hpp"
 #include "app/thread_priority.hpp"
 #include "scenario/scenario.hpp"

@@ -3,7 +3,7 @@
 // token until that window ends. The right token always passes, so that a
 // guesser sharing the holder's address (every local process shares
 // 127.0.0.1) cannot lock the holder out; what makes guessing infeasible is
-// the token's length (at least 16 characters: README, Access). Requests
+// the token's length (at least 16 characters: docs/api.md, Access). Requests
 // without a token are not affected. Plain types, no Beast: the rule is tested
 // with given times.
 #pragma once

@@ -465,21 +465,16 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
     write(response);
   }
 
-  // /ws/runs/{id} and /ws/replays/{id}
+  // A WebSocket route of the router (websocket_routes: /ws/runs/{id}, /ws/replays/{id}).
   // `may_steer` false: a tokenless watcher (--public-read); `client`: its name (app/controller.hpp).
   void upgrade(http::request<http::string_body>&& request, const std::string& path, bool may_steer,
                const std::string& client) {
     std::shared_ptr<FrameSource> source;
-    const auto id_after = [&](std::string_view prefix) {
-      return path.rfind(prefix, 0) == 0 ? parse_id(std::string_view(path).substr(prefix.size())) : std::nullopt;
-    };
-    int lane = 0;
-    if (const auto run = id_after("/ws/runs/")) {
-      if (auto group = state_->runs.group_of(*run, lane)) source = group->source(lane);
-    } else if (const auto replay = id_after("/ws/replays/")) {
-      source = state_->runs.replay(*replay);
+    try {
+      source = websocket_source(state_->runs, path);  // routes/router.cpp
+    } catch (const ApiError& e) {
+      return send_api(error_response(e));
     }
-    if (!source) return send_error(404, "no live run or replay at " + path);
     std::string refused;
     PeerLimits::Hold socket_hold = state_->peers.websocket(address_, client, may_steer, refused);
     if (!socket_hold) return send_error(503, refused);

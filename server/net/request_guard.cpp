@@ -187,7 +187,7 @@ std::string token_problem(const std::string& token) {
   if (token.size() > 512) return "the token is longer than 512 characters";
   for (char c : token)
     if (c < 0x21 || c > 0x7e) return "the token may hold visible ASCII characters only (no spaces)";
-  // the token's length is what makes guessing infeasible (README, Access): 16 hex digits are 64 bits
+  // the token's length is what makes guessing infeasible (docs/api.md, Access): 16 hex digits are 64 bits
   if (token.size() < 16) return "the token is shorter than 16 characters (make one with: openssl rand -hex 24)";
   return "";
 }

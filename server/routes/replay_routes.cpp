@@ -5,7 +5,7 @@
 #include <thread>
 
 #include "app/replay_player.hpp"
-#include "app/resimulation.hpp"
+#include "storage/resimulation.hpp"
 #include "routes/routes.hpp"
 #include "scenario/json_reader.hpp"
 #include "storage/frame_codec.hpp"
@@ -24,7 +24,7 @@ ApiResponse resimulate_run(RouteContext& c, const storage::RunRecord& run) {
   std::int64_t reserved = 0;
   try {
     const std::int64_t frame_bytes = run.frames > 0 ? (run.frame_bytes + run.frames - 1) / run.frames : 0;
-    reserved = runs.admit_work({estimate_lane(scenario_of_run(run), run.frames, frame_bytes)}, true);
+    reserved = runs.admit_work({estimate_lane(storage::scenario_of_run(run), run.frames, frame_bytes)}, true);
   } catch (const ApiError&) {
     throw;
   } catch (...) {
@@ -53,8 +53,8 @@ ApiResponse resimulate_run(RouteContext& c, const storage::RunRecord& run) {
         fresh.source_run = run.id;
         id = runs.store().create_run(fresh);
         for (const storage::StoredEvent& e : runs.store().events(run.id)) runs.store().add_event(id, e);
-        const ResimulationResult result =
-            resimulate(runs.store(), run, [&](std::int64_t seq, const Frame& f, const std::string& packed) {
+        const storage::ResimulationResult result =
+            storage::resimulate(runs.store(), run, [&](std::int64_t seq, const Frame& f, const std::string& packed) {
               if (runs.stopping()) throw std::runtime_error("the server is stopping");
               runs.writer().push(id, storage::stored_frame(seq, f, packed));
               // a pushed frame counts as stored: its share of the reservation goes (as a run's does)
@@ -66,7 +66,7 @@ ApiResponse resimulate_run(RouteContext& c, const storage::RunRecord& run) {
         json summary = summary_to_json(result.summary);
         summary["run"] = id;
         json verification = {{"run", id}, {"source_run", run.id}};
-        verification.update(verification_json(result));
+        verification.update(storage::verification_json(result));
         summary["verification"] = verification;
         runs.store().finish_run(id, "completed", summary.dump());
         runs.done_reading(run.id);  // before the answer: its client may delete the run at once

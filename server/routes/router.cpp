@@ -1,6 +1,7 @@
 #include <string_view>
 
 #include "routes/routes.hpp"
+#include "app/replay_player.hpp"
 #include "storage/run_store.hpp"
 
 namespace rrlab::server {
@@ -49,6 +50,24 @@ constexpr Route kRoutes[] = {
     {"POST", "/api/sweeps/{}/control", post_sweep_control},
 };
 
+// GET only (an upgrade); the source a matched path names, or null.
+struct SocketRoute {
+  const char* pattern;
+  std::shared_ptr<FrameSource> (*source)(RunManager&, std::int64_t id);
+};
+
+std::shared_ptr<FrameSource> live_run_source(RunManager& runs, std::int64_t id) {
+  int lane = 0;
+  const auto group = runs.group_of(id, lane);
+  return group ? group->source(lane) : nullptr;
+}
+std::shared_ptr<FrameSource> replay_source(RunManager& runs, std::int64_t id) { return runs.replay(id); }
+
+constexpr SocketRoute kSocketRoutes[] = {
+    {"/ws/runs/{}", live_run_source},
+    {"/ws/replays/{}", replay_source},
+};
+
 std::vector<std::string_view> segments(std::string_view path) {
   std::vector<std::string_view> out;
   size_t start = 1;
@@ -82,6 +101,24 @@ std::vector<RouteInfo> api_routes() {
   std::vector<RouteInfo> routes;
   for (const Route& route : kRoutes) routes.push_back({route.verb, route.pattern});
   return routes;
+}
+
+std::vector<RouteInfo> websocket_routes() {
+  std::vector<RouteInfo> routes;
+  for (const SocketRoute& route : kSocketRoutes) routes.push_back({"GET", route.pattern});
+  return routes;
+}
+
+std::shared_ptr<FrameSource> websocket_source(RunManager& runs, std::string_view path) {
+  const std::vector<std::string_view> parts = segments(path);
+  std::vector<std::string> captures;
+  for (const SocketRoute& route : kSocketRoutes) {
+    if (!match(route.pattern, parts, captures)) continue;
+    if (const auto id = parse_id(captures.at(0)))
+      if (auto source = route.source(runs, *id)) return source;
+    break;
+  }
+  throw ApiError(404, "not_found", "no live run or replay at " + std::string(path), "");
 }
 
 bool is_slow(const ApiRequest& request) {

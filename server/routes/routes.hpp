@@ -5,9 +5,11 @@
 #include <chrono>
 #include <cstdint>
 #include <string>
+#include <memory>
+#include <string_view>
 #include <vector>
 
-#include "app/api.hpp"
+#include "routes/api.hpp"
 #include "app/run_manager.hpp"
 #include "scenario/json_reader.hpp"
 #include "storage/run_store.hpp"
@@ -45,6 +47,12 @@ struct RouteInfo {
 // from the worker pool, off the I/O threads.
 bool is_slow(const ApiRequest& request);
 std::vector<RouteInfo> api_routes();
+
+// The WebSocket routes, in the same table as the REST ones: GET /ws/runs/{id}
+// streams a live run's lane, /ws/replays/{id} a replay. The frame source the
+// path names; 404 (ApiError) when it names none.
+std::shared_ptr<FrameSource> websocket_source(RunManager& runs, std::string_view path);
+std::vector<RouteInfo> websocket_routes();
 
 // openapi_routes.cpp: GET /api/openapi.json, the OpenAPI 3.1 document of every
 // route (server/openapi.json with docs/scenario.schema.json as its Scenario

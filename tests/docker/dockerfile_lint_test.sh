@@ -46,7 +46,7 @@ grep -q -- '--db", "/data/' <<<"$entry" && pass "database on the volume" || fail
 for flag in --allow-anonymous --token --public-read; do
   grep -q -- "$flag" <<<"$(grep -iE '^(ENTRYPOINT|CMD) ' <<<"$runtime")" && fail "the start command bakes in $flag"
 done
-for what in build/server/rrlab web scenarios; do
+for what in build/cli/rrlab web scenarios; do
   grep -qE "^COPY --from=build /src/$what " <<<"$runtime" && pass "copies $what" || fail "the runtime stage does not copy $what"
 done
 

@@ -16,7 +16,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "app/api.hpp"
+#include "routes/api.hpp"
 
 namespace rrlab::fuzz {
 

@@ -1,4 +1,4 @@
-// The run-record loader of `rrlab run RECORD.json` (server/cli_run.cpp): a
+// The run-record loader of `rrlab run RECORD.json` (cli/run.cpp): a
 // record (or a plain scenario), its simulator, and every recorded event applied.
 #include <limits>
 

@@ -4,7 +4,7 @@
 // REST requests (scripts) are no party to it.
 #include "app/controller.hpp"
 
-#include "app/api.hpp"
+#include "routes/api.hpp"
 #include "server_fixture.hpp"
 
 namespace rrlab::testing {

@@ -2,6 +2,8 @@
 // show in later frames, in the run's parameters and in its events.
 #include "server_fixture.hpp"
 
+#include "routes/routes.hpp"
+
 namespace rrlab::testing {
 namespace {
 
@@ -85,6 +87,19 @@ TEST_F(LiveRun, SnapshotThenFramesAndInputsTakeEffect) {
 TEST_F(LiveRun, UnknownRunsHaveNoSocket) {
   EXPECT_THROW(WsClient(port(), "/ws/runs/987654"), std::runtime_error);
   EXPECT_THROW(WsClient(port(), "/ws/runs/x"), std::runtime_error);
+  EXPECT_THROW(WsClient(port(), "/ws/replays/987654"), std::runtime_error);
+  EXPECT_THROW(WsClient(port(), "/ws/runs/1/more"), std::runtime_error);
+  EXPECT_THROW(WsClient(port(), "/ws/elsewhere/1"), std::runtime_error);
+}
+
+// The router's table holds the WebSocket routes next to the REST ones.
+TEST(RouteTable, HoldsTheWebSocketRoutes) {
+  std::vector<std::string> patterns;
+  for (const server::RouteInfo& route : server::websocket_routes()) {
+    EXPECT_EQ(route.verb, "GET");
+    patterns.push_back(route.pattern);
+  }
+  EXPECT_EQ(patterns, (std::vector<std::string>{"/ws/runs/{}", "/ws/replays/{}"}));
 }
 
 }  // namespace

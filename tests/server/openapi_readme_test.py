@@ -1,12 +1,13 @@
-"""The README's REST examples against the OpenAPI document a live server
-serves (ctest Python.openapi_readme): every curl line's verb and path is a
-documented operation, and every JSON body it sends is valid against that
+"""The REST examples of docs/api.md against the OpenAPI document a live
+server serves (ctest Python.openapi_readme): every curl line's verb and path
+is a documented operation, and every JSON body it sends is valid against that
 operation's request schema (JSON Schema 2020-12, python3-jsonschema); and
 the server's real answers to every operation, successes and errors, are valid
-against the documented answer schemas. The
-examples are the fenced block between <!-- api-examples --> and
-<!-- /api-examples --> in README.md (tests/server/readme_examples_test.cpp runs
-the same block against a server).
+against the documented answer schemas. The examples are the fenced block
+between <!-- api-examples --> and <!-- /api-examples --> in docs/api.md
+(tests/server/readme_examples_test.cpp runs the same block against a server).
+The README shows a few of them: every line of its curl block must be a line
+of that block, so that they are validated and run with it.
 
 Usage: openapi_readme_test.py RRLAB_BINARY"""
 
@@ -29,12 +30,28 @@ import rrlab_serve  # noqa: E402
 BINARY = None
 
 
-def readme_examples():
-    with open(os.path.join(SOURCE_DIR, "README.md"), encoding="utf-8") as f:
+def example_block():
+    """The lines of the fenced block between the api-examples markers of docs/api.md."""
+    with open(os.path.join(SOURCE_DIR, "docs", "api.md"), encoding="utf-8") as f:
         text = f.read()
     block = text[text.index("<!-- api-examples -->"):text.index("<!-- /api-examples -->")]
     block = block[block.index("```sh") + 5:block.rindex("```")]
-    return [line for line in block.splitlines() if "curl " in line]
+    return block.splitlines()
+
+
+def api_examples():
+    return [line for line in example_block() if "curl " in line]
+
+
+def readme_curl_block():
+    """The code lines (not comments, not blank) of the README's fenced sh block that calls curl."""
+    with open(os.path.join(SOURCE_DIR, "README.md"), encoding="utf-8") as f:
+        text = f.read()
+    blocks = re.findall(r"^```sh\n(.*?)^```", text, re.S | re.M)
+    curl_blocks = [b for b in blocks if "curl " in b]
+    if len(curl_blocks) != 1:
+        raise AssertionError(f"README.md: expected one sh block with curl lines, found {len(curl_blocks)}")
+    return [line for line in curl_blocks[0].splitlines() if line.strip() and not line.lstrip().startswith("#")]
 
 
 def parse_curls(line):
@@ -95,7 +112,7 @@ def answer_validator(document, template, verb, status):
     return jsonschema.Draft202012Validator(schema)
 
 
-class ReadmeAgainstOpenApi(unittest.TestCase):
+class ExamplesAgainstOpenApi(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         cls.server = rrlab_serve.Server(BINARY)
@@ -115,8 +132,17 @@ class ReadmeAgainstOpenApi(unittest.TestCase):
                 jsonschema.Draft202012Validator.check_schema(schema)
         self.assertGreater(len(schemas), 40)  # 44: the API's and the scenario format's
 
-    def test_every_readme_curl_is_a_documented_operation_with_a_valid_body(self):
-        lines = readme_examples()
+    def test_readme_curl_lines_are_lines_of_the_examples(self):
+        block = set(example_block())
+        lines = readme_curl_block()
+        self.assertGreaterEqual(sum("curl " in line for line in lines), 5)  # 5 when written
+        for line in lines:
+            with self.subTest(line=line):
+                self.assertIn(line, block, "README.md: a curl block line that is not a line of docs/api.md's "
+                                           "api-examples block (copy it from there, as written)")
+
+    def test_every_example_curl_is_a_documented_operation_with_a_valid_body(self):
+        lines = api_examples()
         bodies = 0
         calls = [call for line in lines for call in parse_curls(line)]
         self.assertGreaterEqual(len(calls), 20)  # 22 when written

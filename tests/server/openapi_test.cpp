@@ -1,8 +1,8 @@
 // GET /api/openapi.json against the router: every route the router knows is
 // documented and every documented route is routed (the table from the router
 // itself, api_routes()); every $ref resolves; the served document is the
-// compiled one. (tests/server/openapi_readme_test.py validates the README's
-// curl bodies against its schemas.)
+// compiled one. (tests/server/openapi_readme_test.py validates the curl bodies
+// of docs/api.md's examples against its schemas.)
 #include <regex>
 #include <set>
 

@@ -1,4 +1,6 @@
-// The README's REST examples run as written against a fresh server.
+// The REST examples of docs/api.md (the fenced block between <!-- api-examples -->
+// and <!-- /api-examples -->; the README's curl lines are taken from it) run as
+// written against a fresh server.
 #include <fstream>
 #include <sstream>
 
@@ -7,18 +9,18 @@
 namespace rrlab::testing {
 namespace {
 
-class ReadmeExamples : public ServerTest {};
+class ApiDocExamples : public ServerTest {};
 
-TEST_F(ReadmeExamples, CurlBlockRunsAsWritten) {
-  std::ifstream in(std::string(RRLAB_SOURCE_DIR) + "/README.md");
+TEST_F(ApiDocExamples, CurlBlockRunsAsWritten) {
+  std::ifstream in(std::string(RRLAB_SOURCE_DIR) + "/docs/api.md");
   std::stringstream text;
   text << in.rdbuf();
-  const std::string readme = text.str();
-  const auto start = readme.find("<!-- api-examples -->");
-  const auto end = readme.find("<!-- /api-examples -->");
+  const std::string doc = text.str();
+  const auto start = doc.find("<!-- api-examples -->");
+  const auto end = doc.find("<!-- /api-examples -->");
   ASSERT_NE(start, std::string::npos);
   ASSERT_NE(end, std::string::npos);
-  std::string block = readme.substr(start, end - start);
+  std::string block = doc.substr(start, end - start);
   block = block.substr(block.find("```sh") + 5);
   block = block.substr(0, block.rfind("```"));
   const std::string script = temp_dir() + "/examples.sh";

@@ -14,7 +14,7 @@ import { chromium } from 'playwright-core';
 
 const here = dirname(fileURLToPath(import.meta.url));
 export const sourceDir = resolve(here, '../..');
-const binary = process.env.RRLAB_BINARY || join(sourceDir, 'build/server/rrlab');
+const binary = process.env.RRLAB_BINARY || join(sourceDir, 'build/cli/rrlab');
 export const screenshotDir = process.env.RRLAB_SCREENSHOTS || '/tmp/rrlab-screens';
 
 // `token`: serve with --token and send it on the helpers' requests; `args`: more serve options.

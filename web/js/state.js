@@ -38,10 +38,13 @@ export const app = {
 };
 
 // ?run=ID[&frame=K] | ?compare=ID,ID[,..][&frame=K] | ?scenario=NAME[&method=M]
-export function readUrl() {
-  const q = new URLSearchParams(location.search);
-  const ids = (name) => (q.get(name) || '').split(',').map((s) => Number(s)).filter((n) => Number.isInteger(n) && n > 0);
-  const frame = q.has('frame') ? Number(q.get('frame')) : null;
+// The query string (with or without its "?") as {run, compare, scenario, method, frame}.
+export function parseUrlState(search) {
+  const q = new URLSearchParams(search);
+  // decimal digits only: '', ' 3', '0x10' and '1e2' are not ids or frames
+  const integer = (s) => (/^\d+$/.test(s) ? Number(s) : NaN);
+  const ids = (name) => (q.get(name) || '').split(',').map(integer).filter((n) => Number.isInteger(n) && n > 0);
+  const frame = q.has('frame') ? integer(q.get('frame')) : null;
   return {
     run: ids('run')[0] || null,
     compare: ids('compare'),
@@ -51,11 +54,21 @@ export function readUrl() {
   };
 }
 
-// Replaces the address (no history entry per frame): null values are dropped.
-export function writeUrl(params) {
+// The query string for `params`, "?" included ('' when empty): null,
+// undefined and '' values are dropped.
+export function formatUrlState(params) {
   const q = new URLSearchParams();
   for (const [k, v] of Object.entries(params)) if (v !== null && v !== undefined && v !== '') q.set(k, String(v));
   const search = q.toString();
-  const url = `${location.pathname}${search ? `?${search}` : ''}`;
+  return search ? `?${search}` : '';
+}
+
+export function readUrl() {
+  return parseUrlState(location.search);
+}
+
+// Replaces the address (no history entry per frame).
+export function writeUrl(params) {
+  const url = `${location.pathname}${formatUrlState(params)}`;
   if (url !== location.pathname + location.search) history.replaceState(null, '', url);
 }

@@ -1,6 +1,7 @@
 """clients/python/rrlab_client.py against a real `rrlab serve` (ctest
 Python.rrlab_client): batch run and frames, a live run steered while it
-streams, compare, a small sweep, errors, and the two examples.
+streams, compare, a small sweep, errors, the two examples, and the Python
+block of docs/api.md as written (the README's Python lines are lines of it).
 
 Usage: rrlab_client_test.py RRLAB_BINARY. websockets (Debian
 python3-websockets) is required: its absence fails the test."""
@@ -145,17 +146,36 @@ class ClientTest(unittest.TestCase):
         with self.assertRaises(ValueError):
             Client("127.0.0.1:8080")
 
-    def test_readme_snippet_runs(self):
-        # the README's Python block (REST API, "Python client"), as written, on this server
-        with open(os.path.join(SOURCE_DIR, "README.md"), encoding="utf-8") as f:
-            readme = f.read()
-        start = readme.index("```python", readme.index("**Python client.**")) + len("```python")
-        code = readme[start:readme.index("```", start)].replace("http://127.0.0.1:8080", self.server.url)
-        code += "\nprint(len(table), sorted(report))\n"
+    @staticmethod
+    def python_block(path, after):
+        """The first ```python block of the file at `path` (from the source dir) after the text `after`."""
+        with open(os.path.join(SOURCE_DIR, path), encoding="utf-8") as f:
+            text = f.read()
+        start = text.index("```python", text.index(after)) + len("```python")
+        return text[start:text.index("```", start)]
+
+    def test_docs_snippet_runs(self):
+        # the Python block of docs/api.md (Clients, "Python client"), as written, on this server
+        code = self.python_block(os.path.join("docs", "api.md"), "**Python client.**")
+        code = code.replace("http://127.0.0.1:8080", self.server.url) + "\nprint(len(table), sorted(report))\n"
         done = subprocess.run([sys.executable, "-c", code], cwd=SOURCE_DIR, capture_output=True, text=True,
                               timeout=300)
         self.assertEqual(done.returncode, 0, done.stdout + done.stderr)
         self.assertIn("3 ['groups', 'pairs', 'ranking', 'sweeps']", done.stdout)
+
+    def test_readme_lines_are_the_docs_snippets_first_lines(self):
+        # the README's Python lines are not run on their own: they are lines of the docs/api.md block
+        # above, in its order, so that test_docs_snippet_runs runs them
+        docs = [line for line in self.python_block(os.path.join("docs", "api.md"), "**Python client.**").splitlines()
+                if line.strip()]
+        readme = [line for line in self.python_block("README.md", "## ").splitlines() if line.strip()]
+        self.assertGreaterEqual(len(readme), 5)  # 5 when written
+        positions = []
+        for line in readme:
+            self.assertIn(line, docs, "README.md: a Python line that is not a line of docs/api.md's Python client "
+                                      "block (copy it from there, as written)")
+            positions.append(docs.index(line))
+        self.assertEqual(positions, sorted(positions), "README.md: the Python lines are not in docs/api.md's order")
 
     def run_example(self, name, *args, env=None):
         command = [sys.executable, os.path.join(SOURCE_DIR, "clients", "python", "examples", name),

@@ -242,7 +242,23 @@ TEST(CcpVoronoiEx1, LagrangianStartsAgainstRk4) {
               first_jump(climb), first_jump(theta0), first_jump(rk4), climb_worst, climb_mean,
               int(climb.summary.collided), climb.summary.min_distance, theta0_worst, theta0_mean,
               int(theta0.summary.collided), theta0.summary.min_distance);
-  
+  // What rrlab gets (the reproduction table's row): climb jumps to a DI
+  // optimum on the first step (108 deg), theta0 takes the nearest stationary
+  // point (9.8 deg), RK4 moves 5.3 deg.
+  EXPECT_NEAR(first_jump(climb), 108.0, 5.0);
+  EXPECT_NEAR(first_jump(theta0), 9.8, 2.0);
+  EXPECT_NEAR(first_jump(rk4), 5.3, 1.0);
+  // The gap to the paper, asserted so that a change shows: the position method
+  // sits on a stationary point of DI at every step and follows neither start
+  // to RK4's configurations (mean 104 and 110 deg apart).
+  EXPECT_GT(climb_mean, 60.0);
+  EXPECT_GT(theta0_mean, 60.0);
+  EXPECT_GT(climb_worst, 90.0);
+  // From climb the arm stays clear (0.0236 m); from theta0 it collides (-0.324 m).
+  EXPECT_FALSE(climb.summary.collided);
+  EXPECT_NEAR(climb.summary.min_distance, 0.0236, 0.01);
+  EXPECT_TRUE(theta0.summary.collided);
+  EXPECT_LT(theta0.summary.min_distance, -0.2);
 }
 
 TEST(CcpVoronoiEx1, LagrangianPositionMethodTracks) {

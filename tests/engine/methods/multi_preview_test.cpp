@@ -335,7 +335,7 @@ TEST(MultiPreviewPaper, SinglePreviewCollidesNearThirtySecondsThreePreviewsDoNot
 // The equal-horizon control (scenario 34): one preview at t̃ = 8.75 s, the
 // k-weighted mean horizon of scenario 31's three previews (0.3·5 + 0.65·10 +
 // 0.05·15 s), also avoids the object. So scenario 30 against 31 does not
-// isolate several previews from a shorter horizon (sweeps/zhang-sensitivity.json).
+// isolate several previews from a shorter horizon (benchmarks/zhang-sensitivity.json).
 TEST(MultiPreviewPaper, SinglePreviewAtTheMultiPreviewMeanHorizonAvoidsToo) {
   const PaperRun control = run_paper("34_zhang_equal_horizon.json");
   EXPECT_FALSE(control.result.summary.collided);

@@ -1,7 +1,7 @@
 #include <filesystem>
 #include <iostream>
 
-#include "app/resimulation.hpp"
+#include "storage/resimulation.hpp"
 #include "cli.hpp"
 #include "storage/run_store.hpp"
 
@@ -23,9 +23,9 @@ int replay(const ReplayOptions& options) {
       std::cerr << "rrlab: error: no run " << options.run_id << " in " << options.db << '\n';
       return 2;
     }
-    const server::ResimulationResult result = server::resimulate(store, *run, {});
+    const storage::ResimulationResult result = storage::resimulate(store, *run, {});
     nlohmann::json out = {{"run", run->id}, {"frames_stored", run->frames}};
-    out.update(server::verification_json(result));
+    out.update(storage::verification_json(result));
     out["summary"] = summary_to_json(result.summary);
     std::cout << out.dump() << '\n';
     if (!result.compared()) {

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "storage/quotas.hpp"
+
 namespace rrlab::cli {
 
 struct RunOptions {
@@ -29,11 +31,7 @@ struct ServeOptions {
   std::size_t export_memory = 64 << 20;  // bytes all streamed exports may hold at once (128 KiB each)
   int connections_per_address = 256, max_websockets = 1024, websockets_per_address = 128, websockets_per_client = 32;
   // quotas (server/app/run_manager.hpp ServerLimits has the defaults' reasons)
-  long max_run_frames = 1'000'000;
-  std::int64_t max_run_bytes = 256ll << 20;
-  std::int64_t max_total_bytes = 8ll << 30;
-  double max_run_cost = 2e10;
-  std::int64_t max_scenarios = 1000;
+  Quotas quotas;  // --max-run-frames, --max-run-bytes, --max-total-bytes, --max-run-cost, --max-scenarios
   std::int64_t test_db_max_pages = 0;  // tests only: PRAGMA max_page_count on the write connection (0: none)
   bool test_db_read_only = false;       // tests only: PRAGMA query_only on the write connection
   int test_build_delay_ms = 0;          // tests only: each scenario build waits this long first

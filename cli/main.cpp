@@ -3,6 +3,8 @@
 
 #include "cli.hpp"
 
+// Stays whole (over 100 lines): it is the command line's option table, one
+// subcommand after the other, so that this file and `rrlab --help` read alike.
 int main(int argc, char** argv) {
   CLI::App app{"rrlab: redundancy-resolution lab"};
   app.require_subcommand(1);
@@ -40,20 +42,20 @@ int main(int argc, char** argv) {
   serve_cmd->add_option("--websockets-per-client", serve.websockets_per_client,
                         "WebSocket clients of one client name (default 32)")
       ->check(CLI::Range(1, 65536));
-  serve_cmd->add_option("--max-run-frames", serve.max_run_frames,
+  serve_cmd->add_option("--max-run-frames", serve.quotas.max_run_frames,
                         "frames one run may store (default 1000000; a request for more steps is 413)")
       ->check(CLI::Range(1L, 100'000'000L));
-  serve_cmd->add_option("--max-run-bytes", serve.max_run_bytes,
+  serve_cmd->add_option("--max-run-bytes", serve.quotas.max_run_bytes,
                         "bytes of frames one run may store (default 268435456 = 256 MiB; beyond: 413)")
       ->check(CLI::Range(std::int64_t(1), std::int64_t(1) << 50));
-  serve_cmd->add_option("--max-total-bytes", serve.max_total_bytes,
+  serve_cmd->add_option("--max-total-bytes", serve.quotas.max_total_bytes,
                         "bytes of frames all runs in the database may hold (default 8589934592 = 8 GiB; beyond: 507)")
       ->check(CLI::Range(std::int64_t(1), std::int64_t(1) << 60));
-  serve_cmd->add_option("--max-run-cost", serve.max_run_cost,
+  serve_cmd->add_option("--max-run-cost", serve.quotas.max_run_cost,
                         "a request's cost estimate, DOF x (obstacles + 1) x steps summed over its runs (default 2e10, "
                         "about ten minutes of a core; beyond: 413)")
       ->check(CLI::Range(1.0, 1e18));
-  serve_cmd->add_option("--max-scenarios", serve.max_scenarios,
+  serve_cmd->add_option("--max-scenarios", serve.quotas.max_scenarios,
                         "scenarios stored over REST (default 1000; beyond: 507)")
       ->check(CLI::Range(std::int64_t(0), std::int64_t(1'000'000)));
   serve_cmd->add_option("--test-db-max-pages", serve.test_db_max_pages,

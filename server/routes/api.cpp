@@ -1,4 +1,4 @@
-#include "app/api.hpp"
+#include "routes/api.hpp"
 
 #include "methods/method.hpp"
 #include "scenario/scenario.hpp"

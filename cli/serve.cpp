@@ -38,11 +38,7 @@ int serve(const ServeOptions& options) {
     storage::FrameWriter writer(store);
     ServerLimits limits;
     limits.default_display_hz = options.display_hz;
-    limits.max_stored_frames = options.max_run_frames;
-    limits.max_run_bytes = options.max_run_bytes;
-    limits.max_total_bytes = options.max_total_bytes;
-    limits.max_run_cost = options.max_run_cost;
-    limits.max_scenarios = options.max_scenarios;
+    static_cast<Quotas&>(limits) = options.quotas;
     RunManager runs(store, writer, find_dir(options.scenarios_dir, "scenarios"), limits);
 
     NetLimits net_limits;

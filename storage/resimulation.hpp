@@ -14,13 +14,13 @@
 #include "sim/simulator.hpp"
 #include "storage/run_store.hpp"
 
-namespace rrlab::server {
+namespace rrlab::storage {
 
 // The scenario a stored run started from (its method and parameters included).
-Scenario scenario_of_run(const storage::RunRecord& run);
+Scenario scenario_of_run(const RunRecord& run);
 // The stored-run description of a simulator about to run `scenario` (the
 // inverse of scenario_of_run: its method and parameters as they start).
-storage::NewRun new_run_of(const Scenario& scenario, const Simulator& sim, const std::string& mode);
+NewRun new_run_of(const Scenario& scenario, const Simulator& sim, const std::string& mode);
 
 struct ResimulationResult {
   std::int64_t frames_compared = 0;
@@ -41,7 +41,7 @@ constexpr const char* kNothingCompared = "the run stored no frames: nothing to c
 nlohmann::json verification_json(const ResimulationResult& result);
 
 // on_frame (may be empty) sees each re-simulated frame with its seq and packed blob.
-ResimulationResult resimulate(storage::RunStore& store, const storage::RunRecord& run,
+ResimulationResult resimulate(RunStore& store, const RunRecord& run,
                               const std::function<void(std::int64_t, const Frame&, const std::string&)>& on_frame);
 
-}  // namespace rrlab::server
+}  // namespace rrlab::storage

@@ -1,4 +1,4 @@
-#include "app/resimulation.hpp"
+#include "storage/resimulation.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -9,11 +9,11 @@
 #include "storage/frame_codec.hpp"
 #include "util/nesting_depth.hpp"
 
-namespace rrlab::server {
+namespace rrlab::storage {
 
 using nlohmann::json;
 
-Scenario scenario_of_run(const storage::RunRecord& run) {
+Scenario scenario_of_run(const RunRecord& run) {
   Scenario scenario = parse_scenario_text(run.scenario_json);
   scenario.method.name = run.method;
   scenario.method.params.clear();
@@ -23,8 +23,8 @@ Scenario scenario_of_run(const storage::RunRecord& run) {
   return scenario;
 }
 
-storage::NewRun new_run_of(const Scenario& scenario, const Simulator& sim, const std::string& mode) {
-  storage::NewRun run;
+NewRun new_run_of(const Scenario& scenario, const Simulator& sim, const std::string& mode) {
+  NewRun run;
   run.scenario_name = scenario.name;
   run.scenario_json = scenario.json.dump();
   run.method = sim.method_name();
@@ -41,7 +41,7 @@ namespace {
 // Names the first field where two packed frames differ.
 std::string describe_difference(const std::string& stored, const std::string& fresh) {
   try {
-    const Frame a = storage::unpack_frame(stored), b = storage::unpack_frame(fresh);
+    const Frame a = unpack_frame(stored), b = unpack_frame(fresh);
     if (a.step != b.step) return "step " + std::to_string(a.step) + " vs " + std::to_string(b.step);
     if (a.q.size() != b.q.size()) return "dof";
     for (Eigen::Index i = 0; i < a.q.size(); ++i)
@@ -66,12 +66,12 @@ json verification_json(const ResimulationResult& result) {
   return out;
 }
 
-ResimulationResult resimulate(storage::RunStore& store, const storage::RunRecord& run,
+ResimulationResult resimulate(RunStore& store, const RunRecord& run,
                               const std::function<void(std::int64_t, const Frame&, const std::string&)>& on_frame) {
   Simulator sim(scenario_of_run(run));
   sim.set_total_steps(ScenarioLimits::max_steps * 16);  // resets restart the step count; seq bounds the loop
   std::vector<RecordedEvent> events;
-  for (const storage::StoredEvent& e : store.events(run.id))
+  for (const StoredEvent& e : store.events(run.id))
     events.push_back({long(e.seq), e.kind, parse_json(e.payload_json)});
   EventReplayer replayer(events);
   ResimulationResult result;
@@ -101,4 +101,4 @@ ResimulationResult resimulate(storage::RunStore& store, const storage::RunRecord
   return result;
 }
 
-}  // namespace rrlab::server
+}  // namespace rrlab::storage

@@ -5,7 +5,7 @@
 #include <memory>
 #include <sstream>
 
-#include "app/resimulation.hpp"
+#include "storage/resimulation.hpp"
 #include "cli.hpp"
 #include "csv_recorder.hpp"
 #include "scenario/scenario.hpp"
@@ -84,7 +84,7 @@ int run(const RunOptions& options) {
     if (options.db) {
       store = std::make_unique<storage::RunStore>(*options.db);
       writer = std::make_unique<storage::FrameWriter>(*store);
-      run_id = store->create_run(server::new_run_of(scenario, sim, "batch"));
+      run_id = store->create_run(storage::new_run_of(scenario, sim, "batch"));
       for (const RecordedEvent& e : input.events)
         store->add_event(run_id, {e.seq, 0, e.kind, e.payload.dump()});
     }

@@ -1,0 +1,27 @@
+// The quota defaults, in one place: `rrlab serve` takes each as an option
+// (cli/), the run manager and run groups enforce them (server/app/), sweeps
+// store no more frames per run than a server would (sweep/). A request beyond
+// a per-run quota is 413 "run_too_large", beyond a total 507 "storage_quota"
+// (docs/api.md, "Quotas").
+#pragma once
+
+#include <cstdint>
+
+namespace rrlab {
+
+struct Quotas {
+  int max_active_runs = 256;       // unfinished runs at once (503 beyond)
+  int max_kept_finished = 64;      // finished groups kept in memory for their WebSocket clients
+  int max_replays = 32;            // at once; beyond, the oldest unwatched one ends (503 if every one is watched)
+  int max_replays_per_client = 8;  // per client name, or per address for requests without one
+  long max_run_frames = 1'000'000;           // --max-run-frames: frames one run may store
+  std::int64_t max_run_bytes = 256ll << 20;  // --max-run-bytes: frame bytes one run may store
+  std::int64_t max_total_bytes = 8ll << 30;  // --max-total-bytes: frame bytes of every run in the database
+  // --max-run-cost: DOF x (obstacles + 1) x steps x the method's factor,
+  // summed over a request's runs. 2e10 is about ten minutes of one core (a
+  // 64-joint, 256-obstacle, 1e7-step run is 1.6e11, about 80 minutes).
+  double max_run_cost = 2e10;
+  std::int64_t max_scenarios = 1000;  // --max-scenarios: scenarios stored over REST
+};
+
+}  // namespace rrlab
