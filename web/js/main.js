@@ -52,7 +52,7 @@ plots.onSeek = (t) => replayBar.seekTime(t);
 const joystick = new Joystick($('joystick'), {
   send: (command) => {
     if (!session || session.kind !== 'live') return undefined;
-    return api('POST', `/api/runs/${session.controlRun}/joystick`, command);
+    return session.input('joystick', command);
   },
 });
 const editor = new ScenarioEditor($('editor-host'), {
@@ -186,7 +186,7 @@ $('start-batch').onclick = () => startBatch().catch(report);
 for (const button of document.querySelectorAll('[data-action]')) {
   button.onclick = () => {
     if (!session || session.kind !== 'live') return;
-    api('POST', `/api/runs/${session.controlRun}/control`, { action: button.dataset.action }).catch(report);
+    session.input('control', { action: button.dataset.action }).catch(report);
   };
 }
 
@@ -208,7 +208,7 @@ function showControl(controller) {
 }
 function controlAction(action, done) {
   if (!session || session.kind !== 'live') return;
-  api('POST', `/api/runs/${session.controlRun}/control`, { action })
+  session.input('control', { action })
     .then((state) => { showControl(state.controller || 'none'); done(); }, report);
 }
 $('take-control').onclick = () => controlAction('take', () => app.info('You control this run now.'));

@@ -1,7 +1,6 @@
 // The parameter panel of the focused lane: a slider (or a select for an
 // enumeration) per parameter spec, its help as a tooltip, a reset to the
 // default, and the method switch. Changes go to the lane's own run.
-import { api } from './api.js';
 import { app } from './state.js';
 import { escapeHtml as escape } from './dom.js';
 
@@ -22,7 +21,7 @@ function sliderStep(spec) {
   return spec.step && Number.isInteger(Math.round(((spec.max - spec.min) / spec.step) * 1e9) / 1e9) ? spec.step : 'any';
 }
 
-function paramControl(spec, value, runId) {
+function paramControl(spec, value, setParam) {
   const div = document.createElement('div');
   div.className = 'param';
   div.title = spec.help || '';
@@ -34,22 +33,19 @@ function paramControl(spec, value, runId) {
     <button type="button" class="reset" title="reset to the default (${escape(fmt(spec.default))})" aria-label="reset ${escape(spec.name)} to its default" ${changed ? '' : 'disabled'}>↺</button></div>`;
   if (spec.choices && spec.choices.length) {
     div.innerHTML = `${head}<select id="${id}">${spec.choices.map((c, i) => `<option value="${i}" ${i === value ? 'selected' : ''}>${escape(c)}</option>`).join('')}</select>`;
-    div.querySelector('select').onchange = (e) => setParam(runId, spec.name, Number(e.target.value));
+    div.querySelector('select').onchange = (e) => setParam(spec.name, Number(e.target.value));
   } else {
     div.innerHTML = `${head}<input id="${id}" type="range" min="${spec.min}" max="${spec.max}" step="${sliderStep(spec)}" value="${value}">`;
     const input = div.querySelector('input');
     const show = (v) => { div.querySelector('.value').textContent = `${fmt(v)} ${spec.unit || ''}`; };
     show(value);
     input.oninput = () => show(Number(input.value));
-    input.onchange = () => setParam(runId, spec.name, Number(input.value));
+    input.onchange = () => setParam(spec.name, Number(input.value));
   }
-  div.querySelector('button.reset').onclick = () => setParam(runId, spec.name, spec.default);
+  div.querySelector('button.reset').onclick = () => setParam(spec.name, spec.default);
   return div;
 }
 
-async function setParam(runId, name, value) {
-  await api('PATCH', `/api/runs/${runId}/params`, { [name]: value }).catch((e) => app.error(e));
-}
 
 // Rebuilds the panel from the focused lane's snapshot.
 export function buildParams(session) {
@@ -63,7 +59,8 @@ export function buildParams(session) {
   box.replaceChildren();
   if (!snapshot.param_specs.length) box.innerHTML = '<p class="muted">This method has no parameters.</p>';
   for (const spec of snapshot.param_specs) {
-    const control = paramControl(spec, snapshot.params[spec.name], lane.runId);
+    const setParam = (name, value) => session.input('params', { [name]: value }, lane.runId).catch((e) => app.error(e));
+    const control = paramControl(spec, snapshot.params[spec.name], setParam);
     if (!live) for (const el of control.querySelectorAll('input, select, button')) el.disabled = true;
     box.appendChild(control);
   }
@@ -99,7 +96,7 @@ export function setupMethodSwitch(getSession) {
     const session = getSession();
     if (!session || session.kind !== 'live') return;
     const name = $('switch-method').value;
-    await api('POST', `/api/runs/${session.focusLane.runId}/method`, { name }).catch((e) => app.error(e));
+    await session.input('method', { name }, session.focusLane.runId).catch((e) => app.error(e));
     session.focusLane.label = name;
   };
 }

@@ -2,7 +2,6 @@
 // most 20 times a second, and once more at release), add one by choosing a
 // shape and clicking where it goes, delete the selected one. In a compare
 // group the server applies scene edits to every lane.
-import { api } from './api.js';
 import { app, OVERLAYS } from './state.js';
 import { isTyping } from './dom.js';
 
@@ -53,7 +52,7 @@ export class SceneTools {
     const obstacle = lane.snapshot.obstacles[index];
     if (!obstacle) return;
     const id = obstacle.id;
-    api('PUT', `/api/runs/${session.controlRun}/obstacles/${encodeURIComponent(id)}`, { position }).catch((e) => app.error(e));
+    session.input('obstacle_move', { id, position }).catch((e) => app.error(e));
   }
 
   setPlacing(shape) {
@@ -82,7 +81,7 @@ export class SceneTools {
     else if (shape === 'box') Object.assign(body, { center: point, size: [2 * size, 2 * size, 2 * size] });
     else if (shape === 'point') Object.assign(body, { position: point });
     else if (shape === 'polygon') Object.assign(body, { points: [[-size, -size], [size, -size], [size, size], [-size, size]].map(([x, y]) => [point[0] + x, point[1] + y]) });
-    await api('POST', `/api/runs/${session.controlRun}/obstacles`, body);
+    await session.input('obstacle_add', body);
   }
 
   // A new session starts with nothing selected and nothing being placed.
@@ -107,7 +106,7 @@ export class SceneTools {
     const id = lane.snapshot.obstacles[index].id;
     this.select(lane, null);
     if (lane.view) lane.view.selected = null;
-    await api('DELETE', `/api/runs/${session.controlRun}/obstacles/${encodeURIComponent(id)}`).catch((e) => app.error(e));
+    await session.input('obstacle_delete', { id }).catch((e) => app.error(e));
   }
 }
 

@@ -3,6 +3,7 @@
 // views are made when the first snapshot says what the model is (Canvas 2D
 // for planar arms, three.js for every other kind).
 import { api, ApiError, Stream } from './api.js';
+import { inputRequest } from './inputs.js';
 import { app, LANE_COLOURS, writeUrl } from './state.js';
 import { View2D } from './view2d.js';
 
@@ -43,6 +44,14 @@ export class Session {
   // Scene, joystick and reset inputs go to the group through its first run.
   get controlRun() { return this.runs[0].id; }
   get focusLane() { return this.lanes[this.focus]; }
+
+  // Sends one input (inputs.js: control, joystick, params, method,
+  // obstacle_add, obstacle_move, obstacle_delete) to run `runId`, by default
+  // the group's control run; resolves with the server's answer.
+  input(kind, payload, runId = this.controlRun) {
+    const { verb, path, body } = inputRequest(kind, runId, payload);
+    return api(verb, path, body);
+  }
 
   // Opens every lane's stream. A session closed meanwhile (the user opened
   // another) stops here and pauses any player it had asked for.
