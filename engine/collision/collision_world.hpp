@@ -1,23 +1,19 @@
-// Link–obstacle distances. The only interface to FCL: the implementation
-// (collision_world.cpp) is the one file that includes it.
+// Link–obstacle distances: every link against every obstacle, through the
+// pair table (pair_table.hpp). No FCL here: fcl_pairs.cpp and
+// mesh_distance.cpp are the only files that include it.
 #pragma once
 
 #include <Eigen/Core>
+#include <limits>
 #include <memory>
 #include <vector>
 
+#include "collision/link_obstacle_distance.hpp"
 #include "collision/scene.hpp"
 #include "kinematics/kinematics.hpp"
 #include "model/model.hpp"
 
 namespace rrlab {
-
-struct LinkObstacleDistance {
-  double distance = 0;  // signed: < 0 is penetration depth
-  Eigen::Vector3d on_link = Eigen::Vector3d::Zero();      // nearest point on the link's axis segment
-  Eigen::Vector3d on_obstacle = Eigen::Vector3d::Zero();  // nearest point on the obstacle surface
-  Eigen::Vector3d normal = Eigen::Vector3d::Zero();       // unit, obstacle -> link: moving on_link along it increases distance
-};
 
 // Every link against every obstacle, plus the overall minimum.
 struct DistanceTable {
@@ -33,6 +29,14 @@ struct DistanceTable {
   int nearest_obstacle(int link) const;
 };
 
+// Which routines fill the table (pair_table.cpp says which serves each pair).
+enum class DistanceBackend {
+  analytic,  // capsule links by exact segment routines, allocation free
+  fcl,       // capsule links by FCL's own queries (GJK distance, libccd MPR depth
+             // when penetrating; walls analytic): a slower, less exact reference
+             // for cross-checks and benchmarks. Mesh links are the same in both.
+};
+
 class CollisionWorld {
  public:
   CollisionWorld(const Model& model, const Scene& scene);
@@ -43,15 +47,15 @@ class CollisionWorld {
   // Re-read obstacle poses (cheap) and, with reshape, their geometry too
   // (after an obstacle was resized, added or removed).
   void sync(const Scene& scene, bool reshape = false);
-  // Distances of every link capsule to every obstacle at the current frames.
-  void compute(const KinematicsData& kin, DistanceTable& out);
-  // The same table from FCL's own queries (GJK distance, libccd MPR depth when
-  // penetrating; walls analytic): a slower, less exact reference for
-  // cross-checks and benchmarks. See collision_world.cpp for its limits.
-  void compute_with_fcl(const KinematicsData& kin, DistanceTable& out);
+  // Distances of every link to every obstacle at the current frames, each
+  // pair by the backend's entry in the pair table; the analytic one by default.
+  void compute(const KinematicsData& kin, DistanceTable& out, DistanceBackend backend);
+  void compute(const KinematicsData& kin, DistanceTable& out) { compute(kin, out, DistanceBackend::analytic); }
+  // The same table from FCL's own queries: compute with DistanceBackend::fcl,
+  // kept as a member for callers that take its address (bench/urdf_mesh_bench.cpp).
+  void compute_with_fcl(const KinematicsData& kin, DistanceTable& out) { compute(kin, out, DistanceBackend::fcl); }
 
  private:
-  void mesh_link(const KinematicsData& kin, int link, DistanceTable& out);  // a link with a collision mesh
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

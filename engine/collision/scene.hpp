@@ -1,4 +1,4 @@
-// Obstacles of a scenario (plain data; FCL stays inside collision_world.cpp).
+// Obstacles of a scenario (plain data; FCL stays inside fcl_pairs.cpp and mesh_distance.cpp).
 #pragma once
 
 #include <Eigen/Geometry>

@@ -9,7 +9,7 @@
 namespace rrlab {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kInfiniteDistance = std::numeric_limits<double>::infinity();
 
 Eigen::Vector3d pose_point(const Obstacle& o, double time_offset, const Eigen::Vector3d& local) {
   return o.position + time_offset * o.velocity + o.rotation * local;
@@ -84,7 +84,7 @@ NearestObstaclePoint nearest_obstacle_point(const Scene& scene, const Eigen::Vec
                                             double time_offset, bool edge_midpoints,
                                             std::vector<ControlPoint>& scratch) {
   NearestObstaclePoint best;
-  best.distance = kInf;
+  best.distance = kInfiniteDistance;
   for (size_t k = 0; k < scene.obstacles.size(); ++k) {
     const Obstacle& o = scene.obstacles[k];
     auto consider = [&](const Eigen::Vector3d& x, int candidate) {
@@ -141,7 +141,7 @@ void voronoi_control_points(const Scene& scene, double time_offset, std::vector<
         // the gap between obstacle i and wall j: nearest vertex to the plane
         const Eigen::Vector3d n = wall_normal(oj);
         const Eigen::Vector3d origin = oj.position + time_offset * oj.velocity;
-        double smallest = kInf;
+        double smallest = kInfiniteDistance;
         for (const ControlPoint& v : a) smallest = std::min(smallest, n.dot(v.point - origin) - v.radius);
         for (const ControlPoint& v : a) {
           const double h = n.dot(v.point - origin) - v.radius;
@@ -153,7 +153,7 @@ void voronoi_control_points(const Scene& scene, double time_offset, std::vector<
       if (j < i) continue;  // each obstacle pair once
       b.clear();
       obstacle_vertices(oj, 0.0, time_offset, false, b);
-      double smallest = kInf;
+      double smallest = kInfiniteDistance;
       for (const ControlPoint& u : a)
         for (const ControlPoint& v : b) smallest = std::min(smallest, gap(u, v, nullptr));
       const double limit = smallest + tie * std::max(1.0, std::abs(smallest));

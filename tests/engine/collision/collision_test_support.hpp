@@ -1,9 +1,11 @@
-// Helpers shared by the collision tests: a scene of obstacles, and the check
-// that a link-obstacle pair's points, normal and distance agree.
+// Helpers shared by the collision tests: a scene of obstacles, the check
+// that a link-obstacle pair's points, normal and distance agree, and an
+// independent segment–box distance.
 #pragma once
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <utility>
 #include <vector>
 
@@ -26,6 +28,25 @@ inline void expect_consistent(const LinkObstacleDistance& pair, double radius) {
   const Eigen::Vector3d gap = pair.on_link - pair.on_obstacle;
   EXPECT_NEAR((gap - (pair.distance + radius) * pair.normal).norm(), 0.0, 1e-9)
       << "gap " << gap.transpose() << " normal " << pair.normal.transpose();
+}
+
+// Nearest points of a segment and an axis-aligned box by golden-section search
+// over the segment (the distance is convex along it): an independent reference.
+inline double reference_box_distance(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& lo,
+                                     const Eigen::Vector3d& hi, Eigen::Vector3d& on_link) {
+  auto distance_at = [&](double t) {
+    const Eigen::Vector3d p = a + t * (b - a);
+    return (p - p.cwiseMax(lo).cwiseMin(hi)).norm();
+  };
+  double left = 0, right = 1;
+  const double ratio = (std::sqrt(5.0) - 1) / 2;
+  for (int i = 0; i < 200; ++i) {
+    const double m1 = right - ratio * (right - left), m2 = left + ratio * (right - left);
+    if (distance_at(m1) < distance_at(m2)) right = m2; else left = m1;
+  }
+  const double t = 0.5 * (left + right);
+  on_link = a + t * (b - a);
+  return distance_at(t);
 }
 
 }  // namespace rrlab::collision_testing

@@ -15,6 +15,7 @@ namespace rrlab {
 namespace {
 
 using collision_testing::expect_consistent;
+using collision_testing::reference_box_distance;
 using collision_testing::scene_of;
 using Eigen::Vector2d;
 using Eigen::Vector3d;
@@ -237,25 +238,6 @@ TEST(CollisionWorld, RotatedBoxCorner) {
   EXPECT_NEAR(pair.normal.x(), -1 / kSqrt2, kDepth);
   EXPECT_NEAR((pair.on_link - xy(corner + 0.1, 0)).norm(), 0.0, kDepth);
   expect_consistent(pair, 0);
-}
-
-// Nearest points of a segment and an axis-aligned box by golden-section search
-// over the segment (the distance is convex along it): an independent reference.
-double reference_box_distance(const Vector3d& a, const Vector3d& b, const Vector3d& lo,
-                              const Vector3d& hi, Vector3d& on_link) {
-  auto distance_at = [&](double t) {
-    const Vector3d p = a + t * (b - a);
-    return (p - p.cwiseMax(lo).cwiseMin(hi)).norm();
-  };
-  double left = 0, right = 1;
-  const double ratio = (std::sqrt(5.0) - 1) / 2;
-  for (int i = 0; i < 200; ++i) {
-    const double m1 = right - ratio * (right - left), m2 = left + ratio * (right - left);
-    if (distance_at(m1) < distance_at(m2)) right = m2; else left = m1;
-  }
-  const double t = 0.5 * (left + right);
-  on_link = a + t * (b - a);
-  return distance_at(t);
 }
 
 TEST(CollisionWorld, SpatialArmAgainstBox) {
@@ -543,7 +525,7 @@ TEST(CollisionWorld, AgreesWithFclOnRandomPoses) {
 // The reported depth is a translation that separates: moving the obstacle by
 // it against the normal leaves link and obstacle just touching, and any less
 // leaves them overlapping. (That no shorter one exists is the separating-axis
-// argument in collision_world.cpp.)
+// argument in convex_polytope.cpp, best_separating_axis.)
 TEST(CollisionWorld, DepthIsTheTranslationThatSeparates) {
   const Model model = make_spatial_xz({{1.0, 0.04}, {0.9, 0.0}}, Vector3d::Zero());
   Obstacle tilted = box(Vector3d(0.7, 0.3, 0.2), Vector3d(0.8, 0.6, 0.5));

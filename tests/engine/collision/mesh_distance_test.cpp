@@ -1,13 +1,21 @@
-// Mesh links (a URDF <collision><mesh>, read with assimp) against the same
-// shape as an analytic capsule, and against FCL's own BVH distance.
+// Mesh distances (collision/mesh_distance.hpp): a segment against a mesh's
+// tree against sampling, closed meshes and their inside, mesh links against
+// walls and spheres; then mesh links (a URDF <collision><mesh>, read with
+// assimp) against the same shape as an analytic capsule, and against FCL's
+// own BVH distance.
+#include "collision/mesh_distance.hpp"
+
 #include <fcl/fcl.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <random>
 
 #include "collision/collision_world.hpp"
+#include "collision/segment_geometry.hpp"
 #include "collision/mesh_loader.hpp"
 #include "collision/mesh_shapes.hpp"
 #include "scenario/scenario.hpp"
@@ -154,3 +162,106 @@ TEST_F(MeshLink, MeshFaultsAreNamed) {
 
 }  // namespace
 }  // namespace rrlab
+
+namespace rrlab::collision {
+namespace {
+
+using Eigen::Vector3d;
+
+// The distance of a point to a mesh (in its frame): the nearest triangle.
+double point_mesh_distance(const TriangleMesh& mesh, const Vector3d& p) {
+  double best = INFINITY;
+  for (const Eigen::Vector3i& t : mesh.triangles)
+    best = std::min(best, (closest_on_triangle(p, mesh.vertices[size_t(t[0])], mesh.vertices[size_t(t[1])],
+                                               mesh.vertices[size_t(t[2])]) -
+                           p)
+                              .norm());
+  return best;
+}
+
+// Segment against a posed mesh, apart, against samples along the segment: the
+// distance is 1-Lipschitz along it, so the exact minimum lies within half a
+// sample step below the sampled one.
+TEST(MeshDistance, SegmentMeshAgainstSampling) {
+  const TriangleMesh ball = sphere_mesh(0.3, 16, 8);
+  const std::shared_ptr<MeshBvh> bvh = make_bvh(ball);
+  Eigen::AlignedBox3d bounds;
+  for (const Vector3d& v : ball.vertices) bounds.extend(v);
+  const Eigen::Matrix3d rotation = Eigen::AngleAxisd(0.6, Vector3d(1, -1, 2).normalized()).toRotationMatrix();
+  const Vector3d position(0.1, -0.2, 0.3);
+  std::mt19937 rng(51);
+  std::uniform_real_distribution<double> coordinate(-0.7, 0.7);
+  constexpr int kSamples = 1000;
+  int apart = 0;
+  for (int trial = 0; trial < 40; ++trial) {
+    const Vector3d a = position + Vector3d(coordinate(rng), coordinate(rng), coordinate(rng));
+    const Vector3d b = position + Vector3d(coordinate(rng), coordinate(rng), coordinate(rng));
+    LinkObstacleDistance out;
+    segment_mesh(*bvh, true, bounds, rotation, position, a, b, out);
+    if (out.distance <= 0) continue;
+    double sampled = INFINITY;
+    for (int i = 0; i <= kSamples; ++i) {
+      const Vector3d on_segment = a + (b - a) * (double(i) / kSamples);
+      sampled = std::min(sampled, point_mesh_distance(ball, rotation.transpose() * (on_segment - position)));
+    }
+    EXPECT_LE(out.distance, sampled + 1e-12) << trial;
+    EXPECT_GE(out.distance, sampled - 0.5 * (b - a).norm() / kSamples) << trial;
+    EXPECT_NEAR((out.on_link - out.on_obstacle).norm(), out.distance, 1e-12) << trial;
+    EXPECT_NEAR(point_mesh_distance(ball, rotation.transpose() * (out.on_obstacle - position)), 0.0, 1e-12) << trial;
+    ++apart;
+  }
+  EXPECT_GT(apart, 20);
+}
+
+TEST(MeshDistance, ClosedMeshAndItsInside) {
+  const TriangleMesh ball = sphere_mesh(0.5, 24, 12);
+  EXPECT_TRUE(closed_mesh(ball));
+  EXPECT_TRUE(closed_mesh(box_mesh(Vector3d(1, 2, 3))));
+  TriangleMesh open = ball;
+  open.triangles.pop_back();
+  EXPECT_FALSE(closed_mesh(open));
+  EXPECT_FALSE(closed_mesh(TriangleMesh{}));
+  const std::shared_ptr<MeshBvh> bvh = make_bvh(ball);
+  std::mt19937 rng(52);
+  std::uniform_real_distribution<double> coordinate(-0.7, 0.7);
+  int inside = 0, outside = 0;
+  for (int trial = 0; trial < 500; ++trial) {
+    const Vector3d p(coordinate(rng), coordinate(rng), coordinate(rng));
+    if (p.norm() < 0.45) {  // well inside the inscribed polyhedron
+      EXPECT_TRUE(inside_mesh(*bvh, p)) << p.transpose();
+      ++inside;
+    } else if (p.norm() > 0.5) {
+      EXPECT_FALSE(inside_mesh(*bvh, p)) << p.transpose();
+      ++outside;
+    }
+  }
+  EXPECT_GT(inside, 50);
+  EXPECT_GT(outside, 50);
+}
+
+// A unit cube mesh as a link, turned a quarter about x and lifted to z = 2.
+TEST(MeshDistance, MeshLinkAgainstWallAndSphere) {
+  const TriangleMesh cube = box_mesh(Vector3d(1, 1, 1));
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear() = Eigen::AngleAxisd(M_PI / 2, Vector3d::UnitX()).toRotationMatrix();
+  pose.translation() = Vector3d(0, 0, 2);
+  LinkObstacleDistance out;
+  // the floor z = 0: the lowest vertices at z = 1.5
+  mesh_wall(cube, pose, Vector3d(3, 3, 0), Vector3d::UnitZ(), out);
+  EXPECT_NEAR(out.distance, 1.5, 1e-12);
+  EXPECT_NEAR(out.on_link.z(), 1.5, 1e-12);
+  EXPECT_NEAR(out.on_obstacle.z(), 0.0, 1e-12);
+  EXPECT_EQ(out.normal, Vector3d::UnitZ());
+  // a sphere of 0.25 centred 1 beside the face x = 0.5
+  mesh_sphere(cube, pose, Vector3d(1.5, 0.1, 2.2), 0.25, out);
+  EXPECT_NEAR(out.distance, 0.75, 1e-12);
+  EXPECT_NEAR((out.on_link - Vector3d(0.5, 0.1, 2.2)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((out.on_obstacle - Vector3d(1.25, 0.1, 2.2)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((out.normal + Vector3d::UnitX()).norm(), 0.0, 1e-12);
+  // a point (radius 0)
+  mesh_sphere(cube, pose, Vector3d(0, 0, 3), 0.0, out);
+  EXPECT_NEAR(out.distance, 0.5, 1e-12);
+}
+
+}  // namespace
+}  // namespace rrlab::collision

@@ -1,5 +1,5 @@
 // Mesh obstacles ({"shape": "mesh"}): capsule links against the obstacle's
-// BVH (collision_world.cpp, segment_mesh) compared with the analytic shape the
+// BVH (mesh_distance.cpp, segment_mesh) compared with the analytic shape the
 // mesh is (a box: exact) or approximates (a sphere: within the tessellation),
 // with FCL's own capsule–BVH distance, and mesh links against mesh obstacles.
 #include <gtest/gtest.h>
@@ -266,7 +266,7 @@ TEST(MeshObstacle, MovingTheObstacleMovesTheDistance) {
   EXPECT_NEAR(table.at(0, 0).distance, -0.1 - 0.02, 1e-12);
   expect_consistent(table.at(0, 0), 0.02);
   // an open mesh (the box without its top) has no inside: the gap named in
-  // collision_world.cpp, the distance to the surface is reported as if outside
+  // mesh_distance.cpp, the distance to the surface is reported as if outside
   TriangleMesh open = box_mesh(size);
   open.triangles.erase(open.triangles.begin() + 2, open.triangles.begin() + 4);  // the top face
   scene.obstacles[0] = mesh_obstacle(open, Vector3d(0.0, 0.0, 0.3), Eigen::Matrix3d::Identity());

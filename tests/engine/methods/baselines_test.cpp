@@ -18,7 +18,7 @@ const std::vector<std::string> kBaselines = {"pinv", "dls", "gpm", "task_priorit
                                              "closest_point"};
 
 // Redundant planar 4-link arm, circle of radius 0.3 m, no obstacles.
-json planar_circle() {
+json four_link_circle() {
   return {{"dt", 0.01},
           {"duration", 6.0},
           {"robot", planar_robot(4, 0.5, 0.02, {0.2, 0.6, 0.5, 0.4})},
@@ -42,7 +42,7 @@ json dh_pose_circle() {
 class EveryBaseline : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(EveryBaseline, TracksAPlanarCircleWithoutObstacles) {
-  const auto r = run_scenario(planar_circle(), GetParam());
+  const auto r = run_scenario(four_link_circle(), GetParam());
   // the start is 0.1 m or so off the circle: the closed loop removes it first
   EXPECT_LT(r.max_error_after(100), 1e-4) << GetParam();
   EXPECT_LT(r.summary.final_tracking_error, 1e-4);
@@ -77,7 +77,7 @@ TEST(Registry, ListsEveryBaselineWithValidDefaults) {
 
 // Liégeois: the projected gradient is invisible at the end-effector.
 TEST(Gpm, NullSpaceMotionMovesNoEndEffector) {
-  json doc = planar_circle();
+  json doc = four_link_circle();
   doc["robot"]["limits"] = {{"lower", {-3, -2, -2, -2}}, {"upper", {3, 2, 2, 2}}};
   doc["obstacles"] = {{{"shape", "sphere"}, {"center", {0.5, 0.6}}, {"radius", 0.1}}};
   for (const char* gradient : {"joint_range", "manipulability", "distance"}) {
@@ -192,14 +192,14 @@ TEST(Defaults, ObstacleBaselinesAvoidWherePinvCollidesOnAnUntunedCase) {
 }
 
 TEST(SrTaskPriority, JointCentringLeavesTheTaskAlone) {
-  json doc = planar_circle();
+  json doc = four_link_circle();
   doc["robot"]["limits"] = {{"lower", {-3, -2, -2, -2}}, {"upper", {3, 2, 2, 2}}};
   const auto r = run_scenario(doc, "sr_task_priority", {{"secondary", "joint_centring"}, {"gain", 2.0}});
   EXPECT_LT(r.max_error_after(100), 2e-4);
 }
 
 TEST(Methods, ParametersChangeBetweenSteps) {
-  Simulator sim(parse_scenario(planar_circle()));
+  Simulator sim(parse_scenario(four_link_circle()));
   sim.switch_method("dls");
   sim.set_param("lambda", 0.2);
   EXPECT_DOUBLE_EQ(sim.method().param("lambda"), 0.2);

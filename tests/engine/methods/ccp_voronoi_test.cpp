@@ -21,7 +21,7 @@ nlohmann::json scenario_json(const std::string& file) {
   return nlohmann::json::parse(in);
 }
 
-test::RunResult run(const std::string& file, const nlohmann::json& params,
+test::RunResult run_ccp(const std::string& file, const nlohmann::json& params,
                     const std::string& method = "ccp_voronoi") {
   nlohmann::json doc = scenario_json(file);
   nlohmann::json merged = method == "ccp_voronoi" ? doc["method"]["params"] : nlohmann::json::object();
@@ -59,7 +59,7 @@ TEST(CcpVoronoiEx1, AllFiveOutcomesOfFigs3And4) {
        {{"ccp_link", 2}, {"ccp_at", 0.5}, {"ccp2_link", 3}, {"ccp2_at", 0.5}}, false, 0.0236},
   };
   for (const FigureCase& c : cases) {
-    const auto r = run("10_sezgin_ex1_lshape.json", c.params);
+    const auto r = run_ccp("10_sezgin_ex1_lshape.json", c.params);
     std::printf("[ Ex1 gain 8, hysteresis 0.2 ] Fig. %s: collided %d, min distance %.4f, max tracking error %.5f\n",
                 c.figure, int(r.summary.collided), r.summary.min_distance, r.summary.max_tracking_error);
     EXPECT_EQ(r.summary.collided, c.collides) << c.figure;
@@ -72,7 +72,7 @@ TEST(CcpVoronoiEx1, AllFiveOutcomesOfFigs3And4) {
 // scenarios and at the defaults.
 TEST(CcpVoronoiEx1, ThreeAndFourCcpsOfFig5Avoid) {
   for (const char* file : {"10a_sezgin_fig5a_three_ccp.json", "10b_sezgin_fig5b_four_ccp.json"}) {
-    const auto r = run(file, {});
+    const auto r = run_ccp(file, {});
     nlohmann::json defaults = scenario_json(file)["method"]["params"];
     defaults.erase("gain");
     defaults.erase("hysteresis");
@@ -285,8 +285,8 @@ TEST(CcpVoronoiEx1, LagrangianPositionMethodTracks) {
 TEST(CcpVoronoiEx1, NullSpaceMotionLeavesTheEndEffectorOnThePath) {
   // DI changes the configuration by up to ~100 deg, while the end-effector
   // stays on the line (RK4, closed-loop reference).
-  const auto r = run("10_sezgin_ex1_lshape.json", {{"ccp_link", 3}, {"ccp_at", 0}});
-  const auto plain = run("10_sezgin_ex1_lshape.json", {}, "pinv");
+  const auto r = run_ccp("10_sezgin_ex1_lshape.json", {{"ccp_link", 3}, {"ccp_at", 0}});
+  const auto plain = run_ccp("10_sezgin_ex1_lshape.json", {}, "pinv");
   EXPECT_LT(r.max_error_after(1), 0.01);
   EXPECT_GT((r.summary.final_q - plain.summary.final_q).cwiseAbs().maxCoeff(), 0.5);
 }
@@ -294,8 +294,8 @@ TEST(CcpVoronoiEx1, NullSpaceMotionLeavesTheEndEffectorOnThePath) {
 // Obstacle 1 at the defaults: joint 2 collides, joint 3 avoids; the middle
 // of link 3 collides up to gain 12 and avoids from 15 on (hysteresis 0.1).
 TEST(CcpVoronoiEx1Box, JointTwoCollidesJointThreeAvoids) {
-  const auto j2 = run("11_sezgin_ex1_box.json", {{"ccp_link", 2}, {"ccp_at", 0}});
-  const auto j3 = run("11_sezgin_ex1_box.json", {{"ccp_link", 3}, {"ccp_at", 0}});
+  const auto j2 = run_ccp("11_sezgin_ex1_box.json", {{"ccp_link", 2}, {"ccp_at", 0}});
+  const auto j3 = run_ccp("11_sezgin_ex1_box.json", {{"ccp_link", 3}, {"ccp_at", 0}});
   std::printf("[ Ex1 box ] joint 2 min %.4f, joint 3 min %.4f\n", j2.summary.min_distance, j3.summary.min_distance);
   EXPECT_TRUE(j2.summary.collided);
   EXPECT_LT(j2.summary.min_distance, -0.05);
@@ -307,8 +307,8 @@ TEST(CcpVoronoiEx1Box, JointTwoCollidesJointThreeAvoids) {
 // triangle, at 0.1 unit per sampling period = 5 units/s, is gone within a
 // dozen steps). No variant tried separates them (see the scenario).
 TEST(CcpVoronoiEx2, MovingTriangleAndRectangleAvoidedAsByPinv) {
-  const auto r = run("12_sezgin_ex2_moving_triangle.json", {});
-  const auto plain = run("12_sezgin_ex2_moving_triangle.json", {}, "pinv");
+  const auto r = run_ccp("12_sezgin_ex2_moving_triangle.json", {});
+  const auto plain = run_ccp("12_sezgin_ex2_moving_triangle.json", {}, "pinv");
   EXPECT_FALSE(r.summary.collided);
   EXPECT_NEAR(r.summary.min_distance, 0.198, 0.005);  // measured 0.1977
   EXPECT_LT(r.summary.max_tracking_error, 0.01);
@@ -319,9 +319,9 @@ TEST(CcpVoronoiEx2, MovingTriangleAndRectangleAvoidedAsByPinv) {
 }
 
 TEST(CcpVoronoiEx3, HybridPassesTheGapWhereDiAloneDoesNot) {
-  const auto hybrid = run("13_sezgin_ex3_narrow_gap.json", {});
-  const auto di = run("13_sezgin_ex3_narrow_gap.json", {{"mode", "DI"}});
-  const auto dm = run("13_sezgin_ex3_narrow_gap.json", {{"mode", "DM"}});
+  const auto hybrid = run_ccp("13_sezgin_ex3_narrow_gap.json", {});
+  const auto di = run_ccp("13_sezgin_ex3_narrow_gap.json", {{"mode", "DI"}});
+  const auto dm = run_ccp("13_sezgin_ex3_narrow_gap.json", {{"mode", "DM"}});
   std::printf("[ Ex3 ] min distance: hybrid %.4f, DI %.4f, DM %.4f\n", hybrid.summary.min_distance,
               di.summary.min_distance, dm.summary.min_distance);
   EXPECT_FALSE(hybrid.summary.collided);
@@ -348,8 +348,8 @@ double joint_clearance(const test::RunResult& r) {
 
 TEST(CcpVoronoiEx4, LinksKeptAwayFromTheWall) {
   for (const char* file : {"14_sezgin_ex4_wall_bottom.json", "15_sezgin_ex4_wall_top.json"}) {
-    const auto di = run(file, {});
-    const auto plain = run(file, {}, "pinv");
+    const auto di = run_ccp(file, {});
+    const auto plain = run_ccp(file, {}, "pinv");
     EXPECT_FALSE(di.summary.collided) << file;
     EXPECT_LT(di.summary.final_tracking_error, 0.02) << file;
     std::printf("[ Ex4 ] %s: joint clearance from the wall DI %.3f, pinv %.3f\n", file, joint_clearance(di),
@@ -365,8 +365,8 @@ TEST(CcpVoronoiEx4, LinksKeptAwayFromTheWall) {
 // A variant with the wall nearer the base (scenario 14a, rrlab's geometry):
 // pinv's links cross the wall, DI keeps them off it.
 TEST(CcpVoronoiEx4, NearWallVariantSeparatesDiFromPinv) {
-  const auto di = run("14a_sezgin_ex4_near_wall.json", {});
-  const auto plain = run("14a_sezgin_ex4_near_wall.json", {}, "pinv");
+  const auto di = run_ccp("14a_sezgin_ex4_near_wall.json", {});
+  const auto plain = run_ccp("14a_sezgin_ex4_near_wall.json", {}, "pinv");
   std::printf("[ Ex4 near wall ] DI min distance %.4f, pinv %.4f\n", di.summary.min_distance,
               plain.summary.min_distance);
   EXPECT_FALSE(di.summary.collided);
@@ -375,7 +375,7 @@ TEST(CcpVoronoiEx4, NearWallVariantSeparatesDiFromPinv) {
   EXPECT_TRUE(plain.summary.collided);
   EXPECT_NEAR(plain.summary.min_distance, -0.145, 0.01);  // measured -0.145
   for (double gain : {2.0, 40.0})  // measured: avoids at every gain 2..40
-    EXPECT_FALSE(run("14a_sezgin_ex4_near_wall.json", {{"gain", gain}}).summary.collided) << gain;
+    EXPECT_FALSE(run_ccp("14a_sezgin_ex4_near_wall.json", {{"gain", gain}}).summary.collided) << gain;
 }
 
 TEST(CcpVoronoiParams, CcpOnAMissingLinkIsRefused) {
@@ -417,8 +417,8 @@ TEST(CcpVoronoiParams, HysteresisOutOfRangeIsRefusedByName) {
 }
 
 TEST(CcpVoronoiParams, DeterministicRuns) {
-  const auto a = run("12_sezgin_ex2_moving_triangle.json", {});
-  const auto b = run("12_sezgin_ex2_moving_triangle.json", {});
+  const auto a = run_ccp("12_sezgin_ex2_moving_triangle.json", {});
+  const auto b = run_ccp("12_sezgin_ex2_moving_triangle.json", {});
   ASSERT_EQ(a.frames.size(), b.frames.size());
   for (size_t i = 0; i < a.frames.size(); ++i) ASSERT_EQ(a.frames[i].q, b.frames[i].q);
 }

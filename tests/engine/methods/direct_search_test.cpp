@@ -151,7 +151,7 @@ TEST(DirectSearch, WeightChangedMidRunActsFromTheNextStep) {
 }
 
 // 3-link planar arm, xy task: n − m = 1, so one perturbed joint, 3 options.
-json planar_circle() {
+json three_link_circle() {
   return {{"dt", 0.01},
           {"duration", 2.0},
           {"robot", {{"kind", "planar"},
@@ -163,7 +163,7 @@ json planar_circle() {
 }
 
 TEST(DirectSearch, OptionsMeetTheEndEffectorConstraintOnAPlanarArm) {
-  Simulator sim(parse_scenario(planar_circle()));
+  Simulator sim(parse_scenario(three_link_circle()));
   const SearchRun r = run_sim(sim);
   for (size_t i = 1; i < r.frames.size(); ++i) {
     EXPECT_EQ(r.diag(i, "options"), 3);
@@ -176,7 +176,7 @@ TEST(DirectSearch, OptionsMeetTheEndEffectorConstraintOnAPlanarArm) {
 TEST(DirectSearch, JvmAloneChoosesTheUnperturbedOption) {
   // with only JVM weighted, the option that moves the joints least is the
   // one without perturbation (index 1 of −Δ, 0, +Δ) on a slow path
-  json doc = planar_circle();
+  json doc = three_link_circle();
   doc["method"]["params"] = {{"delta", 0.01}, {"w_jra", 0}, {"w_dm", 0}, {"w_obstacle", 0}};
   Simulator sim(parse_scenario(doc));
   const SearchRun r = run_sim(sim);
@@ -184,7 +184,7 @@ TEST(DirectSearch, JvmAloneChoosesTheUnperturbedOption) {
 }
 
 TEST(DirectSearch, ObstacleClearanceCriterionPullsAway) {
-  json doc = planar_circle();
+  json doc = three_link_circle();
   doc["obstacles"] = {{{"shape", "point"}, {"position", {0.9, 0.6}}}};
   doc["method"]["params"] = {{"delta", 0.01}, {"w_jra", 0}, {"w_jvm", 0}, {"w_dm", 0}, {"w_obstacle", 1}};
   const SearchRun away = [&] {
@@ -212,7 +212,7 @@ TEST(DirectSearch, ParametersAreValidated) {
   const MethodInfo* info = find_method("direct_search");
   ASSERT_NE(info, nullptr);
   for (const ParamSpec& spec : info->params) EXPECT_EQ(param_problem(spec, spec.def), "") << spec.name;
-  Simulator sim(parse_scenario(planar_circle()));
+  Simulator sim(parse_scenario(three_link_circle()));
   EXPECT_THROW(sim.set_param("w_dm", 2.0), ParamError);
   EXPECT_THROW(sim.set_param("delta", -0.1), ParamError);
   EXPECT_NO_THROW(sim.set_param("perturb_mask", 4));

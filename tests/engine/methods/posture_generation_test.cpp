@@ -16,7 +16,7 @@ namespace {
 
 const double kLimit = 135.0 * M_PI / 180.0;
 
-test::RunResult run(const std::string& file, const std::string& method) {
+test::RunResult run_posture(const std::string& file, const std::string& method) {
   std::ifstream in(test::source_path("scenarios/" + file));
   nlohmann::json doc = nlohmann::json::parse(in);
   const nlohmann::json params = method == "posture_generation" ? doc["method"]["params"] : nlohmann::json::object();
@@ -83,8 +83,8 @@ TEST(ChenCriteria, AdjacentAndElasticGradientsMatchFiniteDifferences) {
 TEST(ChenSim3, MinimumNormPassesTheLimitPostureGenerationKeepsEveryJointInside) {
   const std::string file = "18_chen_sim3_joint_limits.json";
   const Model model = model_of(file);
-  const auto pinv = run(file, "pinv");
-  const auto chen = run(file, "posture_generation");
+  const auto pinv = run_posture(file, "pinv");
+  const auto chen = run_posture(file, "posture_generation");
   const double pinv_max = max_limited_joint(pinv, model), chen_max = max_limited_joint(chen, model);
   std::printf("[ Chen Sim 3 ] largest |bending joint|: pinv %.3f rad, posture_generation %.3f rad (limit %.3f); "
               "max tracking error pinv %.5f, posture_generation %.5f\n",
@@ -111,7 +111,7 @@ TEST(ChenSim3, MinimumNormPassesTheLimitPostureGenerationKeepsEveryJointInside) 
 // crosses depends: the gap is a scenario convention the paper leaves open.
 TEST(ChenSim3, UnderPinvJointFourCrossesNotThePapersJointSix) {
   const std::string file = "18_chen_sim3_joint_limits.json";
-  const auto pinv = run(file, "pinv");
+  const auto pinv = run_posture(file, "pinv");
   int first = -1;
   double t_first = 0, peak[8] = {0};
   for (const Frame& f : pinv.frames)
@@ -144,8 +144,8 @@ TEST(PostureGenerationDefaults, HoldLimitsWherePinvDoesNot) {
 
 TEST(ChenSim1, Planar12TracksWithoutCollisionOrLimit) {
   const std::string file = "16_chen_sim1_planar12.json";
-  const auto chen = run(file, "posture_generation");
-  const auto sr = run(file, "sr_task_priority");
+  const auto chen = run_posture(file, "posture_generation");
+  const auto sr = run_posture(file, "sr_task_priority");
   std::printf("[ Chen Sim 1 ] posture_generation: max tracking error %.5f, min distance %.4f, largest |q| %.3f rad; "
               "sr_task_priority min distance %.4f\n",
               chen.summary.max_tracking_error, chen.summary.min_distance, max_limited_joint(chen, model_of(file)),
@@ -159,7 +159,7 @@ TEST(ChenSim1, Planar12TracksWithoutCollisionOrLimit) {
 
 TEST(ChenSim2, Spatial16ThroughTheWindow) {
   const std::string file = "17_chen_sim2_spatial16_window.json";
-  const auto chen = run(file, "posture_generation");
+  const auto chen = run_posture(file, "posture_generation");
   double azimuth = 0;  // the unlimited x joints (reported)
   for (const Frame& f : chen.frames)
     for (int j = 2; j < f.q.size(); j += 2) azimuth = std::max(azimuth, std::abs(f.q[j]));
@@ -171,7 +171,7 @@ TEST(ChenSim2, Spatial16ThroughTheWindow) {
   EXPECT_GT(chen.summary.min_distance, 0.03);  // measured 0.041 (links of radius 0.05)
   EXPECT_FALSE(chen.summary.joint_limit_violated);
   EXPECT_LT(chen.summary.max_tracking_error, 0.01);
-  const auto plain = run(file, "pinv");
+  const auto plain = run_posture(file, "pinv");
   std::printf("[ Chen Sim 2 ] pinv min distance %.4f\n", plain.summary.min_distance);
   EXPECT_TRUE(plain.summary.collided);  // the window is narrow enough to matter
 }
