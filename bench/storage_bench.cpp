@@ -5,6 +5,7 @@
 
 #include <filesystem>
 
+#include "sim/frame_csv.hpp"
 #include "storage/frame_codec.hpp"
 #include "storage/frame_writer.hpp"
 #include "storage/run_store.hpp"
@@ -99,6 +100,41 @@ void BM_PackFrame7Dof(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_PackFrame7Dof);
+
+void BM_UnpackFrame7Dof(benchmark::State& state) {
+  const std::string blob = pack_frame(seven_dof_frame(3));
+  for (auto _ : state) {
+    Frame frame = unpack_frame(blob);
+    benchmark::DoNotOptimize(frame.q.data());
+  }
+}
+BENCHMARK(BM_UnpackFrame7Dof);
+
+// One stored frame as GET /api/runs/{id}/frames writes it: blob decoded, then JSON text.
+void BM_StoredFrameJson7Dof(benchmark::State& state) {
+  const std::string blob = pack_frame(seven_dof_frame(3));
+  std::string out;
+  for (auto _ : state) {
+    out.clear();
+    append_stored_frame_json(3, unpack_frame(blob), out);
+    benchmark::DoNotOptimize(out.data());
+  }
+  state.counters["bytes"] = double(out.size());
+}
+BENCHMARK(BM_StoredFrameJson7Dof);
+
+// The same frame as a CSV row (the export's and `rrlab run --out`'s).
+void BM_StoredFrameCsv7Dof(benchmark::State& state) {
+  const std::string blob = pack_frame(seven_dof_frame(3));
+  std::string out;
+  for (auto _ : state) {
+    out.clear();
+    append_frame_csv(unpack_frame(blob), FrameOrigin::stored, out);
+    benchmark::DoNotOptimize(out.data());
+  }
+  state.counters["bytes"] = double(out.size());
+}
+BENCHMARK(BM_StoredFrameCsv7Dof);
 
 }  // namespace
 }  // namespace rrlab::storage

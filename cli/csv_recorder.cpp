@@ -21,12 +21,12 @@ void CsvRecorder::write(const std::string& text) {
 }
 
 void CsvRecorder::begin(const Simulator& sim) {
-  write(frame_csv_header(sim.model().dof(), sim.diagnostic_names(), true));
+  write(frame_csv_header(sim.model().dof(), sim.diagnostic_names(), FrameOrigin::live));
 }
 
 void CsvRecorder::frame(const Frame& f) {
   row_.clear();
-  append_frame_csv(f, true, row_);
+  append_frame_csv(f, FrameOrigin::live, row_);
   write(row_);
 }
 

@@ -1,10 +1,13 @@
 #include "storage/frame_codec.hpp"
 
 #include <bit>
-#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <stdexcept>
+#include <utility>
+
+#include "sim/frame_json.hpp"
+#include "util/number_text.hpp"
 
 namespace rrlab::storage {
 
@@ -12,13 +15,19 @@ static_assert(std::endian::native == std::endian::little, "the frame blob is lit
 
 namespace {
 
-constexpr size_t kFixedDoubles = 1 + 3 + 4 + 3 + 8;  // t, ee, quat, target, 8 metrics
+// Bytes of the blob after its two counts: the step (i64) and the doubles of
+// every other blob field, in kFrameFields order.
+size_t blob_body_size(std::uint32_t n, std::uint32_t k) {
+  size_t bytes = 0;
+  for (const FrameField& field : kFrameFields)
+    if (field.outputs & kFrameBlob) bytes += 8 * size_t(frame_value_count(field.kind, int(n), int(k)));
+  return bytes;
+}
 
 template <typename T>
-void put(std::string& out, T value) {
-  char bytes[sizeof(T)];
-  std::memcpy(bytes, &value, sizeof(T));
-  out.append(bytes, sizeof(T));
+char* put(char* at, T value) {
+  std::memcpy(at, &value, sizeof(T));
+  return at + sizeof(T);
 }
 
 template <typename T>
@@ -30,33 +39,67 @@ T take(std::string_view& in) {
   return value;
 }
 
+// The table is walked at compile time (one instance per field), so that each
+// field's kind, size and place in the Frame are constants: as fast as the
+// hand-written codec this replaced.
+template <size_t I>
+void pack_field(const Frame& f, char*& at) {
+  constexpr const FrameField& field = kFrameFields[I];
+  if constexpr ((field.outputs & kFrameBlob) != 0) {
+    if constexpr (field.kind == FrameFieldKind::count) {
+      at = put(at, std::int64_t(f.step));
+    } else {
+      std::array<double, 4> scratch;
+      const std::span<const double> values = frame_values(f, field.id, scratch);
+      std::memcpy(at, values.data(), values.size_bytes());
+      at += values.size_bytes();
+    }
+  }
+}
+
+// `at` has the field's bytes: unpack_frame checked the blob's size first.
+template <size_t I>
+void unpack_field(Frame& f, const char*& at, std::uint32_t n, std::uint32_t k) {
+  constexpr const FrameField& field = kFrameFields[I];
+  if constexpr ((field.outputs & kFrameBlob) != 0) {
+    std::array<double, 4> scratch;
+    if constexpr (field.kind == FrameFieldKind::count) {
+      std::int64_t value;
+      std::memcpy(&value, at, 8);
+      scratch[0] = double(value);
+      set_frame_values(f, field.id, {scratch.data(), 1});  // checks the range
+      at += 8;
+    } else {
+      const size_t count = size_t(frame_value_count(field.kind, int(n), int(k)));
+      if (double* storage = frame_storage(f, field.id)) {
+        std::memcpy(storage, at, 8 * count);
+      } else {
+        std::memcpy(scratch.data(), at, 8 * count);
+        set_frame_values(f, field.id, {scratch.data(), count});  // checks links
+      }
+      at += 8 * count;
+    }
+  }
+}
+
+template <size_t... I>
+void pack_fields(const Frame& f, char* at, std::index_sequence<I...>) {
+  (pack_field<I>(f, at), ...);
+}
+
+template <size_t... I>
+void unpack_fields(Frame& f, const char* at, std::uint32_t n, std::uint32_t k, std::index_sequence<I...>) {
+  (unpack_field<I>(f, at, n, k), ...);
+}
+
+constexpr auto kFieldIndices = std::make_index_sequence<kFrameFields.size()>();
+
 }  // namespace
 
 void pack_frame(const Frame& f, std::string& out) {
   const auto n = std::uint32_t(f.q.size()), k = std::uint32_t(f.diagnostics.size());
-  out.clear();
-  out.reserve(16 + 8 * (kFixedDoubles + 2 * n + k));
-  put(out, n);
-  put(out, k);
-  put(out, std::int64_t(f.step));
-  put(out, f.t);
-  for (std::uint32_t i = 0; i < n; ++i) put(out, f.q[i]);
-  for (std::uint32_t i = 0; i < n; ++i) put(out, f.qdot[i]);
-  for (int i = 0; i < 3; ++i) put(out, f.ee_position[i]);
-  put(out, f.ee_orientation.w());
-  put(out, f.ee_orientation.x());
-  put(out, f.ee_orientation.y());
-  put(out, f.ee_orientation.z());
-  for (int i = 0; i < 3; ++i) put(out, f.target[i]);
-  put(out, f.task_error);
-  put(out, f.orientation_error);
-  put(out, f.min_distance);
-  put(out, double(f.min_distance_link));
-  put(out, f.collided ? 1.0 : 0.0);
-  put(out, f.joint_limit_margin);
-  put(out, f.manipulability);
-  put(out, f.condition_number);
-  for (std::uint32_t i = 0; i < k; ++i) put(out, f.diagnostics[i]);
+  out.resize(8 + blob_body_size(n, k));
+  pack_fields(f, put(put(out.data(), n), k), kFieldIndices);
 }
 
 std::string pack_frame(const Frame& frame) {
@@ -71,66 +114,22 @@ StoredFrame stored_frame(std::int64_t seq, const Frame& f, std::string packed) {
 
 Frame unpack_frame(std::string_view in) {
   const auto n = take<std::uint32_t>(in), k = take<std::uint32_t>(in);
-  if (n > 4096 || k > 4096 || in.size() != 8 + 8 * (kFixedDoubles + 2 * size_t(n) + k))
+  if (n > 4096 || k > 4096 || in.size() != blob_body_size(n, k))
     throw std::runtime_error("frame blob has the wrong size");
   Frame f;
-  f.step = long(take<std::int64_t>(in));
-  f.t = take<double>(in);
   f.q.resize(n);
   f.qdot.resize(n);
-  for (std::uint32_t i = 0; i < n; ++i) f.q[i] = take<double>(in);
-  for (std::uint32_t i = 0; i < n; ++i) f.qdot[i] = take<double>(in);
-  for (int i = 0; i < 3; ++i) f.ee_position[i] = take<double>(in);
-  f.ee_orientation.w() = take<double>(in);
-  f.ee_orientation.x() = take<double>(in);
-  f.ee_orientation.y() = take<double>(in);
-  f.ee_orientation.z() = take<double>(in);
-  for (int i = 0; i < 3; ++i) f.target[i] = take<double>(in);
-  f.task_error = take<double>(in);
-  f.orientation_error = take<double>(in);
-  f.min_distance = take<double>(in);
-  // a link index (-1: none) stored as a double: checked before the cast, which
-  // is undefined behaviour for a value beyond int (a corrupt blob)
-  const double link = take<double>(in);
-  if (!(link >= -1 && link <= 1e6) || link != std::floor(link))
-    throw std::runtime_error("frame blob has a bad min_distance_link");
-  f.min_distance_link = int(link);
-  f.collided = take<double>(in) != 0.0;
-  f.joint_limit_margin = take<double>(in);
-  f.manipulability = take<double>(in);
-  f.condition_number = take<double>(in);
   f.diagnostics.resize(k);
-  for (std::uint32_t i = 0; i < k; ++i) f.diagnostics[i] = take<double>(in);
+  unpack_fields(f, in.data(), n, k, kFieldIndices);
   return f;
 }
 
-nlohmann::json frame_to_json(const Frame& f, const std::vector<std::string>& diagnostic_names) {
-  nlohmann::json diagnostics = nlohmann::json::object();
-  for (Eigen::Index i = 0; i < f.diagnostics.size(); ++i) {
-    std::string name = "d";  // a name the frame's method did not declare
-    if (size_t(i) < diagnostic_names.size())
-      name = diagnostic_names[size_t(i)];
-    else
-      name.append(std::to_string(i + 1));
-    diagnostics[name] = finite_or_null(f.diagnostics[i]);
-  }
-  const Eigen::Quaterniond& r = f.ee_orientation;
-  return {{"step", f.step},
-          {"t", f.t},
-          {"q", finite_or_null(f.q)},
-          {"qdot", finite_or_null(f.qdot)},
-          {"ee", finite_or_null(Eigen::VectorXd(f.ee_position))},
-          {"ee_quat", {r.w(), r.x(), r.y(), r.z()}},
-          {"target", finite_or_null(Eigen::VectorXd(f.target))},
-          {"task_error", finite_or_null(f.task_error)},
-          {"orientation_error", finite_or_null(f.orientation_error)},
-          {"min_distance", finite_or_null(f.min_distance)},
-          {"min_distance_link", f.min_distance_link + 1},
-          {"collided", f.collided},
-          {"joint_limit_margin", finite_or_null(f.joint_limit_margin)},
-          {"manipulability", finite_or_null(f.manipulability)},
-          {"condition_number", finite_or_null(f.condition_number)},
-          {"diagnostics", diagnostics}};
+void append_stored_frame_json(std::int64_t seq, const Frame& frame, std::string& out) {
+  out += "{\"seq\":";
+  append_integer(seq, out);
+  out += ',';
+  append_frame_json_members(frame, FrameOrigin::stored, 0, out);
+  out += '}';
 }
 
 }  // namespace rrlab::storage

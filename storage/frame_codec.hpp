@@ -4,20 +4,21 @@
 // deterministic data and are not stored.
 #pragma once
 
-#include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
 #include <vector>
 
-#include "sim/frame.hpp"
+#include "sim/frame_fields.hpp"
 #include "storage/run_store.hpp"
 
 namespace rrlab::storage {
 
-// Layout: u32 n, u32 k, i64 step, then doubles t, q[n], qdot[n], ee[3],
-// ee_quat[4] (w x y z), target[3], task_error, orientation_error,
-// min_distance, min_distance_link, collided, joint_limit_margin,
-// manipulability, condition_number, diagnostics[k].
+// Layout: u32 n (joints), u32 k (diagnostics), then the blob fields of
+// kFrameFields (sim/frame_fields.hpp) in its order, the step as an i64 and
+// every other number as a double: t, q[n], qdot[n], ee[3], ee_quat[4]
+// (w x y z), target[3], task_error, orientation_error, min_distance,
+// min_distance_link, collided, joint_limit_margin, manipulability,
+// condition_number, diagnostics[k].
 void pack_frame(const Frame& frame, std::string& out);
 std::string pack_frame(const Frame& frame);
 
@@ -27,8 +28,8 @@ StoredFrame stored_frame(std::int64_t seq, const Frame& frame, std::string packe
 // Throws std::runtime_error on a blob that is not a packed frame.
 Frame unpack_frame(std::string_view blob);
 
-// One frame as JSON: {step, t, q, qdot, ee, ee_quat, target, metrics..., diagnostics{}}.
-// Non-finite numbers become null.
-nlohmann::json frame_to_json(const Frame& frame, const std::vector<std::string>& diagnostic_names);
+// One stored frame as GET /api/runs/{id}/frames writes it: {"seq":..,
+// then the members of sim/frame_json.hpp with exact values}.
+void append_stored_frame_json(std::int64_t seq, const Frame& frame, std::string& out);
 
 }  // namespace rrlab::storage

@@ -110,7 +110,7 @@ class Client:
     # ---- catalogue ----
 
     def health(self):
-        """{status, version, uptime_s, websockets}"""
+        """{status, version, api_version, uptime_s, websockets, building}"""
         return self.request("GET", "/api/health")
 
     def openapi(self):
@@ -234,11 +234,17 @@ class Client:
             if (stop is not None and last + stride > stop) or len(page["frames"]) < 20000:
                 break
             first = last + stride
+        # a frame is {seq, step, t, q, ..., metrics: {...}, diagnostics: [...]}
+        # (docs/api.md, Frames): the metrics become columns of their own
         columns = {}
-        keys = [k for k in (rows[0] if rows else {}) if k != "diagnostics"]
-        for key in keys:
-            columns[key] = [row.get(key) for row in rows]
-        columns["diagnostics"] = {name: [row["diagnostics"].get(name) for row in rows] for name in names}
+        first_row = rows[0] if rows else {}
+        for key in first_row:
+            if key == "metrics":
+                for metric in first_row["metrics"]:
+                    columns[metric] = [row["metrics"].get(metric) for row in rows]
+            elif key != "diagnostics":
+                columns[key] = [row.get(key) for row in rows]
+        columns["diagnostics"] = {name: [row["diagnostics"][i] for row in rows] for i, name in enumerate(names)}
         if arrays:
             def to_array(values):  # null (a non-finite number) becomes nan
                 if values and isinstance(values[0], list):

@@ -1,49 +1,62 @@
 #include "sim/frame_csv.hpp"
 
-#include <charconv>
-#include <cmath>
+#include "util/number_text.hpp"
 
 namespace rrlab {
 
 namespace {
-// Shortest text that reads back to the same double; empty for inf/NaN.
-void number(double v, std::string& out) {
-  out += ',';
-  if (!std::isfinite(v)) return;
-  char buf[32];
-  const auto result = std::to_chars(buf, buf + sizeof buf, v);
-  out.append(buf, size_t(result.ptr - buf));
+
+// A frame that only sizes the columns: the header needs no values.
+Frame shape_of(int dof, size_t diagnostics) {
+  Frame f;
+  f.q.resize(dof);
+  f.qdot.resize(dof);
+  f.diagnostics.resize(Eigen::Index(diagnostics));
+  return f;
 }
+
 }  // namespace
 
-std::string frame_csv_header(int dof, const std::vector<std::string>& diagnostic_names, bool with_step_us) {
-  std::string h = "step,t";
-  for (int i = 1; i <= dof; ++i) h += ",q" + std::to_string(i);
-  for (int i = 1; i <= dof; ++i) h += ",qdot" + std::to_string(i);
-  h += ",ee_x,ee_y,ee_z,task_error,min_distance,collided,orientation_error,min_distance_link,"
-       "joint_limit_margin,manipulability,condition_number";
-  for (const std::string& name : diagnostic_names) h += "," + name;
-  if (with_step_us) h += ",step_us";
+std::string frame_csv_header(int dof, const std::vector<std::string>& diagnostic_names, FrameOrigin origin) {
+  static constexpr const char* kAxes[] = {"_x", "_y", "_z"};
+  static constexpr const char* kQuaternion[] = {"_w", "_x", "_y", "_z"};
+  const Frame shape = shape_of(dof, diagnostic_names.size());
+  std::string h;
+  for (const FrameField& field : kFrameFields) {
+    if (!frame_writes(field, kFrameCsv, origin, shape)) continue;
+    const int n = frame_value_count(field.kind, dof, int(diagnostic_names.size()));
+    for (int i = 0; i < n; ++i) {
+      if (!h.empty()) h += ',';
+      switch (field.kind) {
+        case FrameFieldKind::diagnostics: h += diagnostic_names[size_t(i)]; break;
+        case FrameFieldKind::joints: h.append(field.name).append(std::to_string(i + 1)); break;
+        case FrameFieldKind::vec3: h.append(field.name).append(kAxes[i]); break;
+        case FrameFieldKind::quaternion: h.append(field.name).append(kQuaternion[i]); break;
+        default: h += field.name;
+      }
+    }
+  }
   h += '\n';
   return h;
 }
 
-void append_frame_csv(const Frame& f, bool with_step_us, std::string& out) {
-  out += std::to_string(f.step);
-  number(f.t, out);
-  for (Eigen::Index i = 0; i < f.q.size(); ++i) number(f.q[i], out);
-  for (Eigen::Index i = 0; i < f.qdot.size(); ++i) number(f.qdot[i], out);
-  for (int i = 0; i < 3; ++i) number(f.ee_position[i], out);
-  number(f.task_error, out);
-  number(f.min_distance, out);
-  out += f.collided ? ",1" : ",0";
-  number(f.orientation_error, out);
-  out += ',' + std::to_string(f.min_distance_link + 1);
-  number(f.joint_limit_margin, out);
-  number(f.manipulability, out);
-  number(f.condition_number, out);
-  for (Eigen::Index i = 0; i < f.diagnostics.size(); ++i) number(f.diagnostics[i], out);
-  if (with_step_us) number(f.step_us, out);
+void append_frame_csv(const Frame& frame, FrameOrigin origin, std::string& out) {
+  std::array<double, 4> scratch{};
+  bool first = true;
+  for (const FrameField& field : kFrameFields) {
+    if (!frame_writes(field, kFrameCsv, origin, frame)) continue;
+    for (const double v : frame_values(frame, field.id, scratch)) {
+      if (!first) out += ',';
+      first = false;
+      switch (field.kind) {
+        case FrameFieldKind::count: append_integer((long long)(v), out); break;
+        case FrameFieldKind::link: append_integer((long long)(v) + 1, out); break;
+        case FrameFieldKind::flag: out += v != 0.0 ? '1' : '0'; break;
+        default:
+          if (std::isfinite(v)) append_number(v, 0, out);
+      }
+    }
+  }
   out += '\n';
 }
 

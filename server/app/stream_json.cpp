@@ -1,26 +1,22 @@
 #include "app/stream_json.hpp"
 
-#include <charconv>
 #include <cmath>
 
 #include "collision/mesh_loader.hpp"
 #include "methods/registry_json.hpp"
+#include "sim/frame_json.hpp"
 #include "sim/run_inputs.hpp"
+#include "util/number_text.hpp"
 #include "util/nesting_depth.hpp"
 
 namespace rrlab::server {
 
 namespace {
 
-void num(double v, std::string& out) {
-  if (!std::isfinite(v)) {
-    out += "null";
-    return;
-  }
-  char buf[32];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::general, 7);
-  out.append(buf, size_t(r.ptr - buf));
-}
+// Seven significant digits: enough to draw; exact values come from the REST API.
+constexpr int kDrawingDigits = 7;
+
+void num(double v, std::string& out) { append_json_number(v, kDrawingDigits, out); }
 
 template <typename Vec>
 void array(const Vec& v, Eigen::Index n, std::string& out) {
@@ -147,21 +143,15 @@ void encode_frame(const FrameContext& c, const Frame& f, const Model& model, con
   geometry.update(model, scene, c.scene_version, f.q);
   const KinematicsData& kin = geometry.kinematics();
   out.clear();
-  out += "{\"type\":\"frame\",\"run\":" + std::to_string(c.run_id);
+  out += "{\"type\":\"frame\",\"run\":";
+  append_integer(c.run_id, out);
   key("seq", out);
-  out += std::to_string(c.seq);
-  key("step", out);
-  out += std::to_string(f.step);
-  key("t", out);
-  num(f.t, out);
+  append_integer(c.seq, out);
   key("status", out);
   out += '"';
   out += c.status;
-  out += '"';
-  key("q", out);
-  array(f.q, f.q.size(), out);
-  key("qdot", out);
-  array(f.qdot, f.qdot.size(), out);
+  out += "\",";
+  append_frame_json_members(f, FrameOrigin::live, kDrawingDigits, out);
   key("links", out);
   link_segments(model, kin, out);
   if (model.kind != ModelKind::planar) {
@@ -174,19 +164,6 @@ void encode_frame(const FrameContext& c, const Frame& f, const Model& model, con
       array(w, 4, out);
     }
     out += ']';
-  }
-  key("ee", out);
-  array(f.ee_position, 3, out);
-  key("ee_quat", out);
-  const double eq[4] = {f.ee_orientation.w(), f.ee_orientation.x(), f.ee_orientation.y(), f.ee_orientation.z()};
-  array(eq, 4, out);
-  key("target", out);
-  array(f.target, 3, out);
-  if (f.target_orientation) {
-    key("target_quat", out);
-    const Eigen::Quaterniond& t = *f.target_orientation;
-    const double tq[4] = {t.w(), t.x(), t.y(), t.z()};
-    array(tq, 4, out);
   }
   key("obstacles", out);
   out += '[';
@@ -202,33 +179,11 @@ void encode_frame(const FrameContext& c, const Frame& f, const Model& model, con
   key("ellipsoid", out);
   ellipsoid_json(geometry.ellipsoid(), out);
   key("scene_version", out);
-  out += std::to_string(c.scene_version);
+  append_integer(std::int64_t(c.scene_version), out);
   if (c.wall_us != 0) {
     key("wall_us", out);
-    out += std::to_string(c.wall_us);
+    append_integer(c.wall_us, out);
   }
-  key("metrics", out);
-  out += "{\"task_error\":";
-  num(f.task_error, out);
-  key("orientation_error", out);
-  num(f.orientation_error, out);
-  key("min_distance", out);
-  num(f.min_distance, out);
-  key("min_distance_link", out);
-  out += std::to_string(f.min_distance_link + 1);
-  key("collided", out);
-  out += f.collided ? "true" : "false";
-  key("joint_limit_margin", out);
-  num(f.joint_limit_margin, out);
-  key("manipulability", out);
-  num(f.manipulability, out);
-  key("condition_number", out);
-  num(f.condition_number, out);
-  key("step_us", out);
-  num(f.step_us, out);
-  out += '}';
-  key("diagnostics", out);
-  array(f.diagnostics, f.diagnostics.size(), out);
   if (!f.overlays.empty()) {
     key("overlays", out);
     overlays(f.overlays, model, geometry, out);

@@ -21,14 +21,16 @@ struct FrameContext {
   std::int64_t wall_us = 0;  // publication time (system clock, µs): clients measure latency; 0: omitted
 };
 
-// {"type":"frame","run","seq","step","t","status","q","qdot","links":[[sx,sy,sz,ex,ey,ez],..],
-//  "link_quat":[[w,x,y,z],..] (3D models),"ee","ee_quat","target","target_quat" (pose tasks, live only),"obstacles":[[x,y,z],..],
+// {"type":"frame","run","seq","status", then the frame's fields as every JSON
+//  frame has them (sim/frame_json.hpp: "step","t","q","qdot","ee","ee_quat","target",
+//  "target_quat" (pose tasks),"metrics":{..,"step_us"},"diagnostics":[..]), then
+//  "links":[[sx,sy,sz,ex,ey,ez],..],"link_quat":[[w,x,y,z],..] (3D models),"obstacles":[[x,y,z],..],
 //  "nearest":[[link,obstacle,distance,ax,ay,az,bx,by,bz],..] (one per link, its nearest
 //    obstacle: link 1-based, obstacle a 0-based index into the snapshot's obstacles, signed
 //    distance, a on the link axis, b on the obstacle surface; omitted without obstacles),
 //  "ellipsoid":{"centre":[x,y,z],"axes":[[..],[..],[..]]} (velocity manipulability ellipsoid of
 //    the task Jacobian's position rows: semi-axes σ_i·u_i, longest first, zero when missing),
-//  "scene_version","metrics":{..},"diagnostics":[..],
+//  "scene_version","wall_us" (when set),
 //  "overlays":{"ghosts":[q,..],"ghost_links":[[[sx,sy,sz,ex,ey,ez],..],..],"ellipses","points","segments"}
 //    (only when the method draws something; ghost_links: each ghost's links, as "links")}
 // Links, nearest and ellipsoid come from `geometry`, updated here at frame.q

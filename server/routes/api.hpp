@@ -16,6 +16,11 @@
 
 namespace rrlab::server {
 
+// The REST and WebSocket contract's version, in GET /api/health: raised when
+// a response changes shape. 2: stored frames have the stream's shape (metrics
+// nested, diagnostics an array).
+inline constexpr int kApiVersion = 2;
+
 struct ApiRequest {
   std::string method;  // GET, POST, ...
   std::string path;    // without the query

@@ -2,9 +2,9 @@
 // ?format=csv), streamed: the request is checked here (404, 400), then the
 // body is produced in chunks of about 64 KiB on an export worker
 // (app/export_pool.hpp), each chunk from its own short query, so that no
-// SQLite statement or lock is held while a client reads slowly. The bytes are
-// those of the whole document built at once: keys in nlohmann::json's
-// (sorted) order, {"diagnostic_names", "frames", "run"}.
+// SQLite statement or lock is held while a client reads slowly:
+// {"run", "diagnostic_names", "frames": [frames in the stream's shape, with
+// "seq" and exact values (storage/frame_codec.hpp)]}.
 #include <algorithm>
 
 #include "util/nesting_depth.hpp"
@@ -24,8 +24,9 @@ class FrameExport : public BodyStream {
   FrameExport(storage::RunStore& store, std::int64_t run, std::int64_t from, std::int64_t to, std::int64_t stride,
               std::vector<std::string> names, bool csv, int dof)
       : store_(store), run_(run), next_(from), to_(to), stride_(stride), names_(std::move(names)), csv_(csv) {
-    head_ = csv ? "seq," + frame_csv_header(dof, names_, false)
-                : R"({"diagnostic_names":)" + safe_dump(json(names_)) + R"(,"frames":[)";
+    head_ = csv ? "seq," + frame_csv_header(dof, names_, FrameOrigin::stored)
+                : R"({"run":)" + std::to_string(run) + R"(,"diagnostic_names":)" + safe_dump(json(names_)) +
+                      R"(,"frames":[)";
   }
 
   bool next(std::string& out, std::size_t target) override {
@@ -49,7 +50,7 @@ class FrameExport : public BodyStream {
     // deleted meanwhile (DELETE takes a stored run at any time): its frames
     // stopped short, so the body must not end as if complete
     if (!store_.run(run_)) throw ApiError(404, "not_found", "run " + std::to_string(run_) + " was deleted", "id");
-    if (!csv_) out += "],\"run\":" + std::to_string(run_) + "}";
+    if (!csv_) out += "]}";
     return false;
   }
 
@@ -58,12 +59,10 @@ class FrameExport : public BodyStream {
     const std::size_t before = out.size();
     if (csv_) {
       out += std::to_string(f.seq) + ',';
-      append_frame_csv(storage::unpack_frame(f.data), false, out);
+      append_frame_csv(storage::unpack_frame(f.data), FrameOrigin::stored, out);
     } else {
-      json frame = storage::frame_to_json(storage::unpack_frame(f.data), names_);
-      frame["seq"] = f.seq;
       if (frames_ > 0) out += ',';
-      out += safe_dump(frame);
+      storage::append_stored_frame_json(f.seq, storage::unpack_frame(f.data), out);
     }
     bytes_ += out.size() - before;
     ++frames_;

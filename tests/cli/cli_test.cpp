@@ -106,11 +106,11 @@ TEST(Cli, OutWritesTheCsvColumns) {
   std::string header, line;
   std::getline(in, header);
   EXPECT_EQ(header.rfind("step,t,q1,q2,q3,q4,q5,q6,q7,qdot1,qdot2,qdot3,qdot4,qdot5,qdot6,qdot7,ee_x,ee_y,ee_z,"
-                         "task_error,min_distance,collided,",
+                         "ee_quat_w,ee_quat_x,ee_quat_y,ee_quat_z,target_x,target_y,target_z,task_error,",
                          0),
             0u)
       << header;
-  EXPECT_NE(header.find(",lambda,"), std::string::npos) << header;
+  EXPECT_NE(header.find(",step_us,lambda"), std::string::npos) << header;
   int rows = 0;
   while (std::getline(in, line)) ++rows;
   EXPECT_EQ(rows, 20);

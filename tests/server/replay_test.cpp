@@ -1,5 +1,8 @@
 // Stored frames played back over the WebSocket at a chosen speed, with pause
 // and seek; inputs to batch runs are refused.
+#include <algorithm>
+#include <cmath>
+
 #include "server_fixture.hpp"
 
 namespace rrlab::testing {
@@ -9,11 +12,33 @@ using nlohmann::json;
 
 class Replay : public ServerTest {};
 
+// A stored (exact) value against the streamed one: numbers to 7 significant
+// digits (0.99999999 streams as 1), arrays element by element, objects by the
+// stored keys (the stream adds step_us to the metrics).
+void expect_same_to_7_digits(const json& exact, const json& drawn, const std::string& path) {
+  if (exact.is_number() && drawn.is_number()) {
+    EXPECT_NEAR(drawn.get<double>(), exact.get<double>(), 1e-6 * std::max(1.0, std::abs(exact.get<double>()))) << path;
+    return;
+  }
+  ASSERT_EQ(exact.type(), drawn.type()) << path << ": " << exact.dump() << " vs " << drawn.dump();
+  if (exact.is_object()) {
+    for (const auto& [key, value] : exact.items()) {
+      ASSERT_TRUE(drawn.contains(key)) << path << "." << key;
+      expect_same_to_7_digits(value, drawn[key], path + "." + key);
+    }
+  } else if (exact.is_array()) {
+    ASSERT_EQ(exact.size(), drawn.size()) << path;
+    for (size_t i = 0; i < exact.size(); ++i) expect_same_to_7_digits(exact[i], drawn[i], path + "." + std::to_string(i));
+  } else {
+    EXPECT_EQ(exact, drawn) << path;
+  }
+}
+
 TEST_F(Replay, StreamsStoredFramesWithSeek) {
   const HttpResult batch = send("POST", "/api/runs", {{"scenario", "01_planar7_obstacles"}, {"mode", "batch"}, {"steps", 400}});
   ASSERT_EQ(batch.status, 200);
   const std::int64_t id = batch.json()["id"];
-  const std::string stored_q = get("/api/runs/" + std::to_string(id) + "/frames?from=100&to=100").json()["frames"][0]["q"].dump();
+  const json stored = get("/api/runs/" + std::to_string(id) + "/frames?from=100&to=100").json()["frames"][0];
 
   const HttpResult started = send("POST", "/api/runs/" + std::to_string(id) + "/replay", {{"mode", "frames"}, {"speed", 0.25}});  // 16 s
   ASSERT_EQ(started.status, 201) << started.body;
@@ -46,8 +71,11 @@ TEST_F(Replay, StreamsStoredFramesWithSeek) {
     if ((*frame)["seq"] == 100) break;
   }
   EXPECT_EQ((*frame)["seq"], 100);
-  // WebSocket frames carry 7 digits: compare the first joint to that precision
-  EXPECT_NEAR((*frame)["q"][0].get<double>(), json::parse(stored_q)[0].get<double>(), 1e-6);
+  // one frame shape: every stored field is in the streamed frame, which
+  // carries 7 significant digits of the stored exact value
+  ASSERT_TRUE(stored["metrics"].is_object());
+  ASSERT_TRUE(stored["diagnostics"].is_array());
+  expect_same_to_7_digits(stored, *frame, "frame");
 
   EXPECT_EQ(error_of(send("POST", "/api/replays/" + rid + "/control", {{"action", "seek"}, {"seq", 400}}))["path"], "seq");
   EXPECT_EQ(error_of(send("POST", "/api/replays/" + rid + "/control", {{"speed", 0}}))["path"], "speed");

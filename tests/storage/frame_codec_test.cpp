@@ -68,13 +68,47 @@ TEST(FrameCodec, RejectsALinkIndexThatIsNotOne) {
   EXPECT_EQ(unpack_frame(fine).min_distance_link, 6);
 }
 
-TEST(FrameCodec, JsonNamesDiagnosticsAndNullsNonFinite) {
-  const nlohmann::json j = frame_to_json(sample_frame(), {"a", "b"});
-  EXPECT_EQ(j["diagnostics"]["a"], 1.0);
-  EXPECT_EQ(j["diagnostics"]["d3"], 3.0);  // undeclared name
-  EXPECT_TRUE(j["min_distance"].is_null());
-  EXPECT_TRUE(j["condition_number"].is_null());
+// The layout stored runs were written in, spelled out field by field: the
+// field table (sim/frame_fields.hpp) must keep producing these bytes, or
+// stored runs no longer decode and re-simulations no longer match.
+TEST(FrameCodec, BlobLayoutIsTheStoredOne) {
+  const Frame f = sample_frame();
+  std::string expected;
+  const auto put = [&](auto value) { expected.append(reinterpret_cast<const char*>(&value), sizeof value); };
+  put(std::uint32_t(7));
+  put(std::uint32_t(3));
+  put(std::int64_t(42));
+  put(f.t);
+  for (int i = 0; i < 7; ++i) put(f.q[i]);
+  for (int i = 0; i < 7; ++i) put(f.qdot[i]);
+  for (int i = 0; i < 3; ++i) put(f.ee_position[i]);
+  for (const double c : {f.ee_orientation.w(), f.ee_orientation.x(), f.ee_orientation.y(), f.ee_orientation.z()})
+    put(c);
+  for (int i = 0; i < 3; ++i) put(f.target[i]);
+  for (const double m : {f.task_error, f.orientation_error, f.min_distance, -1.0, 1.0, f.joint_limit_margin,
+                         f.manipulability, f.condition_number})
+    put(m);
+  for (int i = 0; i < 3; ++i) put(f.diagnostics[i]);
+  EXPECT_EQ(pack_frame(f), expected);
+}
+
+TEST(FrameCodec, StoredJsonIsTheStreamShapeWithExactValues) {
+  std::string text;
+  append_stored_frame_json(9, sample_frame(), text);
+  const nlohmann::json j = nlohmann::json::parse(text);
+  EXPECT_EQ(j["seq"], 9);
+  EXPECT_EQ(j["step"], 42);
+  EXPECT_EQ(j["diagnostics"], nlohmann::json({1.0, 2.0, 3.0}));  // an array, named by the run's diagnostic_names
+  EXPECT_TRUE(j["metrics"]["min_distance"].is_null());
+  EXPECT_TRUE(j["metrics"]["condition_number"].is_null());
+  EXPECT_EQ(j["metrics"]["min_distance_link"], 0);  // 1-based, 0: none
+  EXPECT_EQ(j["metrics"]["collided"], true);
+  EXPECT_FALSE(j["metrics"].contains("step_us"));  // measured, not stored
+  EXPECT_FALSE(j.contains("target_quat"));         // live frames only
   EXPECT_EQ(j["q"].size(), 7u);
+  EXPECT_EQ(j["ee"][0].get<double>(), 1.0 / 3.0);  // exact: the shortest text that reads back the same
+  EXPECT_EQ(j["ee"][2].get<double>(), 1e-300);
+  EXPECT_EQ(j["metrics"]["task_error"].get<double>(), 1e-7);
 }
 
 }  // namespace

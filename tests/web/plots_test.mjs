@@ -115,9 +115,9 @@ await suite('plots', [
         const frames = [];
         for (let k = 0; k < 20000; ++k) {
           const time = k * 0.005;
-          frames.push({ t: time, task_error: 1e-3 * (1 + Math.sin(time + i)), orientation_error: 0,
+          frames.push({ t: time, metrics: { task_error: 1e-3 * (1 + Math.sin(time + i)), orientation_error: 0,
             min_distance: 0.1 * Math.cos(time / 7 + i), manipulability: 0.2 + 0.1 * Math.sin(time / 3),
-            condition_number: 10 ** (1 + 2 * Math.abs(Math.sin(time / 11 + i))), diagnostics: { x: k % 100 } });
+            condition_number: 10 ** (1 + 2 * Math.abs(Math.sin(time / 11 + i))) }, diagnostics: [k % 100] });
         }
         plots.setRun(i, { frames });
       });
@@ -143,6 +143,10 @@ await suite('plots', [
     // printed, not asserted: they depend on how busy the machine is (idle, 2 cores: about 0.4 s, 2 ms and 0.1 s)
     console.log(`     4 × 20,000 frames set and drawn in ${ms.toFixed(0)} ms; a cursor move ${cost.cursor.toFixed(2)} ms; redrawing all ${cost.redraw.toFixed(0)} ms`);
     check((await counts(page)).error === 20000, 'every frame is plotted');
+    // the stored frames' shape is read: every point has a value, not a gap
+    const gaps = await page.evaluate(() => window.__rrlab.plots.series.map((s) =>
+      ['task_error', 'condition_number', 'diag:x'].map((k) => s.column(k).filter((v) => v === null).length)));
+    check(gaps.flat().every((n) => n === 0), `no gaps in the stored series: ${JSON.stringify(gaps)}`);
     await shootPlots(page, 'replay-long');
   }],
 ]);

@@ -52,37 +52,38 @@ export class LaneSeries {
     const last = this.t.length ? this.t[this.t.length - 1] : null;
     if (last !== null && t === last) return false;
     if (last !== null && t < last) this.clear();
-    const m = frame.metrics || {};
-    this.appendRow(t, m, (name, i) => (Array.isArray(frame.diagnostics) ? frame.diagnostics[i] : null));
+    this.appendFrame(t, frame);
     this.dropBefore(t - windowSeconds);
     return true;
   }
 
-  // Stored frames from GET /api/runs/{id}/frames: metrics are top-level fields
-  // and diagnostics an object keyed by name; step_us is not stored.
+  // Stored frames from GET /api/runs/{id}/frames, in the stream's shape
+  // (step_us is not stored: its column holds nulls).
   setStored(frames) {
     this.clear();
     for (const f of frames) {
       const t = finite(f.t);
-      if (t === null) continue;
-      const d = f.diagnostics && typeof f.diagnostics === 'object' ? f.diagnostics : {};
-      this.appendRow(t, f, (name, i) => (Array.isArray(d) ? d[i] : d[name]));
+      if (t !== null) this.appendFrame(t, f);
     }
   }
 
-  appendRow(t, metrics, diagnostic) {
+  // A frame's row, live or stored (docs/api.md, Frames): metrics inside
+  // `metrics`, diagnostics an array in the order of the lane's names.
+  appendFrame(t, frame) {
     this.t.push(t);
     const c = this.columns;
-    c[0].push(finite(metrics.task_error));
-    const orientation = finite(metrics.orientation_error);
+    const m = frame.metrics && typeof frame.metrics === 'object' ? frame.metrics : {};
+    c[0].push(finite(m.task_error));
+    const orientation = finite(m.orientation_error);
     if (orientation !== null && orientation !== 0) this.orientationSeen = true;
     c[1].push(orientation);
-    c[2].push(finite(metrics.min_distance));
-    c[3].push(finite(metrics.manipulability));
-    c[4].push(positive(metrics.condition_number));
-    c[5].push(finite(metrics.step_us));
+    c[2].push(finite(m.min_distance));
+    c[3].push(finite(m.manipulability));
+    c[4].push(positive(m.condition_number));
+    c[5].push(finite(m.step_us));
+    const d = Array.isArray(frame.diagnostics) ? frame.diagnostics : [];
     const n = METRIC_KEYS.length;
-    this.diagnosticNames.forEach((name, i) => c[n + i].push(finite(diagnostic(name, i))));
+    this.diagnosticNames.forEach((name, i) => c[n + i].push(finite(d[i])));
   }
 
   // Keeps one point older than the window so the line reaches the left edge.

@@ -165,39 +165,41 @@ test('a live lane holds at most 2000 rows whatever the window, dropping the olde
   for (const col of s.columns) assert.equal(col.length, 2000);
 });
 
-test('setStored reads top-level metrics and diagnostics keyed by name', () => {
+test('setStored reads the stream\'s shape: nested metrics, diagnostics an array in the lane\'s order', () => {
   const s = new LaneSeries(['a', 'b']);
   s.setStored([
-    { t: 0, task_error: 1, orientation_error: 0, min_distance: 0.5, manipulability: 0.1, condition_number: 4,
-      diagnostics: { a: 10, b: 20 } },
-    { t: 0.01, task_error: 2, diagnostics: { b: 21, c: 99 } },  // a missing, c unknown
-    { t: 0.02, task_error: 3 },                                 // no diagnostics
-    { t: 0.03, task_error: 4, diagnostics: null },
+    { t: 0, metrics: { task_error: 1, orientation_error: 0, min_distance: 0.5, manipulability: 0.1, condition_number: 4 },
+      diagnostics: [10, 20] },
+    { t: 0.01, metrics: { task_error: 2 }, diagnostics: [null, 21, 99] },  // a null, one beyond the names
+    { t: 0.02, metrics: { task_error: 3 } },                               // no diagnostics
+    { t: 0.03, metrics: { task_error: 4 }, diagnostics: null },
+    { t: 0.04, task_error: 5, diagnostics: { a: 1 } },                     // not the frame shape: nothing read
   ]);
-  assert.deepEqual(s.t, [0, 0.01, 0.02, 0.03]);
-  assert.deepEqual(s.column('task_error'), [1, 2, 3, 4]);
-  assert.deepEqual(s.column('min_distance'), [0.5, null, null, null]);
-  assert.deepEqual(s.column('condition_number'), [4, null, null, null]);
-  assert.deepEqual(s.column('step_us'), [null, null, null, null], 'step times are not stored');
-  assert.deepEqual(s.column('diag:a'), [10, null, null, null]);
-  assert.deepEqual(s.column('diag:b'), [20, 21, null, null]);
+  assert.deepEqual(s.t, [0, 0.01, 0.02, 0.03, 0.04]);
+  assert.deepEqual(s.column('task_error'), [1, 2, 3, 4, null]);
+  assert.deepEqual(s.column('min_distance'), [0.5, null, null, null, null]);
+  assert.deepEqual(s.column('condition_number'), [4, null, null, null, null]);
+  assert.deepEqual(s.column('step_us'), [null, null, null, null, null], 'step times are not stored');
+  assert.deepEqual(s.column('diag:a'), [10, null, null, null, null]);
+  assert.deepEqual(s.column('diag:b'), [20, 21, null, null, null]);
 });
 
-test('setStored also takes diagnostics as an array in the lane\'s order', () => {
-  const s = new LaneSeries(['a', 'b']);
-  s.setStored([{ t: 0, diagnostics: [1, 2] }, { t: 1, diagnostics: [3] }]);
-  assert.deepEqual(s.column('diag:a'), [1, 3]);
-  assert.deepEqual(s.column('diag:b'), [2, null]);
+test('a stored frame and the same live frame make the same row', () => {
+  const frame = { t: 0.5, metrics: { task_error: 1e-3, min_distance: 0.2, condition_number: 3 }, diagnostics: [7] };
+  const stored = new LaneSeries(['a']), live = new LaneSeries(['a']);
+  stored.setStored([frame]);
+  live.appendLive(frame, 10);
+  assert.deepEqual(stored.columns, live.columns);
 });
 
 test('setStored replaces what the lane held, skips frames without a finite t and keeps the whole run', () => {
   const s = new LaneSeries([]);
   for (let t = 0; t < 5; ++t) s.appendLive(live(t), 10);
-  s.setStored([{ t: 'x', task_error: 1 }, { task_error: 2 }, { t: 7, task_error: 3 }, { t: NaN }]);
+  s.setStored([{ t: 'x', metrics: { task_error: 1 } }, { metrics: { task_error: 2 } }, { t: 7, metrics: { task_error: 3 } }, { t: NaN }]);
   assert.deepEqual(s.t, [7]);
   assert.deepEqual(s.column('task_error'), [3]);
 
-  const frames = Array.from({ length: 3000 }, (_, i) => ({ t: i * 0.01, task_error: i }));
+  const frames = Array.from({ length: 3000 }, (_, i) => ({ t: i * 0.01, metrics: { task_error: i } }));
   s.setStored(frames);
   assert.equal(s.length, 3000, 'no live cap for a stored run');
   assert.equal(s.column('task_error')[2999], 2999);
@@ -215,9 +217,9 @@ test('setStored keeps frames in the order given, neither sorted nor deduplicated
 
 test('setStored notes a non-zero orientation error and forgets an earlier one', () => {
   const s = new LaneSeries([]);
-  s.setStored([{ t: 0, orientation_error: 0 }, { t: 1, orientation_error: 0.2 }]);
+  s.setStored([{ t: 0, metrics: { orientation_error: 0 } }, { t: 1, metrics: { orientation_error: 0.2 } }]);
   assert.equal(s.orientationSeen, true);
-  s.setStored([{ t: 0, orientation_error: 0 }]);
+  s.setStored([{ t: 0, metrics: { orientation_error: 0 } }]);
   assert.equal(s.orientationSeen, false);
 });
 
