@@ -168,24 +168,41 @@ void RunStore::finish_run(std::int64_t id, std::string_view status, const std::s
   });
 }
 
+namespace {
+constexpr const char* kInsertEvent = "INSERT INTO events(run_id, seq, step, kind, payload) VALUES (?,?,?,?,?)";
+
+void bind_event(Statement& insert, std::int64_t run, const StoredEvent& e) {
+  insert.bind(1, run).bind(2, e.seq).bind(3, e.step).bind(4, e.kind).bind(5, e.payload_json);
+}
+}  // namespace
+
 void RunStore::add_event(std::int64_t run, const StoredEvent& e) {
   recording_faults([&] {
     std::lock_guard lock(mutex_);
-    db_->prepare("INSERT INTO events(run_id, seq, step, kind, payload) VALUES (?,?,?,?,?)")
-        .bind(1, run)
-        .bind(2, e.seq)
-        .bind(3, e.step)
-        .bind(4, e.kind)
-        .bind(5, e.payload_json)
-        .step();
+    Statement insert = db_->prepare(kInsertEvent);
+    bind_event(insert, run, e);
+    insert.step();
   });
 }
 
-void RunStore::add_frames(const std::vector<std::pair<std::int64_t, StoredFrame>>& frames) {
-  if (frames.empty()) return;
+void RunStore::add_frames(const std::vector<std::pair<std::int64_t, StoredFrame>>& frames,
+                          const std::vector<std::pair<std::int64_t, StoredEvent>>& events) {
+  if (frames.empty() && events.empty()) return;
   recording_faults([&] {
   std::lock_guard lock(mutex_);
   Transaction tx(*db_);
+  if (!events.empty()) {
+    Statement insert = db_->prepare(kInsertEvent);
+    for (const auto& [run_id, e] : events) {
+      bind_event(insert, run_id, e);
+      insert.step();
+      insert.reset();
+    }
+  }
+  if (frames.empty()) {
+    tx.commit();
+    return;
+  }
   Statement insert = db_->prepare(
       "INSERT INTO frames(run_id, seq, step, t, task_error, min_distance, collided, data) "
       "VALUES (?,?,?,?,?,?,?,?)");

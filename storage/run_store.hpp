@@ -110,8 +110,10 @@ class RunStore {
   void set_compare_group(std::int64_t id, std::int64_t group);
   void finish_run(std::int64_t id, std::string_view status, const std::string& summary_json);
   void add_event(std::int64_t run, const StoredEvent& event);
-  // Frames of one or more runs in one transaction; updates the runs' frame counts.
-  void add_frames(const std::vector<std::pair<std::int64_t, StoredFrame>>& frames);
+  // Frames of one or more runs in one transaction, with input events of
+  // those or other runs (the frame writer's batch); updates the runs' frame counts.
+  void add_frames(const std::vector<std::pair<std::int64_t, StoredFrame>>& frames,
+                  const std::vector<std::pair<std::int64_t, StoredEvent>>& events = {});
 
   // Deletes a run with its frames and events in one transaction; false when
   // there is no such run. Whether it may be deleted (not live) is the caller's

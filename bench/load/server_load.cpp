@@ -2,7 +2,10 @@
 //  - 50 WebSocket clients on one live run at 60 Hz: delivered frames per
 //    second per client, and latency from publication (right after the step)
 //    to receipt, p50/p99;
-//  - 100 concurrent batch runs over REST: all complete and all are stored.
+//  - 100 concurrent batch runs over REST: all complete and all are stored;
+//  - 20 clients steering 20 live runs (parameter changes and obstacle drags
+//    at 50 Hz each, while the runs store 1,000 frames/s each): input → ack
+//    latency p50/p99.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -84,6 +87,75 @@ void BM_WebSocketFanout50(benchmark::State& state) {
   state.counters["sim_steps_per_s"] = steps_per_s;  // 100 at rate 1 with dt = 0.01
 }
 BENCHMARK(BM_WebSocketFanout50)->Arg(10)->Arg(50)->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
+
+// Each client steers its own live run (one controller per run) at about 50
+// inputs/s, alternating a parameter change and an obstacle drag, and times
+// each message to its ack (frames and snapshots in between are skipped).
+void BM_LiveInputLatency(benchmark::State& state) {
+  const int clients = int(state.range(0));
+  const auto window = std::chrono::seconds(5);
+  ServerProcess server;
+  json scenario = json::parse(http(server.port(), "GET", "/api/scenarios/01_planar7_obstacles").body);
+  scenario["duration"] = 600;
+  double p50 = 0, p99 = 0, max_latency = 0;
+  long acks = 0, errors = 0;
+  for (auto _ : state) {
+    std::vector<std::string> ids;
+    for (int i = 0; i < clients; ++i)
+      ids.push_back(std::to_string(
+          http_json(server.port(), "POST", "/api/runs", {{"scenario", scenario}, {"rate", 10}}).json()["id"].get<long>()));
+    std::vector<std::unique_ptr<WsClient>> sockets;
+    for (int i = 0; i < clients; ++i)
+      sockets.push_back(std::make_unique<WsClient>(server.port(), "/ws/runs/" + ids[size_t(i)] + "?client=steer" +
+                                                                      std::to_string(i)));
+    std::vector<std::vector<double>> latency_ms{size_t(clients)};
+    std::atomic<long> ack_count{0}, error_count{0};
+    const auto start = Clock::now();
+    std::vector<std::thread> steerers;
+    for (int i = 0; i < clients; ++i)
+      steerers.emplace_back([&, i] {
+        WsClient& ws = *sockets[size_t(i)];
+        for (int k = 0; Clock::now() - start < window; ++k) {
+          const json input = k % 2 == 0
+                                 ? json{{"type", "input"}, {"kind", "params"}, {"payload", {{"gain", 4 + k % 4}}}}
+                                 : json{{"type", "input"},
+                                        {"kind", "obstacle"},
+                                        {"payload", {{"id", "box"}, {"position", {1.1 + 0.001 * (k % 50), -0.05}}}}};
+          const auto sent = Clock::now();
+          ws.send(input.dump());
+          for (;;) {
+            auto message = ws.read_json(std::chrono::milliseconds(5000));
+            if (!message) return;
+            const std::string type = (*message)["type"];
+            if (type != "ack" && type != "error") continue;
+            (type == "ack" ? ack_count : error_count) += 1;
+            latency_ms[size_t(i)].push_back(std::chrono::duration<double, std::milli>(Clock::now() - sent).count());
+            break;
+          }
+          std::this_thread::sleep_until(sent + std::chrono::milliseconds(20));
+        }
+      });
+    for (auto& t : steerers) t.join();
+    std::vector<double> all;
+    for (const auto& l : latency_ms) all.insert(all.end(), l.begin(), l.end());
+    std::sort(all.begin(), all.end());
+    if (!all.empty()) {
+      p50 = all[all.size() / 2];
+      p99 = all[std::min(all.size() - 1, size_t(double(all.size()) * 0.99))];
+      max_latency = all.back();
+    }
+    acks = ack_count;
+    errors = error_count;
+    for (const std::string& id : ids) http_json(server.port(), "POST", "/api/runs/" + id + "/control", {{"action", "stop"}});
+  }
+  state.counters["clients"] = clients;
+  state.counters["acks"] = double(acks);
+  state.counters["errors"] = double(errors);
+  state.counters["input_p50_ms"] = p50;
+  state.counters["input_p99_ms"] = p99;
+  state.counters["input_max_ms"] = max_latency;
+}
+BENCHMARK(BM_LiveInputLatency)->Arg(20)->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
 
 void BM_ConcurrentBatchRuns(benchmark::State& state) {
   const int runs = int(state.range(0));

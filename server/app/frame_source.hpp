@@ -1,7 +1,9 @@
 // What a WebSocket session streams: a live run lane or a replay. The session
-// sends snapshot() on connect and whenever scene_version() changes, then the
-// latest published frame at its display rate (latest wins), and hands the
-// messages it receives to handle_message().
+// sends snapshot() on connect and, whenever the published scene_version
+// passes the one it sent, what changed (update_since: a params or scene
+// message, or a whole snapshot), then the latest published frame at its
+// display rate (latest wins), and hands the messages it receives to
+// handle_message().
 #pragma once
 
 #include <cstdint>
@@ -13,9 +15,22 @@
 #include <string>
 #include <vector>
 
+namespace rrlab::storage {
+class Completion;
+}
+
 namespace rrlab::server {
 
 class Controller;
+
+// The reply to a client message: sent at once, or, when `pending` is set,
+// once it settles (an input's event stored, a single step taken): then the
+// ack carries the settled status, or an error if the work failed
+// (app/socket_message.hpp, settled_reply).
+struct MessageReply {
+  nlohmann::json reply;
+  std::shared_ptr<storage::Completion> pending;
+};
 
 struct PublishedFrame {
   std::uint64_t version = 0;  // increases with every publication
@@ -59,14 +74,28 @@ class Subscribers {
   std::uint64_t next_ = 0;
 };
 
+// What brings a client from one scene version to the current one: the
+// messages to send and the version they bring it to.
+struct SceneUpdate {
+  std::vector<std::string> messages;
+  std::uint64_t version = 0;
+};
+
 class FrameSource {
  public:
   virtual ~FrameSource() = default;
   virtual Subscribers& subscribers() = 0;
   virtual std::string snapshot() = 0;
+  // Everything changed since `since` (a scene_version the client has): by
+  // default a whole snapshot.
+  virtual SceneUpdate update_since(std::uint64_t since) {
+    (void)since;
+    const std::uint64_t version = latest().scene_version;
+    return {{snapshot()}, version};
+  }
   virtual PublishedFrame latest() = 0;
   // A client message (inputs, control); returns the reply to send. Never throws.
-  virtual nlohmann::json handle_message(const nlohmann::json& message) = 0;
+  virtual MessageReply handle_message(const nlohmann::json& message) = 0;
   // Who may steer (app/controller.hpp): a live run's; nullptr for a replay.
   virtual Controller* controller() { return nullptr; }
 };

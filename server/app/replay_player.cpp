@@ -174,14 +174,14 @@ PublishedFrame ReplayPlayer::latest() {
   return published_;
 }
 
-json ReplayPlayer::handle_message(const json& message) {
-  return socket_reply([&] {
+MessageReply ReplayPlayer::handle_message(const json& message) {
+  return {socket_reply([&] {
     if (!message.is_object() || message.value("type", "") != "control")
       throw ApiError(400, "invalid", "a replay takes {\"type\": \"control\", \"action\": play|pause|seek}", "type");
     json body = message;
     body.erase("type");
     return control(body);
-  });
+  }), nullptr};
 }
 
 }  // namespace rrlab::server

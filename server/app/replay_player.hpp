@@ -49,7 +49,7 @@ class ReplayPlayer final : public FrameSource, public std::enable_shared_from_th
   std::string snapshot() override;
   PublishedFrame latest() override;
   Subscribers& subscribers() override { return subscribers_; }
-  nlohmann::json handle_message(const nlohmann::json& message) override;
+  MessageReply handle_message(const nlohmann::json& message) override;
 
  private:
   void loop();

@@ -32,6 +32,22 @@ class RunGroup::LaneSource final : public FrameSource {
     return snapshot_json(context, *lane.sim, frame).dump();
   }
 
+  SceneUpdate update_since(std::uint64_t since) override {
+    auto lock = group_->lock_for_input();
+    Lane& lane = group_->lanes_[size_t(lane_)];
+    const FrameContext context{lane.run_id, lane.seq, lane.scene_version, group_->lane_status(lane)};
+    SceneUpdate update{{}, lane.scene_version};
+    if (since < lane.snapshot_version) {
+      std::string frame;
+      encode_frame(context, lane.sim->frame(), lane.sim->model(), lane.sim->scene(), *lane.geometry, frame);
+      update.messages.push_back(snapshot_json(context, *lane.sim, frame).dump());
+      return update;
+    }
+    if (since < lane.obstacles_version) update.messages.push_back(scene_message_json(context, *lane.sim).dump());
+    if (since < lane.params_version) update.messages.push_back(params_message_json(context, *lane.sim).dump());
+    return update;
+  }
+
   PublishedFrame latest() override {
     std::lock_guard lock(group_->publish_mutex_);
     return group_->lanes_[size_t(lane_)].published;
@@ -39,20 +55,26 @@ class RunGroup::LaneSource final : public FrameSource {
 
   Subscribers& subscribers() override { return *group_->lanes_[size_t(lane_)].subscribers; }
 
-  json handle_message(const json& message) override {
-    return socket_reply([&]() -> json {
+  MessageReply handle_message(const json& message) override {
+    std::shared_ptr<storage::Completion> pending;
+    json reply = socket_reply([&]() -> json {
       JsonObject obj(message, "");
       const std::string type = obj.choice("type", {"input", "control"});
+      Accepted accepted;
       if (type == "control") {
         obj.check_keys({"type", "action", "rate"});
         json body = message;
         body.erase("type");
-        return group_->control(lane_, body);
+        accepted = group_->control(lane_, body);
+      } else {
+        obj.check_keys({"type", "kind", "payload"});
+        const std::string kind = obj.string("kind");
+        accepted = group_->input(lane_, kind, message.value("payload", json::object()), "payload");
       }
-      obj.check_keys({"type", "kind", "payload"});
-      const std::string kind = obj.string("kind");
-      return group_->input(lane_, kind, message.value("payload", json::object()), "payload");
+      pending = std::move(accepted.pending);
+      return std::move(accepted.status);
     });
+    return {std::move(reply), std::move(pending)};
   }
   Controller* controller() override { return &group_->controller(); }
 
@@ -201,7 +223,7 @@ bool RunGroup::store_frame(Lane& lane, std::int64_t bytes) {
     release_reservations_of(lane);
     return false;
   };
-  if (lane.frames_stored >= services_.max_stored_frames)
+  if (lane.frames_stored >= services_.max_run_frames)
     return stop("max_run_frames: the run stored " + std::to_string(lane.frames_stored) +
                 " frames, the most a run may store (serve --max-run-frames)");
   if (lane.bytes_stored + bytes > services_.max_run_bytes)
@@ -291,7 +313,12 @@ void RunGroup::loop() {
       next_publish_ += std::chrono::duration_cast<Clock::duration>(publish_period);
       if (next_publish_ < now) next_publish_ = now + std::chrono::duration_cast<Clock::duration>(publish_period);
     }
-    if (single) stepped_.notify_all();
+    if (single && !step_waiters_.empty()) {
+      auto ready = settle_steps(false);
+      lock.unlock();
+      for (auto& [done, status] : ready) done->settle({{}, {}, std::move(status)});
+      lock.lock();
+    }
     if (!paused_ && options_.rate > 0) {
       const auto next = anchor + std::chrono::duration_cast<Clock::duration>(
                                      std::chrono::duration<double>(double(anchor_steps) * dt_ / options_.rate));
@@ -311,6 +338,7 @@ void RunGroup::loop() {
 void RunGroup::finish(const std::string& requested_status) {
   services_.writer.flush();
   std::vector<std::function<void()>> callbacks;
+  std::vector<std::pair<std::shared_ptr<storage::Completion>, json>> ended_steps;
   {
     std::lock_guard lock(mutex_);
     release_reservations();
@@ -341,8 +369,9 @@ void RunGroup::finish(const std::string& requested_status) {
     }
     finished_ = true;
     for (Lane& lane : lanes_) publish(lane);
+    ended_steps = settle_steps(true);
   }
-  stepped_.notify_all();
+  for (auto& [done, status] : ended_steps) done->settle({{}, {}, std::move(status)});
   {
     std::lock_guard lock(done_mutex_);
     callbacks.swap(on_finished_);
@@ -373,6 +402,17 @@ void RunGroup::when_finished(std::function<void()> callback) {
     }
   }
   callback();
+}
+
+std::vector<std::pair<std::shared_ptr<storage::Completion>, json>> RunGroup::settle_steps(bool all) {
+  std::vector<std::pair<std::shared_ptr<storage::Completion>, json>> ready;
+  std::erase_if(step_waiters_, [&](StepWaiter& w) {
+    const Lane& lane = lanes_[size_t(w.lane)];
+    if (!all && lane.seq < w.seq) return false;
+    ready.emplace_back(std::move(w.done), status_locked(lane));
+    return true;
+  });
+  return ready;
 }
 
 // ---- REST / WebSocket inputs ----
@@ -419,7 +459,7 @@ std::unique_lock<std::mutex> RunGroup::lock_for_input() {
   return lock;
 }
 
-json RunGroup::control(int lane_index, const json& body) {
+Accepted RunGroup::control(int lane_index, const json& body) {
   JsonObject obj(body, "");
   std::string action;
   std::optional<double> rate;
@@ -443,6 +483,7 @@ json RunGroup::control(int lane_index, const json& body) {
     options_.rate = *rate;
     ++pacing_generation_;
   }
+  Accepted accepted;
   if (action == "start" || action == "pause") {
     paused_ = action == "pause";
     ++pacing_generation_;
@@ -450,51 +491,57 @@ json RunGroup::control(int lane_index, const json& body) {
     for (Lane& l : lanes_) publish(l);
   } else if (action == "step") {
     if (!paused_) throw ApiError(409, "wrong_state", "pause the run before single-stepping", "action");
-    const std::int64_t target = lane.seq + 1;
+    // answered once the simulation thread has taken the step (or the run ended)
+    // (steps asked for before it and not yet taken come first)
+    accepted.pending = std::make_shared<storage::Completion>();
     ++step_requests_;
-    wake_.notify_all();
-    stepped_.wait_for(lock, std::chrono::seconds(1), [&] { return finished_ || lane.seq >= target; });
+    step_waiters_.push_back({lane_index, lane.seq + step_requests_, accepted.pending});
   } else if (action == "stop") {
     stop_requested_ = true;  // the REST route answers once the run has ended (deferred)
   }
   wake_.notify_all();
-  return status_locked(lane);
+  accepted.status = status_locked(lane);
+  return accepted;
 }
 
-json RunGroup::input(int lane_index, const std::string& kind, const json& payload, const std::string& prefix) {
+Accepted RunGroup::input(int lane_index, const std::string& kind, const json& payload, const std::string& prefix) {
   if (options_.mode != "live")
     throw ApiError(409, "wrong_state", "a " + options_.mode + " run takes no inputs; start a live run", prefix);
   auto lock = lock_for_input();
   if (finished_ || stop_requested_)
     throw ApiError(409, "wrong_state", "the run has ended", prefix);
+  // a run whose writes failed could no longer be re-simulated: it takes no more inputs
+  if (auto error = write_failure()) throw ApiError(503, "storage", *error, prefix);
   const bool own_lane = kind == "params" || kind == "method";
+  Accepted accepted;
+  accepted.pending = std::make_shared<storage::Completion>();
+  std::vector<size_t> applied;
   for (size_t i = 0; i < lanes_.size(); ++i) {
     if (own_lane && int(i) != lane_index) continue;
-    Lane& lane = lanes_[i];
     try {
-      apply_input(*lane.sim, kind, payload);
+      apply_input(*lanes_[i].sim, kind, payload);
     } catch (...) {
       rethrow_as_api_error(prefix);
     }
-    try {
-      services_.store.add_event(lane.run_id, {lane.seq, lane.sim->state().step, kind, payload.dump()});
-    } catch (const std::exception& e) {
-      // applied but not recorded: the run could no longer be re-simulated, so it ends as failed
-      failure_ = std::string("storing an input event failed: ") + e.what();
-      stop_requested_ = true;
-      wake_.notify_all();
-      const auto* storage_error = dynamic_cast<const storage::StorageError*>(&e);
-      if (storage_error && storage_error->fault() == storage::StorageFault::full)
-        throw ApiError(503, "storage_full", failure_, prefix);
-      if (storage_error && storage_error->fault() == storage::StorageFault::readonly)
-        throw ApiError(503, "storage_readonly", failure_, prefix);
-      throw ApiError(500, "storage", failure_, prefix);
+    applied.push_back(i);
+  }
+  // Stored by the frame writer, queued ahead of the frames they take effect
+  // in (the mutex keeps the next step out until then); the last event's
+  // commit means every one's (one queue, written in order).
+  for (size_t i : applied) {
+    Lane& lane = lanes_[i];
+    services_.writer.push_event(lane.run_id, {lane.seq, lane.sim->state().step, kind, payload.dump()},
+                                i == applied.back() ? accepted.pending : nullptr);
+    if (kind != "joystick") {
+      ++lane.scene_version;
+      (kind == "params" ? lane.params_version : kind == "obstacle" ? lane.obstacles_version : lane.snapshot_version) =
+          lane.scene_version;
     }
-    if (kind != "joystick") ++lane.scene_version;
     if (paused_) publish(lane);
   }
   wake_.notify_all();
-  return status_locked(lanes_[size_t(lane_index)]);
+  accepted.status = status_locked(lanes_[size_t(lane_index)]);
+  return accepted;
 }
 
 std::shared_ptr<FrameSource> RunGroup::source(int lane) {

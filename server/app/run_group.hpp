@@ -1,8 +1,10 @@
 // One or more simulations stepped in lockstep on their own thread (a single
 // run is a group of one; /api/compare makes a group of several methods on one
 // scenario). Inputs are applied under the group's lock between steps and
-// stored as events; frames go to the FrameWriter; the latest frame of each
-// lane is published for WebSocket clients at the display rate.
+// their events queued to the FrameWriter ahead of the frames they take effect
+// in (answered once stored: Accepted); frames go to the FrameWriter; the
+// latest frame of each lane is published for WebSocket clients at the
+// display rate.
 #pragma once
 
 #include <atomic>
@@ -20,6 +22,7 @@
 #include "app/controller.hpp"
 #include "app/frame_geometry.hpp"
 #include "app/frame_source.hpp"
+#include "storage/completion.hpp"
 #include "storage/quotas.hpp"
 #include "storage/run_store.hpp"
 #include "scenario/scenario.hpp"
@@ -73,7 +76,7 @@ LaneEstimate estimate_lane(const Scenario& scenario, std::int64_t steps, std::in
 struct RunServices {
   storage::RunStore& store;
   storage::FrameWriter& writer;
-  long max_stored_frames = Quotas{}.max_run_frames;       // per run (serve --max-run-frames)
+  long max_run_frames = Quotas{}.max_run_frames;       // per run (serve --max-run-frames)
   std::int64_t max_run_bytes = Quotas{}.max_run_bytes;    // per run (serve --max-run-bytes)
   StorageBudget* budget = nullptr;             // total (serve --max-total-bytes); null: none
   // Called with every lane's estimate once the simulators are built and
@@ -96,6 +99,15 @@ struct GroupOptions {
   bool compare = false;
 };
 
+// What an input or a control request answers: the lane's status now, and
+// the work the answer still waits for (an input's event being stored, a
+// single step being taken), which settles with the status to answer then.
+// Nothing blocks meanwhile: REST answers later, a WebSocket acks later.
+struct Accepted {
+  nlohmann::json status;
+  std::shared_ptr<storage::Completion> pending;  // null: answer `status` now
+};
+
 class RunGroup : public std::enable_shared_from_this<RunGroup> {
  public:
   // Creates the stored runs (one per scenario); throws ApiError on bad input.
@@ -109,12 +121,14 @@ class RunGroup : public std::enable_shared_from_this<RunGroup> {
   std::int64_t run_id(int lane) const { return lanes_[size_t(lane)].run_id; }
   int lane_of(std::int64_t run_id) const;  // -1 if not in this group
 
-  // control: {"action": start|pause|step|reset|stop, "rate"?: factor}; returns the lane's status.
-  nlohmann::json control(int lane, const nlohmann::json& body);
+  // control: {"action": start|pause|step|reset|stop, "rate"?: factor}; the
+  // lane's status (a step: once the step is taken; a reset: once stored).
+  Accepted control(int lane, const nlohmann::json& body);
   // An input event (sim/run_inputs.hpp kinds); params and method go to this
-  // lane, scene, joystick and reset inputs to every lane. Throws ApiError.
-  nlohmann::json input(int lane, const std::string& kind, const nlohmann::json& payload,
-                       const std::string& path_prefix);
+  // lane, scene, joystick and reset inputs to every lane. Applied at once
+  // (it takes effect in the next step); pending settles once its events are
+  // stored, with an error if they could not be. Throws ApiError.
+  Accepted input(int lane, const std::string& kind, const nlohmann::json& payload, const std::string& path_prefix);
   nlohmann::json status_json(int lane);
   bool finished() const { return finished_; }
   // Called once when the group has ended (at once if it has).
@@ -133,7 +147,11 @@ class RunGroup : public std::enable_shared_from_this<RunGroup> {
     std::int64_t frames_stored = 0, bytes_stored = 0;  // pushed to the writer
     std::int64_t reserved = 0;  // bytes of the budget reserved for this lane, not yet pushed
     std::string storage_stopped;  // why later frames are not stored ("": all stored)
-    std::uint64_t scene_version = 1;
+    std::uint64_t scene_version = 1;  // raised by every input but a joystick's
+    // the scene_version of the last change that needs a whole snapshot (a
+    // method switch, a reset, an obstacle added or removed), and of the last
+    // parameter change and obstacle edit (sent as params and scene messages)
+    std::uint64_t snapshot_version = 1, params_version = 0, obstacles_version = 0;
     std::string status = "running";
     // published for clients (guarded by publish_mutex_)
     PublishedFrame published;
@@ -162,7 +180,7 @@ class RunGroup : public std::enable_shared_from_this<RunGroup> {
   std::vector<Lane> lanes_;
 
   mutable std::mutex mutex_;  // the simulations and everything below
-  std::condition_variable wake_, stepped_;
+  std::condition_variable wake_;
   std::atomic<int> pending_inputs_{0};
   bool paused_ = false, stop_requested_ = false;
   int step_requests_ = 0;
@@ -176,6 +194,14 @@ class RunGroup : public std::enable_shared_from_this<RunGroup> {
   std::string failure_;  // an exception from a step ends the run as "failed"
   std::uint64_t writer_failures_seen_ = 0;
   std::vector<std::pair<std::int64_t, storage::StoredFrame>> outbox_;  // this step's frames
+  struct StepWaiter {
+    int lane;
+    std::int64_t seq;  // settled once the lane has taken this many steps, or the run ended
+    std::shared_ptr<storage::Completion> done;
+  };
+  std::vector<StepWaiter> step_waiters_;
+  // the waiters settled now, with their statuses (taken under mutex_, settled without it)
+  std::vector<std::pair<std::shared_ptr<storage::Completion>, nlohmann::json>> settle_steps(bool all);
   std::mutex exit_mutex_;
   std::condition_variable exited_cv_;
   bool exited_ = false;

@@ -12,7 +12,15 @@ struct RefusedMessage {
 };
 }  // namespace
 
-nlohmann::json reply_to_socket_message(FrameSource& source, const std::string& client, bool may_steer,
+nlohmann::json settled_reply(const MessageReply& reply, const storage::Outcome& outcome) {
+  if (!outcome.ok()) return socket_error(stored_input_error(outcome, "payload"));
+  if (outcome.result.is_null()) return reply.reply;
+  nlohmann::json settled = reply.reply;
+  settled["status"] = outcome.result;
+  return settled;
+}
+
+MessageReply reply_to_socket_message(FrameSource& source, const std::string& client, bool may_steer,
                                        const std::string& text) {
   try {
     const nlohmann::json message = parse_client_json(text);
@@ -27,22 +35,23 @@ nlohmann::json reply_to_socket_message(FrameSource& source, const std::string& c
               : "";
       if (action == "take" || action == "release") {
         if (message.size() != 2) throw ApiError(400, "invalid", "take and release take no other keys", "action");
-        return {{"type", "ack"}, {"status", action == "take" ? controller->take(client) : controller->release(client)}};
+        return {{{"type", "ack"}, {"status", action == "take" ? controller->take(client) : controller->release(client)}},
+                nullptr};
       }
       // handle_message answers errors as a reply; only an ack keeps the control it took
       return controller->steer(client, [&] {
-        nlohmann::json reply = source.handle_message(message);
-        if (reply.value("type", "") != "ack") throw RefusedMessage{std::move(reply)};
+        MessageReply reply = source.handle_message(message);
+        if (reply.reply.value("type", "") != "ack") throw RefusedMessage{std::move(reply.reply)};
         return reply;
       });
     }
     return source.handle_message(message);
   } catch (RefusedMessage& refused) {
-    return std::move(refused.reply);
+    return {std::move(refused.reply), nullptr};
   } catch (const ApiError& e) {
-    return socket_error(e);
+    return {socket_error(e), nullptr};
   } catch (const std::exception&) {
-    return socket_error(ApiError(500, "internal", "the message could not be handled"));
+    return {socket_error(ApiError(500, "internal", "the message could not be handled")), nullptr};
   }
 }
 

@@ -7,14 +7,19 @@
 #include <string>
 
 #include "app/frame_source.hpp"
+#include "storage/completion.hpp"
 
 namespace rrlab::server {
 
 // The reply to one message: an ack or an error ({"type": "error", ...}),
-// never an exception. `client` is the connection's client name
-// (app/controller.hpp); `may_steer` is false for a watch-only connection
-// (a server with a token, a client without it).
-nlohmann::json reply_to_socket_message(FrameSource& source, const std::string& client, bool may_steer,
-                                       const std::string& text);
+// never an exception; an ack that waits for stored input or a step has
+// `pending` set (send settled_reply once it settles). `client` is the
+// connection's client name (app/controller.hpp); `may_steer` is false for a
+// watch-only connection (a server with a token, a client without it).
+MessageReply reply_to_socket_message(FrameSource& source, const std::string& client, bool may_steer,
+                                     const std::string& text);
+
+// The message to send once reply.pending has settled with `outcome`.
+nlohmann::json settled_reply(const MessageReply& reply, const storage::Outcome& outcome);
 
 }  // namespace rrlab::server

@@ -260,4 +260,17 @@ nlohmann::json snapshot_json(const FrameContext& c, const Simulator& sim, const 
           {"frame", frame_text.empty() ? json() : parse_json(frame_text)}};
 }
 
+nlohmann::json params_message_json(const FrameContext& c, const Simulator& sim) {
+  return {{"type", "params"},
+          {"run", c.run_id},
+          {"scene_version", c.scene_version},
+          {"params", param_values_json(sim.method())}};
+}
+
+nlohmann::json scene_message_json(const FrameContext& c, const Simulator& sim) {
+  nlohmann::json obstacles = nlohmann::json::array();
+  for (const Obstacle& o : sim.scene().obstacles) obstacles.push_back(obstacle_to_json(o));
+  return {{"type", "scene"}, {"run", c.run_id}, {"scene_version", c.scene_version}, {"obstacles", obstacles}};
+}
+
 }  // namespace rrlab::server

@@ -43,5 +43,12 @@ nlohmann::json model_json(const Model& model);
 // {"type":"snapshot", run, scenario, method, status, params, param_specs, diagnostic_names,
 //  model, task {space, path}, obstacles, scene_version, frame}
 nlohmann::json snapshot_json(const FrameContext& context, const Simulator& sim, const std::string& frame_text);
+// What changed without a new snapshot: {"type":"params", run, scene_version,
+// params} after a parameter change; {"type":"scene", run, scene_version,
+// obstacles} after an obstacle edit (obstacles in scenario syntax, without a
+// mesh obstacle's triangles, which an edit does not change: the client keeps
+// those of its snapshot, by obstacle id).
+nlohmann::json params_message_json(const FrameContext& context, const Simulator& sim);
+nlohmann::json scene_message_json(const FrameContext& context, const Simulator& sim);
 
 }  // namespace rrlab::server

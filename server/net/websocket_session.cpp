@@ -90,6 +90,14 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
     queue(std::make_shared<const std::string>(source_->snapshot()));
   }
 
+  // What changed since the scene this client has: a parameter change or an
+  // obstacle moved is a small message, anything else a new snapshot.
+  void send_scene_update() {
+    SceneUpdate update = source_->update_since(sent_scene_);
+    sent_scene_ = update.version;
+    for (std::string& message : update.messages) queue(std::make_shared<const std::string>(std::move(message)));
+  }
+
   void queue(std::shared_ptr<const std::string> message) {
     if (replies_.size() >= 64) return close();  // a client that floods without reading
     replies_.push_back(std::move(message));
@@ -119,7 +127,7 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
   void send_latest() {
     if (!open_ || writing_) return;
     const PublishedFrame latest = source_->latest();
-    if (latest.scene_version != sent_scene_) return send_snapshot();
+    if (latest.scene_version > sent_scene_) return send_scene_update();
     if (latest.version == sent_version_ || !latest.text) return;
     sent_version_ = latest.version;
     start_write(latest.text);
@@ -155,19 +163,47 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
     });
   }
 
+  // Replies go out in the order of the messages; one that waits (an input
+  // until its event is stored, a step until it is taken) holds back the
+  // replies after it, and no thread waits meanwhile.
   void on_message() {
     const std::string text = beast::buffers_to_string(buffer_.data());
     buffer_.consume(buffer_.size());
-    queue(std::make_shared<const std::string>(safe_dump(reply_to(text))));
+    if (awaiting_.size() >= 64) return close();  // a client that floods without reading
+    MessageReply reply = reply_to(text);
+    auto slot = std::make_shared<std::shared_ptr<const std::string>>();
+    awaiting_.push_back(slot);
+    if (!reply.pending) {
+      *slot = std::make_shared<const std::string>(safe_dump(reply.reply));
+      return send_ready_replies();
+    }
+    std::weak_ptr<WebSocketSession> weak = shared_from_this();
+    // the callback holds the reply's text only: the completion it is stored in is not kept alive by it
+    reply.pending->then([weak, slot, ack = std::move(reply.reply)](const storage::Outcome& outcome) {
+      auto settled = std::make_shared<const std::string>(safe_dump(settled_reply({ack, nullptr}, outcome)));
+      if (auto session = weak.lock())
+        net::post(session->ws_.get_executor(), [session, slot, settled] {
+          *slot = settled;
+          if (session->open_) session->send_ready_replies();
+        });
+    });
+  }
+
+  void send_ready_replies() {
+    while (!awaiting_.empty() && *awaiting_.front()) {
+      queue(std::move(*awaiting_.front()));
+      awaiting_.pop_front();
+    }
   }
 
   // An ack or an error for every message; the socket stays open whatever the
   // client sent (no exception reaches the I/O loop).
-  nlohmann::json reply_to(const std::string& text) {
+  MessageReply reply_to(const std::string& text) {
     if (over_rate_limit())
-      return socket_error(ApiError(429, "rate_limited",
-                                   "more than " + std::to_string(state_->limits.ws_messages_per_second) +
-                                       " messages per second; this one was dropped"));
+      return {socket_error(ApiError(429, "rate_limited",
+                                    "more than " + std::to_string(state_->limits.ws_messages_per_second) +
+                                        " messages per second; this one was dropped")),
+              nullptr};
     return reply_to_socket_message(*source_, client_.name, client_.may_steer, text);
   }
 
@@ -200,6 +236,7 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
   net::steady_timer tick_;
   Clock::duration period_;
   std::deque<std::shared_ptr<const std::string>> replies_;
+  std::deque<std::shared_ptr<std::shared_ptr<const std::string>>> awaiting_;  // replies in message order, null until ready
   bool open_ = false, writing_ = false;
   Clock::time_point write_started_{}, window_start_{};
   int window_count_ = 0;

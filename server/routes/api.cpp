@@ -3,6 +3,7 @@
 #include "methods/method.hpp"
 #include "scenario/scenario.hpp"
 #include "sim/run_inputs.hpp"
+#include "storage/completion.hpp"
 #include "storage/database.hpp"
 #include "util/nesting_depth.hpp"
 
@@ -176,6 +177,13 @@ void rethrow_as_api_error(const std::string& prefix, int validation_status) {
   } catch (const std::exception& e) {
     throw ApiError(500, "internal", e.what(), "");
   }
+}
+
+ApiError stored_input_error(const storage::Outcome& outcome, const std::string& path) {
+  const std::string message = "storing the input failed: " + outcome.error;
+  if (outcome.fault == storage::StorageFault::full) return ApiError(503, "storage_full", message, path);
+  if (outcome.fault == storage::StorageFault::readonly) return ApiError(503, "storage_readonly", message, path);
+  return ApiError(500, "storage", message, path);
 }
 
 }  // namespace rrlab::server

@@ -14,6 +14,10 @@
 #include <utility>
 #include <vector>
 
+namespace rrlab::storage {
+struct Outcome;
+}
+
 namespace rrlab::server {
 
 // The REST and WebSocket contract's version, in GET /api/health: raised when
@@ -107,6 +111,10 @@ std::optional<std::int64_t> parse_id(std::string_view text);
 
 // Splits "a=1&b=x%20y" into decoded pairs.
 std::map<std::string, std::string> parse_query(const std::string& query);
+
+// The error for input that could not be stored (storage/completion.hpp): 503
+// storage_full or storage_readonly (the condition may pass), else 500 storage.
+ApiError stored_input_error(const storage::Outcome& outcome, const std::string& path);
 
 // Maps engine errors (ScenarioError, ParamError, InputStateError) to ApiErrors,
 // prefixing JSON paths with `prefix`.

@@ -1,19 +1,35 @@
 // Inputs to a live run: control, parameters, obstacles, joystick, method.
 // Each is validated (400 naming the field, 409 in the wrong state or when
-// another client controls the run: app/controller.hpp) and stored as an event
-// with the step at which it took effect.
+// another client controls the run: app/controller.hpp), applied, and
+// answered once stored as an event with the step at which it takes effect
+// (the frame writer stores it; no I/O thread waits for SQLite).
 #include "routes/routes.hpp"
+#include "storage/completion.hpp"
 
 namespace rrlab::server {
 
 using nlohmann::json;
 
 namespace {
+// The answer to an accepted input or control: at once, or once the work it
+// waits for settles (its event stored, its step taken), without holding an
+// I/O thread meanwhile.
+ApiResponse answer(Accepted accepted) {
+  if (!accepted.pending) return json_response(200, accepted.status);
+  ApiResponse response;
+  response.deferred = [accepted = std::move(accepted)](Responder respond) {
+    accepted.pending->then([status = accepted.status, respond](const storage::Outcome& outcome) {
+      if (!outcome.ok()) return respond(error_response(stored_input_error(outcome, "")));
+      respond(json_response(200, outcome.result.is_null() ? status : outcome.result));
+    });
+  };
+  return response;
+}
+
 ApiResponse apply(RouteContext& c, const std::string& kind, const json& payload) {
   int lane = 0;
   auto group = live_group(c, c.id(), lane);
-  return group->controller().steer(c.request.client,
-                                   [&] { return json_response(200, group->input(lane, kind, payload, "")); });
+  return group->controller().steer(c.request.client, [&] { return answer(group->input(lane, kind, payload, "")); });
 }
 // An input to the obstacle named in the path: an unknown one is a missing resource (404).
 ApiResponse apply_to_obstacle(RouteContext& c, const std::string& kind, const json& payload) {
@@ -40,7 +56,7 @@ ApiResponse post_control(RouteContext& c) {
     const std::string& client = c.request.client;
     return json_response(200, action == "take" ? controller.take(client) : controller.release(client));
   }
-  json status = group->controller().steer(c.request.client, [&] { return group->control(lane, body); });
+  Accepted accepted = group->controller().steer(c.request.client, [&] { return group->control(lane, body); });
   if (body.is_object() && body.value("action", "") == "stop") {
     // answer once the run has ended and its frames are committed
     ApiResponse response;
@@ -49,7 +65,7 @@ ApiResponse post_control(RouteContext& c) {
     };
     return response;
   }
-  return json_response(200, status);
+  return answer(std::move(accepted));
 }
 
 ApiResponse patch_params(RouteContext& c) { return apply(c, "params", parse_body(c.request)); }

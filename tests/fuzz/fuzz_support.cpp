@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <future>
 #include <stdexcept>
 #include <unistd.h>
 
@@ -129,14 +130,30 @@ server::ApiResponse Server::live_call(const std::string& method, const std::stri
   const std::string path = "/api/runs/" + std::to_string(state_->run_id) + path_after_run;
   server::ApiRequest request{method, path, {}, body, "application/json", "", ""};
   server::ApiResponse response = server::handle_api(*state_->live, state_->info, request);
+  if (response.deferred) {  // an input once stored, a step once taken, a stop once the run ended
+    auto answered = std::make_shared<std::promise<server::ApiResponse>>();
+    std::future<server::ApiResponse> answer = answered->get_future();
+    response.deferred([answered](server::ApiResponse ready) { answered->set_value(std::move(ready)); });
+    if (answer.wait_for(std::chrono::seconds(30)) != std::future_status::ready)
+      finding(method + " " + path, "no answer within 30 s");
+    response = answer.get();
+  }
   check(method + " " + path, response);
-  if (response.deferred) response.deferred([](server::ApiResponse) {});  // stop: answered once the run ends
   after_input();
   return response;
 }
 
 json Server::live_message(const std::string& text) {
-  json reply = server::reply_to_socket_message(*state_->source, "fuzz", true, text);
+  const server::MessageReply message = server::reply_to_socket_message(*state_->source, "fuzz", true, text);
+  json reply = message.reply;
+  if (message.pending) {  // the ack of an input once stored, of a step once taken
+    auto settled = std::make_shared<std::promise<storage::Outcome>>();
+    std::future<storage::Outcome> outcome = settled->get_future();
+    message.pending->then([settled](const storage::Outcome& o) { settled->set_value(o); });
+    if (outcome.wait_for(std::chrono::seconds(30)) != std::future_status::ready)
+      finding("WebSocket message", "no ack within 30 s");
+    reply = server::settled_reply(message, outcome.get());
+  }
   if (reply.value("type", "") == "error" && reply.at("error").value("code", "") == "internal")
     finding("WebSocket message", reply.dump());
   after_input();

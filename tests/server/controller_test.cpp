@@ -4,6 +4,9 @@
 // REST requests (scripts) are no party to it.
 #include "app/controller.hpp"
 
+#include <deque>
+#include <map>
+
 #include "routes/api.hpp"
 #include "server_fixture.hpp"
 
@@ -17,19 +20,27 @@ class Control : public ServerTest {
   static std::string ws(std::int64_t id, const std::string& client) {
     return "/ws/runs/" + std::to_string(id) + (client.empty() ? "" : "?client=" + client);
   }
-  // The reply to a message: ack or error (frames skipped).
-  static json reply(WsClient& c, const std::string& message) {
+  // The reply to a message: ack or error (frames skipped; control messages
+  // kept for control_event: an ack comes once the input is stored, so the
+  // news that the sender now holds control may come first).
+  json reply(WsClient& c, const std::string& message) {
     c.send(message);
     for (int i = 0; i < 2000; ++i) {
       const auto m = c.read_json();
       if (!m) break;
       if ((*m)["type"] == "ack" || (*m)["type"] == "error") return *m;
+      if ((*m)["type"] == "control") held_[&c].push_back(*m);
     }
     ADD_FAILURE() << "no reply to " << message;
     return {};
   }
   // The next control message with this event ("taken", "state"), others skipped.
-  static std::optional<json> control_event(WsClient& c, const std::string& event) {
+  std::optional<json> control_event(WsClient& c, const std::string& event) {
+    for (auto& held = held_[&c]; !held.empty();) {
+      const json m = held.front();
+      held.pop_front();
+      if (m["event"] == event) return m;
+    }
     for (int i = 0; i < 20; ++i) {
       const auto m = c.read_type("control");
       if (!m) return std::nullopt;
@@ -37,8 +48,9 @@ class Control : public ServerTest {
     }
     return std::nullopt;
   }
+  std::map<WsClient*, std::deque<json>> held_;  // control messages read while waiting for a reply
   // Who holds control, as the next control state message tells `c`.
-  static std::string heard(WsClient& c) {
+  std::string heard(WsClient& c) {
     const auto m = control_event(c, "state");
     return m ? (*m)["controller"].get<std::string>() : "(no control state message within 5 s)";
   }

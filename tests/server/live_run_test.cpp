@@ -41,16 +41,17 @@ TEST_F(LiveRun, SnapshotThenFramesAndInputsTakeEffect) {
   }
   EXPECT_LT(distance_after, 0.1);
 
-  // a parameter change: in the run's params, in its events, and a new snapshot on the socket
+  // a parameter change: in the run's params, in its events (stored before the
+  // answer), and a params message on the socket (not a new snapshot)
   ASSERT_EQ(send("PATCH", base + "/params", {{"gain", 4.25}}).status, 200);
   EXPECT_EQ(get(base).json()["live"]["params"]["gain"], 4.25);
   const json events = get(base + "/events").json();
   ASSERT_GE(events.size(), 2u);
   EXPECT_EQ(events.back()["kind"], "params");
   EXPECT_EQ(events.back()["payload"]["gain"], 4.25);
-  auto resnap = ws.read_type("snapshot");
-  ASSERT_TRUE(resnap);
-  EXPECT_EQ((*resnap)["params"]["gain"], 4.25);
+  auto changed = ws.read_type("params");
+  ASSERT_TRUE(changed);
+  EXPECT_EQ((*changed)["params"]["gain"], 4.25);
 
   // joystick: the target moves along +x
   auto before = ws.read_type("frame");
@@ -82,6 +83,49 @@ TEST_F(LiveRun, SnapshotThenFramesAndInputsTakeEffect) {
 
   EXPECT_EQ(send("POST", base + "/control", {{"action", "stop"}}).status, 200);
   EXPECT_EQ(wait_ended(id)["status"], "stopped");
+}
+
+// What changed goes to clients as what it is: an obstacle moved is a scene
+// message, a parameter change a params message, and only a change of what
+// the snapshot describes (a method switch, an obstacle added) a new snapshot.
+TEST_F(LiveRun, ClientsGetWhatChangedNotANewSnapshot) {
+  const std::int64_t id = start_live({{"scenario", small_scenario()}, {"paused", true}});
+  const std::string base = "/api/runs/" + std::to_string(id);
+  WsClient ws(port(), "/ws/runs/" + std::to_string(id));
+  ASSERT_TRUE(ws.read_type("snapshot"));
+  // the next message that is not a frame
+  const auto next_change = [&] {
+    for (int i = 0; i < 200; ++i) {
+      auto m = ws.read_json();
+      if (!m) break;
+      if ((*m)["type"] != "frame" && (*m)["type"] != "control") return *m;
+    }
+    return json();
+  };
+  ASSERT_EQ(send("PUT", base + "/obstacles/ball", {{"position", {0.3, 1.1}}}).status, 200);
+  json m = next_change();
+  ASSERT_EQ(m["type"], "scene") << m.dump();
+  EXPECT_EQ(m["obstacles"][0]["id"], "ball");
+  EXPECT_EQ(m["obstacles"][0]["center"][0], 0.3);
+  const std::uint64_t after_move = m["scene_version"];
+
+  ASSERT_EQ(send("PATCH", base + "/params", {{"gain", 3}}).status, 200);
+  m = next_change();
+  ASSERT_EQ(m["type"], "params") << m.dump();
+  EXPECT_EQ(m["params"]["gain"], 3);
+  EXPECT_GT(m["scene_version"].get<std::uint64_t>(), after_move);
+
+  ASSERT_EQ(send("POST", base + "/obstacles", {{"id", "dot"}, {"shape", "point"}, {"position", {1.0, 1.0}}}).status,
+            200);
+  m = next_change();
+  ASSERT_EQ(m["type"], "snapshot") << m.dump();
+  EXPECT_EQ(m["obstacles"].size(), 2u);
+
+  ASSERT_EQ(send("POST", base + "/method", {{"name", "dls"}}).status, 200);
+  m = next_change();
+  ASSERT_EQ(m["type"], "snapshot") << m.dump();
+  EXPECT_EQ(m["method"], "dls");
+  EXPECT_EQ(send("POST", base + "/control", {{"action", "stop"}}).status, 200);
 }
 
 TEST_F(LiveRun, UnknownRunsHaveNoSocket) {

@@ -145,6 +145,11 @@ await suite('dashboard', [
     await until(async () => (await t.get(`/api/runs/${id}/events`)).some((e) => e.kind === 'params'), 'a params event');
     const stored = (await t.get(`/api/runs/${id}/events`)).find((e) => e.kind === 'params');
     check(Math.abs(stored.payload[name] - value) <= 1e-6 * Math.max(1, Math.abs(value)), `the stored ${name} is the slider's value: ${JSON.stringify(stored.payload)}`);
+    // another client's change comes as a params message: the same slider shows it (the panel is not rebuilt)
+    await slider.evaluate((el) => { el.dataset.kept = 'yes'; });
+    await t.request('PATCH', `/api/runs/${id}/params`, { [name]: max });
+    await until(async () => Number(await slider.inputValue()) === max, `the slider to show ${max}`);
+    check(await slider.evaluate((el) => el.dataset.kept === 'yes'), 'the panel was updated in place, not rebuilt');
     // reset to default
     const count = (await t.get(`/api/runs/${id}/events`)).length;
     await t.page.waitForSelector(`#param-${name} ~ *, .param button.reset:not([disabled])`);

@@ -5,7 +5,7 @@ import { api, describeError, listScenarios, setTokenPrompt } from './api.js';
 import { askForToken } from './token_prompt.js';
 import { app, readUrl, writeUrl } from './state.js';
 import { sessionFor } from './session.js';
-import { buildParams, setupMethodSwitch, fmt } from './params.js';
+import { buildParams, updateParams, setupMethodSwitch, fmt } from './params.js';
 import { showMetrics } from './metrics.js';
 import { RunList } from './runs.js';
 import { CompareSetup, showCompareSummary } from './compare.js';
@@ -246,6 +246,12 @@ app.signals.snapshot.add((lane) => {
   }
   metricsDirty = true;
 });
+
+app.signals.params.add((lane) => {
+  if (session && session.lanes.includes(lane) && lane.index === session.focus) updateParams(session);
+});
+
+app.signals.scene.add(() => { metricsDirty = true; });
 
 app.signals.frame.add((lane) => {
   if (!session || !session.lanes.includes(lane)) return;

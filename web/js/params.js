@@ -73,6 +73,27 @@ export function buildParams(session) {
   if (select.dataset.shown !== shown) { select.value = snapshot.method; select.dataset.shown = shown; }
 }
 
+// New values for the focused lane's parameters (a params message): each
+// control shows its value in place, except a slider the user is dragging.
+export function updateParams(session) {
+  const lane = session.focusLane;
+  if (!lane || !lane.snapshot) return;
+  for (const spec of lane.snapshot.param_specs) {
+    const div = $(`param-${spec.name}`)?.closest('.param');
+    if (!div) return buildParams(session);  // not the panel of this method: build it
+    const value = lane.snapshot.params[spec.name];
+    const control = div.querySelector('input, select');
+    if (!control.matches(':active')) {  // not while the user drags it
+      control.value = String(value);
+      const shown = div.querySelector('.value');
+      if (shown && control.tagName === 'INPUT') shown.textContent = `${fmt(value)} ${spec.unit || ''}`;
+    }
+    const changed = value !== spec.default;
+    div.classList.toggle('changed', changed);
+    div.querySelector('button.reset').disabled = !changed;
+  }
+}
+
 function buildLaneTabs(session) {
   const tabs = $('lane-tabs');
   tabs.hidden = !session.compare;

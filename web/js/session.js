@@ -74,7 +74,9 @@ export class Session {
         onSnapshot: (snapshot) => this.snapshot(lane, snapshot),
         onFrame: (frame) => this.frame(lane, frame),
         onMessage: (message) => {
-          if (message.type === 'error') app.error(new ApiError(message.error.status || 400, message.error));
+          if (message.type === 'params') this.paramsChanged(lane, message);
+          else if (message.type === 'scene') this.sceneChanged(lane, message);
+          else if (message.type === 'error') app.error(new ApiError(message.error.status || 400, message.error));
           // who holds control of this run: on connecting, and at every change
           else if (message.type === 'control' && message.event === 'state') app.signals.control.dispatch(message.controller);
           // another client took control of this run from this tab
@@ -119,6 +121,25 @@ export class Session {
     if (snapshot.frame) lane.frame = snapshot.frame;
     this.refreshOverlayLanes();
     app.signals.snapshot.dispatch(lane);
+  }
+
+  // A parameter change: new values, the same method; the panel updates in place.
+  paramsChanged(lane, message) {
+    if (this.closed || !lane.snapshot) return;
+    lane.snapshot = { ...lane.snapshot, params: message.params, scene_version: message.scene_version };
+    app.signals.params.dispatch(lane);
+  }
+
+  // An obstacle edited: the new obstacles; a mesh obstacle keeps the
+  // triangles its snapshot brought (an edit moves a mesh, never changes it).
+  sceneChanged(lane, message) {
+    if (this.closed || !lane.snapshot) return;
+    const meshes = new Map(lane.snapshot.obstacles.filter((o) => o.mesh).map((o) => [o.id, o.mesh]));
+    const obstacles = message.obstacles.map((o) => (!o.mesh && meshes.has(o.id) ? { ...o, mesh: meshes.get(o.id) } : o));
+    lane.snapshot = { ...lane.snapshot, obstacles, scene_version: message.scene_version };
+    if (lane.view) lane.view.setSnapshot(lane.snapshot);
+    this.refreshOverlayLanes();
+    app.signals.scene.dispatch(lane);
   }
 
   async makeView(lane, snapshot) {
