@@ -313,7 +313,7 @@ void RunGroup::loop() {
       next_publish_ += std::chrono::duration_cast<Clock::duration>(publish_period);
       if (next_publish_ < now) next_publish_ = now + std::chrono::duration_cast<Clock::duration>(publish_period);
     }
-    if (single && !step_waiters_.empty()) {
+    if (!step_waiters_.empty()) {  // also when the run was resumed meanwhile
       auto ready = settle_steps(false);
       lock.unlock();
       for (auto& [done, status] : ready) done->settle({{}, {}, std::move(status)});
@@ -515,23 +515,20 @@ Accepted RunGroup::input(int lane_index, const std::string& kind, const json& pa
   const bool own_lane = kind == "params" || kind == "method";
   Accepted accepted;
   accepted.pending = std::make_shared<storage::Completion>();
-  std::vector<size_t> applied;
+  const size_t last = own_lane ? size_t(lane_index) : lanes_.size() - 1;
   for (size_t i = 0; i < lanes_.size(); ++i) {
     if (own_lane && int(i) != lane_index) continue;
-    try {
-      apply_input(*lanes_[i].sim, kind, payload);
-    } catch (...) {
-      rethrow_as_api_error(prefix);
-    }
-    applied.push_back(i);
-  }
-  // Stored by the frame writer, queued ahead of the frames they take effect
-  // in (the mutex keeps the next step out until then); the last event's
-  // commit means every one's (one queue, written in order).
-  for (size_t i : applied) {
     Lane& lane = lanes_[i];
+    try {
+      apply_input(*lane.sim, kind, payload);
+    } catch (...) {
+      rethrow_as_api_error(prefix);  // lanes before this one keep the input, and its event
+    }
+    // Stored by the frame writer, queued ahead of the frames it takes effect
+    // in (the mutex keeps the next step out until then); the last lane's
+    // event committed means every one's (one queue, written in order).
     services_.writer.push_event(lane.run_id, {lane.seq, lane.sim->state().step, kind, payload.dump()},
-                                i == applied.back() ? accepted.pending : nullptr);
+                                i == last ? accepted.pending : nullptr);
     if (kind != "joystick") {
       ++lane.scene_version;
       (kind == "params" ? lane.params_version : kind == "obstacle" ? lane.obstacles_version : lane.snapshot_version) =

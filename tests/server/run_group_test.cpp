@@ -17,24 +17,42 @@
 namespace rrlab::server {
 namespace {
 
+// A store and frame writer in a temporary folder, and the demo scenario.
+class RunGroupUnit : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    std::string pattern = (std::filesystem::temp_directory_path() / "rrlab-rungroup-XXXXXX").string();
+    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
+    dir_ = pattern;
+    store_ = std::make_unique<storage::RunStore>((dir_ / "runs.db").string());
+    writer_ = std::make_unique<storage::FrameWriter>(*store_);
+  }
+  void TearDown() override {
+    writer_.reset();
+    store_.reset();
+    std::filesystem::remove_all(dir_);
+  }
+  std::shared_ptr<RunGroup> group(const GroupOptions& options) {
+    const Scenario scenario = load_scenario_file(std::string(RRLAB_SOURCE_DIR) + "/scenarios/01_planar7_obstacles.json");
+    return std::make_shared<RunGroup>(RunServices{*store_, *writer_}, std::vector<Scenario>{scenario}, options);
+  }
+  std::filesystem::path dir_;
+  std::unique_ptr<storage::RunStore> store_;
+  std::unique_ptr<storage::FrameWriter> writer_;
+};
+
 // Found by the ASan build: `rrlab serve` shutting down with a batch run's
 // deferred reply pending destroyed the reply's callback (and with it the HTTP
 // session) on the run's thread after the run had signalled its exit, when the
 // I/O context was already gone (heap-use-after-free). The callbacks are now
 // destroyed before wait_exited() returns.
-TEST(RunGroupUnit, FinishedCallbacksAreDestroyedBeforeTheRunHasExited) {
-  std::string pattern = (std::filesystem::temp_directory_path() / "rrlab-rungroup-XXXXXX").string();
-  ASSERT_NE(mkdtemp(pattern.data()), nullptr);
-  const std::filesystem::path dir = pattern;
+TEST_F(RunGroupUnit, FinishedCallbacksAreDestroyedBeforeTheRunHasExited) {
   {
-    storage::RunStore store((dir / "runs.db").string());
-    storage::FrameWriter writer(store);
-    const Scenario scenario = load_scenario_file(std::string(RRLAB_SOURCE_DIR) + "/scenarios/01_planar7_obstacles.json");
     GroupOptions options;
     options.mode = "batch";
     options.rate = 0;
     options.steps = 5;
-    auto group = std::make_shared<RunGroup>(RunServices{store, writer}, std::vector<Scenario>{scenario}, options);
+    auto group = this->group(options);
 
     // owned by the callback only; its destructor takes a while, as a session's may
     struct Probe {
@@ -53,7 +71,6 @@ TEST(RunGroupUnit, FinishedCallbacksAreDestroyedBeforeTheRunHasExited) {
     EXPECT_TRUE(called);
     EXPECT_TRUE(destroyed);  // false before the fix: destroyed after wait_exited() returned
   }
-  std::filesystem::remove_all(dir);
 }
 
 
@@ -68,17 +85,11 @@ storage::Outcome settled(const std::shared_ptr<storage::Completion>& done) {
 
 // An input is applied at once and answered once its event is stored; a
 // single step is answered once it is taken: nobody waits in between.
-TEST(RunGroupUnit, InputsSettleOnceStoredAndStepsOnceTaken) {
-  std::string pattern = (std::filesystem::temp_directory_path() / "rrlab-rungroup-XXXXXX").string();
-  ASSERT_NE(mkdtemp(pattern.data()), nullptr);
-  const std::filesystem::path dir = pattern;
+TEST_F(RunGroupUnit, InputsSettleOnceStoredAndStepsOnceTaken) {
   {
-    storage::RunStore store((dir / "runs.db").string());
-    storage::FrameWriter writer(store);
-    const Scenario scenario = load_scenario_file(std::string(RRLAB_SOURCE_DIR) + "/scenarios/01_planar7_obstacles.json");
     GroupOptions options;
     options.paused = true;
-    auto group = std::make_shared<RunGroup>(RunServices{store, writer}, std::vector<Scenario>{scenario}, options);
+    auto group = this->group(options);
     group->start();
     const std::int64_t run = group->run_id(0);
 
@@ -86,8 +97,8 @@ TEST(RunGroupUnit, InputsSettleOnceStoredAndStepsOnceTaken) {
     ASSERT_TRUE(input.pending);
     EXPECT_EQ(input.status["params"]["gain"], 3);  // applied before it is stored
     EXPECT_TRUE(settled(input.pending).ok());
-    ASSERT_EQ(store.events(run).size(), 1u);  // stored before the answer
-    EXPECT_EQ(store.events(run)[0].seq, 0);   // takes effect in the first step
+    ASSERT_EQ(store_->events(run).size(), 1u);  // stored before the answer
+    EXPECT_EQ(store_->events(run)[0].seq, 0);   // takes effect in the first step
 
     Accepted step = group->control(0, {{"action", "step"}});
     ASSERT_TRUE(step.pending);
@@ -104,7 +115,6 @@ TEST(RunGroupUnit, InputsSettleOnceStoredAndStepsOnceTaken) {
     group->request_stop();
     group->wait_exited();
   }
-  std::filesystem::remove_all(dir);
 }
 
 }  // namespace
