@@ -51,6 +51,7 @@ void pack_field(const Frame& f, char*& at) {
     } else {
       std::array<double, 4> scratch;
       const std::span<const double> values = frame_values(f, field.id, scratch);
+      if (values.empty()) return;  // no joints or no diagnostics: data() may be null, not for memcpy
       std::memcpy(at, values.data(), values.size_bytes());
       at += values.size_bytes();
     }
@@ -71,6 +72,7 @@ void unpack_field(Frame& f, const char*& at, std::uint32_t n, std::uint32_t k) {
       at += 8;
     } else {
       const size_t count = size_t(frame_value_count(field.kind, int(n), int(k)));
+      if (count == 0) return;  // an empty vector's data() may be null, not for memcpy
       if (double* storage = frame_storage(f, field.id)) {
         std::memcpy(storage, at, 8 * count);
       } else {

@@ -44,6 +44,20 @@ TEST(FrameCodec, RoundTripIsBitExact) {
   EXPECT_EQ(pack_frame(back), packed);  // packing the unpacked frame gives the same bytes
 }
 
+// Found by tests/fuzz/frame_fuzz.cpp under UBSan: a frame without
+// diagnostics (an empty vector, whose data() is null) was copied with memcpy
+// from a null pointer, undefined even for zero bytes.
+TEST(FrameCodec, RoundTripsAFrameWithoutDiagnosticsOrJoints) {
+  Frame f = sample_frame();
+  f.diagnostics.resize(0);
+  const std::string packed = pack_frame(f);
+  EXPECT_EQ(unpack_frame(packed).diagnostics.size(), 0);
+  EXPECT_EQ(pack_frame(unpack_frame(packed)), packed);
+  f.q.resize(0);
+  f.qdot.resize(0);
+  EXPECT_EQ(pack_frame(unpack_frame(pack_frame(f))), pack_frame(f));
+}
+
 TEST(FrameCodec, RejectsBlobsOfTheWrongSize) {
   std::string packed = pack_frame(sample_frame());
   EXPECT_THROW(unpack_frame(packed.substr(0, packed.size() - 1)), std::runtime_error);
