@@ -25,24 +25,18 @@ class RunGroup::LaneSource final : public FrameSource {
 
   std::string snapshot() override {
     auto lock = group_->lock_for_input();
-    Lane& lane = group_->lanes_[size_t(lane_)];
-    const FrameContext context{lane.run_id, lane.seq, lane.scene_version, group_->lane_status(lane)};
-    std::string frame;
-    encode_frame(context, lane.sim->frame(), lane.sim->model(), lane.sim->scene(), *lane.geometry, frame);
-    return snapshot_json(context, *lane.sim, frame).dump();
+    return snapshot_locked();
   }
 
   SceneUpdate update_since(std::uint64_t since) override {
     auto lock = group_->lock_for_input();
     Lane& lane = group_->lanes_[size_t(lane_)];
-    const FrameContext context{lane.run_id, lane.seq, lane.scene_version, group_->lane_status(lane)};
     SceneUpdate update{{}, lane.scene_version};
     if (since < lane.snapshot_version) {
-      std::string frame;
-      encode_frame(context, lane.sim->frame(), lane.sim->model(), lane.sim->scene(), *lane.geometry, frame);
-      update.messages.push_back(snapshot_json(context, *lane.sim, frame).dump());
+      update.messages.push_back(snapshot_locked());
       return update;
     }
+    const FrameContext context = context_of(lane);
     if (since < lane.obstacles_version) update.messages.push_back(scene_message_json(context, *lane.sim).dump());
     if (since < lane.params_version) update.messages.push_back(params_message_json(context, *lane.sim).dump());
     return update;
@@ -79,6 +73,19 @@ class RunGroup::LaneSource final : public FrameSource {
   Controller* controller() override { return &group_->controller(); }
 
  private:
+  FrameContext context_of(const Lane& lane) const {
+    return {lane.run_id, lane.seq, lane.scene_version, group_->lane_status(lane)};
+  }
+
+  // the group's lock held
+  std::string snapshot_locked() {
+    Lane& lane = group_->lanes_[size_t(lane_)];
+    const FrameContext context = context_of(lane);
+    std::string frame;
+    encode_frame(context, lane.sim->frame(), lane.sim->model(), lane.sim->scene(), *lane.geometry, frame);
+    return snapshot_json(context, *lane.sim, frame).dump();
+  }
+
   std::shared_ptr<RunGroup> group_;
   int lane_;
 };

@@ -12,12 +12,8 @@ struct RefusedMessage {
 };
 }  // namespace
 
-nlohmann::json settled_reply(const MessageReply& reply, const storage::Outcome& outcome) {
-  if (!outcome.ok()) return socket_error(stored_input_error(outcome, "payload"));
-  if (outcome.result.is_null()) return reply.reply;
-  nlohmann::json settled = reply.reply;
-  settled["status"] = outcome.result;
-  return settled;
+nlohmann::json settled_reply(const nlohmann::json& ack, const storage::Outcome& outcome) {
+  return socket_reply([&] { return settled_status(ack.at("status"), outcome, "payload"); });
 }
 
 MessageReply reply_to_socket_message(FrameSource& source, const std::string& client, bool may_steer,

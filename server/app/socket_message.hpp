@@ -13,13 +13,14 @@ namespace rrlab::server {
 
 // The reply to one message: an ack or an error ({"type": "error", ...}),
 // never an exception; an ack that waits for stored input or a step has
-// `pending` set (send settled_reply once it settles). `client` is the
+// `pending` set (send settled_reply(reply.reply, outcome) once it settles). `client` is the
 // connection's client name (app/controller.hpp); `may_steer` is false for a
 // watch-only connection (a server with a token, a client without it).
 MessageReply reply_to_socket_message(FrameSource& source, const std::string& client, bool may_steer,
                                      const std::string& text);
 
-// The message to send once reply.pending has settled with `outcome`.
-nlohmann::json settled_reply(const MessageReply& reply, const storage::Outcome& outcome);
+// The message to send once a reply's pending work has settled with `outcome`
+// (`ack` is the reply: {"type": "ack", "status": ...}).
+nlohmann::json settled_reply(const nlohmann::json& ack, const storage::Outcome& outcome);
 
 }  // namespace rrlab::server

@@ -180,7 +180,7 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
     std::weak_ptr<WebSocketSession> weak = shared_from_this();
     // the callback holds the reply's text only: the completion it is stored in is not kept alive by it
     reply.pending->then([weak, slot, ack = std::move(reply.reply)](const storage::Outcome& outcome) {
-      auto settled = std::make_shared<const std::string>(safe_dump(settled_reply({ack, nullptr}, outcome)));
+      auto settled = std::make_shared<const std::string>(safe_dump(settled_reply(ack, outcome)));
       if (auto session = weak.lock())
         net::post(session->ws_.get_executor(), [session, slot, settled] {
           *slot = settled;

@@ -179,11 +179,12 @@ void rethrow_as_api_error(const std::string& prefix, int validation_status) {
   }
 }
 
-ApiError stored_input_error(const storage::Outcome& outcome, const std::string& path) {
+nlohmann::json settled_status(const nlohmann::json& status, const storage::Outcome& outcome, const std::string& path) {
+  if (outcome.ok()) return outcome.result.is_null() ? status : outcome.result;
   const std::string message = "storing the input failed: " + outcome.error;
-  if (outcome.fault == storage::StorageFault::full) return ApiError(503, "storage_full", message, path);
-  if (outcome.fault == storage::StorageFault::readonly) return ApiError(503, "storage_readonly", message, path);
-  return ApiError(500, "storage", message, path);
+  if (outcome.fault == storage::StorageFault::full) throw ApiError(503, "storage_full", message, path);
+  if (outcome.fault == storage::StorageFault::readonly) throw ApiError(503, "storage_readonly", message, path);
+  throw ApiError(500, "storage", message, path);
 }
 
 }  // namespace rrlab::server

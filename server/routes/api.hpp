@@ -112,9 +112,11 @@ std::optional<std::int64_t> parse_id(std::string_view text);
 // Splits "a=1&b=x%20y" into decoded pairs.
 std::map<std::string, std::string> parse_query(const std::string& query);
 
-// The error for input that could not be stored (storage/completion.hpp): 503
-// storage_full or storage_readonly (the condition may pass), else 500 storage.
-ApiError stored_input_error(const storage::Outcome& outcome, const std::string& path);
+// The status to answer once queued work has settled (storage/completion.hpp):
+// the work's own result if it has one, else `status`. Input that could not be
+// stored throws 503 storage_full or storage_readonly (the condition may
+// pass), else 500 storage.
+nlohmann::json settled_status(const nlohmann::json& status, const storage::Outcome& outcome, const std::string& path);
 
 // Maps engine errors (ScenarioError, ParamError, InputStateError) to ApiErrors,
 // prefixing JSON paths with `prefix`.

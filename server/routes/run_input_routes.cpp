@@ -19,8 +19,11 @@ ApiResponse answer(Accepted accepted) {
   ApiResponse response;
   response.deferred = [accepted = std::move(accepted)](Responder respond) {
     accepted.pending->then([status = accepted.status, respond](const storage::Outcome& outcome) {
-      if (!outcome.ok()) return respond(error_response(stored_input_error(outcome, "")));
-      respond(json_response(200, outcome.result.is_null() ? status : outcome.result));
+      try {
+        respond(json_response(200, settled_status(status, outcome, "")));
+      } catch (const ApiError& e) {
+        respond(error_response(e));
+      }
     });
   };
   return response;

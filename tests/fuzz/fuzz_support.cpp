@@ -152,7 +152,7 @@ json Server::live_message(const std::string& text) {
     message.pending->then([settled](const storage::Outcome& o) { settled->set_value(o); });
     if (outcome.wait_for(std::chrono::seconds(30)) != std::future_status::ready)
       finding("WebSocket message", "no ack within 30 s");
-    reply = server::settled_reply(message, outcome.get());
+    reply = server::settled_reply(message.reply, outcome.get());
   }
   if (reply.value("type", "") == "error" && reply.at("error").value("code", "") == "internal")
     finding("WebSocket message", reply.dump());

@@ -251,8 +251,6 @@ app.signals.params.add((lane) => {
   if (session && session.lanes.includes(lane) && lane.index === session.focus) updateParams(session);
 });
 
-app.signals.scene.add(() => { metricsDirty = true; });
-
 app.signals.frame.add((lane) => {
   if (!session || !session.lanes.includes(lane)) return;
   metricsDirty = true;

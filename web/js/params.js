@@ -21,27 +21,37 @@ function sliderStep(spec) {
   return spec.step && Number.isInteger(Math.round(((spec.max - spec.min) / spec.step) * 1e9) / 1e9) ? spec.step : 'any';
 }
 
+// A slider's value as text, beside its name.
+function showValue(div, spec, value) {
+  div.querySelector('.value').textContent = `${fmt(value)} ${spec.unit || ''}`;
+}
+
+// Whether the value differs from the default: marked, and the reset enabled.
+function markChanged(div, spec, value) {
+  const changed = value !== spec.default;
+  div.classList.toggle('changed', changed);
+  div.querySelector('button.reset').disabled = !changed;
+}
+
 function paramControl(spec, value, setParam) {
   const div = document.createElement('div');
   div.className = 'param';
   div.title = spec.help || '';
   const id = `param-${spec.name}`;
-  const changed = value !== spec.default;
-  if (changed) div.classList.add('changed');
   const head = `<div class="head"><label class="name" for="${id}">${escape(spec.label || spec.name)}</label>
     <span class="value"></span>
-    <button type="button" class="reset" title="reset to the default (${escape(fmt(spec.default))})" aria-label="reset ${escape(spec.name)} to its default" ${changed ? '' : 'disabled'}>↺</button></div>`;
+    <button type="button" class="reset" title="reset to the default (${escape(fmt(spec.default))})" aria-label="reset ${escape(spec.name)} to its default">↺</button></div>`;
   if (spec.choices && spec.choices.length) {
     div.innerHTML = `${head}<select id="${id}">${spec.choices.map((c, i) => `<option value="${i}" ${i === value ? 'selected' : ''}>${escape(c)}</option>`).join('')}</select>`;
     div.querySelector('select').onchange = (e) => setParam(spec.name, Number(e.target.value));
   } else {
     div.innerHTML = `${head}<input id="${id}" type="range" min="${spec.min}" max="${spec.max}" step="${sliderStep(spec)}" value="${value}">`;
     const input = div.querySelector('input');
-    const show = (v) => { div.querySelector('.value').textContent = `${fmt(v)} ${spec.unit || ''}`; };
-    show(value);
-    input.oninput = () => show(Number(input.value));
+    showValue(div, spec, value);
+    input.oninput = () => showValue(div, spec, Number(input.value));
     input.onchange = () => setParam(spec.name, Number(input.value));
   }
+  markChanged(div, spec, value);
   div.querySelector('button.reset').onclick = () => setParam(spec.name, spec.default);
   return div;
 }
@@ -85,12 +95,9 @@ export function updateParams(session) {
     const control = div.querySelector('input, select');
     if (!control.matches(':active')) {  // not while the user drags it
       control.value = String(value);
-      const shown = div.querySelector('.value');
-      if (shown && control.tagName === 'INPUT') shown.textContent = `${fmt(value)} ${spec.unit || ''}`;
+      if (control.tagName === 'INPUT') showValue(div, spec, value);
     }
-    const changed = value !== spec.default;
-    div.classList.toggle('changed', changed);
-    div.querySelector('button.reset').disabled = !changed;
+    markChanged(div, spec, value);
   }
 }
 

@@ -139,7 +139,6 @@ export class Session {
     lane.snapshot = { ...lane.snapshot, obstacles, scene_version: message.scene_version };
     if (lane.view) lane.view.setSnapshot(lane.snapshot);
     this.refreshOverlayLanes();
-    app.signals.scene.dispatch(lane);
   }
 
   async makeView(lane, snapshot) {

@@ -26,7 +26,6 @@ export const app = {
     sessionChanged: new Signal(),  // (session) lanes opened or closed
     snapshot: new Signal(),        // (lane) a lane got a new snapshot
     params: new Signal(),          // (lane) a lane's parameter values changed (lane.snapshot.params)
-    scene: new Signal(),           // (lane) a lane's obstacles changed (lane.snapshot.obstacles)
     frame: new Signal(),           // (lane) a lane got a new frame
     viewCreated: new Signal(),     // (lane) a lane's view exists (2D or 3D)
     connection: new Signal(),      // (session) a stream's state changed
