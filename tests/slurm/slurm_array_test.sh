@@ -28,8 +28,13 @@ node=rrlab-node  # slurmd -N: the node's name; its address is 127.0.0.1
 export SLURM_CONF="$work/slurm.conf"
 jobs=""
 cleanup() {
-  trap - EXIT INT TERM
-  [[ -n ${watchdog:-} ]] && { pkill -P "$watchdog" 2>/dev/null; kill "$watchdog" 2>/dev/null; }
+  local status=$?
+  # the cleanup must not fail (set -e) nor be cut short: stopping the
+  # watchdog's sleep wakes the watchdog, which may still send its TERM
+  set +e
+  trap - EXIT
+  trap '' INT TERM
+  if [[ -n ${watchdog:-} ]]; then pkill -P "$watchdog" 2>/dev/null; kill "$watchdog" 2>/dev/null; fi
   [[ -n $jobs ]] && scancel $jobs 2>/dev/null
   for pidfile in "$work/slurmd.pid" "$work/slurmctld.pid" "$work/munged.pid"; do
     [[ -s $pidfile ]] && kill "$(cat "$pidfile")" 2>/dev/null
@@ -47,6 +52,7 @@ cleanup() {
     [[ -s $pidfile ]] && kill -9 "$(cat "$pidfile")" 2>/dev/null
   done
   rm -rf "$work"
+  exit "$status"
 }
 trap cleanup EXIT
 trap 'echo "FAILED: stopped by a signal (the watchdog: 370 s)"; exit 1' INT TERM
