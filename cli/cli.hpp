@@ -58,6 +58,14 @@ struct SweepOptions {
   std::optional<std::string> scenarios_dir;  // catalogue names
 };
 
+struct GenerateOptions {
+  std::string family;
+  std::uint64_t seed = 1;
+  int count = 1, first = 0;
+  std::vector<std::string> options;  // KEY=VALUE, VALUE as JSON where it parses
+  std::string out_dir;
+};
+
 struct MergeOptions {
   std::string out_db;
   std::vector<std::string> in_dbs;
@@ -74,6 +82,8 @@ struct ReportOptions {
 // 3 nothing to verify (replay --verify of a run that stored no frames).
 int run(const RunOptions& options);
 int methods();
+// generate: 0 every case written, 2 bad input (an option, an unknown family, an unwritable --out).
+int generate(const GenerateOptions& options);
 int serve(const ServeOptions& options);
 int replay(const ReplayOptions& options);
 // sweep: 0 every run stored, 1 some runs failed (named on stderr), 2 bad input,

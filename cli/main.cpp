@@ -1,4 +1,4 @@
-// rrlab: command line front end (serve, run, replay, methods, sweep, merge, report).
+// rrlab: command line front end (serve, run, replay, methods, generate, sweep, merge, report).
 #include <CLI/CLI.hpp>
 
 #include "cli.hpp"
@@ -113,6 +113,18 @@ int main(int argc, char** argv) {
   sweep_cmd->add_flag("--frames", sweep.frames, "store every run's frames too (default: summaries only)");
   sweep_cmd->add_option("--scenarios", sweep.scenarios_dir, "directory of catalogue scenarios (NAME.json)");
 
+  rrlab::cli::GenerateOptions generate;
+  CLI::App* generate_cmd =
+      app.add_subcommand("generate", "write a generated family's cases (with their witnesses) as scenario files");
+  generate_cmd->add_option("family", generate.family, "planar_clutter, planar_limits, narrow_passage, spatial_clutter or moving_obstacles")
+      ->required();
+  generate_cmd->add_option("--seed", generate.seed, "the family's seed (as a sweep entry's \"seed\")");
+  generate_cmd->add_option("--count", generate.count, "cases to write")->check(CLI::Range(1, 1000000));
+  generate_cmd->add_option("--first", generate.first, "index of the first case (default 0)")
+      ->check(CLI::Range(0, 1000000000));
+  generate_cmd->add_option("--option", generate.options, "family option KEY=VALUE, VALUE as JSON (repeatable)");
+  generate_cmd->add_option("--out", generate.out_dir, "directory to write FAMILY-INDEX.json files into")->required();
+
   rrlab::cli::MergeOptions merge;
   CLI::App* merge_cmd = app.add_subcommand("merge", "merge shard databases' sweep runs into one database");
   merge_cmd->add_option("out", merge.out_db, "database to merge into (created if missing)")->required();
@@ -136,6 +148,7 @@ int main(int argc, char** argv) {
   if (replay_cmd->parsed()) return rrlab::cli::replay(replay);
   if (sweep_cmd->parsed()) return rrlab::cli::sweep(sweep);
   if (merge_cmd->parsed()) return rrlab::cli::merge(merge);
+  if (generate_cmd->parsed()) return rrlab::cli::generate(generate);
   if (report_cmd->parsed()) return rrlab::cli::report(report);
   return rrlab::cli::methods();
 }

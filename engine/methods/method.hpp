@@ -17,6 +17,7 @@
 #include "kinematics/kinematics.hpp"
 #include "model/model.hpp"
 #include "task/task.hpp"
+#include "task/witness.hpp"
 
 namespace rrlab {
 
@@ -94,6 +95,7 @@ struct MethodContext {
   TaskSpace space;
   int obstacle_count;
   std::uint64_t seed = 1;  // the scenario's seed: the only source of randomness
+  std::shared_ptr<const WitnessTrajectory> witness;  // the scenario's, if it has one
 };
 
 // A parameter of a method, found by its name in the method's spec list when

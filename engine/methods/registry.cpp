@@ -1,6 +1,7 @@
 #include "methods/registry.hpp"
 
 #include "methods/factories.hpp"
+#include "methods/witness_playback.hpp"
 
 namespace rrlab {
 
@@ -38,6 +39,7 @@ const std::vector<MethodInfo>& method_registry() {
 const MethodInfo* find_method(std::string_view name) {
   for (const MethodInfo& info : method_registry())
     if (info.name == name) return &info;
+  if (name == kWitnessMethod) return &witness_method_info();
   return nullptr;
 }
 

@@ -18,7 +18,9 @@ struct MethodInfo {
 };
 
 const std::vector<MethodInfo>& method_registry();
-const MethodInfo* find_method(std::string_view name);  // nullptr when unknown
+// nullptr when unknown; also finds "witness" (methods/witness_playback.hpp),
+// which the registry does not list
+const MethodInfo* find_method(std::string_view name);
 std::string method_names();  // "pinv, dls, ..." for error messages
 
 }  // namespace rrlab

@@ -136,6 +136,13 @@ Eigen::VectorXd draw_configuration(const GeneratedArm& arm, Rng& rng) {
   return q;
 }
 
+Eigen::VectorXd draw_configuration_near(const GeneratedArm& arm, const Eigen::VectorXd& from, double step, Rng& rng) {
+  Eigen::VectorXd q(from.size());
+  for (Eigen::Index i = 0; i < q.size(); ++i)
+    q[i] = rounded(rng.uniform(std::max(arm.draw_lower[i], from[i] - step), std::min(arm.draw_upper[i], from[i] + step)));
+  return q;
+}
+
 nlohmann::json robot_with_q0(const GeneratedArm& arm, const Eigen::VectorXd& q0) {
   nlohmann::json robot = arm.robot;
   robot["q0"] = angles_json(q0);

@@ -49,6 +49,9 @@ GeneratedArm draw_dh7_arm(const DhArmOptions& options, Rng& rng);
 // A configuration uniform in the arm's draw box (rounded to kDrawStep).
 Eigen::VectorXd draw_configuration(const GeneratedArm& arm, Rng& rng);
 
+// A configuration uniform in the box of +-step (rad) around `from`, within the draw box.
+Eigen::VectorXd draw_configuration_near(const GeneratedArm& arm, const Eigen::VectorXd& from, double step, Rng& rng);
+
 // The document's "robot" with q0 set.
 nlohmann::json robot_with_q0(const GeneratedArm& arm, const Eigen::VectorXd& q0);
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <limits>
 #include <vector>
 
 #include "collision/scene.hpp"
@@ -26,5 +27,21 @@ std::vector<CapsuleSegment> path_capsules(const std::vector<Eigen::Vector3d>& po
 // Smallest signed distance (m, < 0 when penetrating) from the capsules to the
 // obstacle placed at its position0 (t = 0).
 double capsules_clearance(const std::vector<CapsuleSegment>& capsules, const Obstacle& obstacle);
+
+// The arm's link capsules at every step of a witness.
+struct ArmSweep {
+  int links = 0;
+  double dt = 0;
+  std::vector<CapsuleSegment> capsules;  // step k's links at [k * links, (k + 1) * links)
+};
+ArmSweep arm_sweep(const Model& model, const std::vector<Eigen::VectorXd>& steps, double dt);
+
+// Smallest signed distance between the swept arm and `obstacle` moving as a
+// run moves it (position0 + velocity t), by the engine's collision code.
+// Capsules whose bounding distance exceeds the best found so far (or
+// `enough`, when finite: then a result above it only says "more than
+// enough") are not measured.
+double sweep_clearance(const ArmSweep& sweep, const Obstacle& obstacle,
+                       double enough = std::numeric_limits<double>::infinity());
 
 }  // namespace rrlab

@@ -8,15 +8,15 @@ constexpr double kNearPath = 0.25;  // reaches
 
 }  // namespace
 
-std::optional<nlohmann::json> place_clutter(const ClutterOptions& clutter, const GeneratedArm& arm,
-                                            const GeneratedPath& path, bool spatial, Rng& rng) {
-  const KeepOut keep_out{arm_capsules(arm.model, path.configurations[0]), clutter.clearance,
-                         path_capsules(path.points, arm.link_radius)};
+std::optional<nlohmann::json> place_clutter(const ClutterOptions& clutter, const WitnessedArm& drawn, bool spatial,
+                                            Rng& rng) {
+  const KeepOut keep_out{&drawn.sweep, clutter.clearance};
+  const GeneratedArm& arm = drawn.arm;
   const Eigen::Vector3d base = arm.model.base.translation();
   const auto draw = [&](int k, Rng& r) -> std::optional<nlohmann::json> {
-    const Eigen::Vector3d center = k % 2 == 0
-                                       ? point_in_ball(point_along(path, r.uniform()), kNearPath * arm.reach, spatial, r)
-                                       : point_in_ball(base, arm.reach, spatial, r);
+    const Eigen::Vector3d center =
+        k % 2 == 0 ? point_in_ball(point_along(drawn.path, r.uniform()), kNearPath * arm.reach, spatial, r)
+                   : point_in_ball(base, arm.reach, spatial, r);
     const std::string& shape = clutter.shapes[r.below(clutter.shapes.size())];
     return draw_obstacle(shape, center, clutter.size.draw(r) * arm.reach, spatial, k + 1, r);
   };
@@ -28,17 +28,15 @@ nlohmann::json generate_clutter_case(GeneratorCase& c, const ClutterOptions& clu
                                      TaskSpace space) {
   Rng& rng = c.rng;
   for (int attempt = 0; attempt < kCaseAttempts; ++attempt) {
-    const std::optional<ArmAndPath> drawn = draw_arm_and_path(draw_arm, path_options, rng);
+    const std::optional<WitnessedArm> drawn = draw_witnessed_arm(draw_arm, path_options, space, rng);
     if (!drawn) continue;
-    const std::optional<nlohmann::json> obstacles = place_clutter(clutter, drawn->arm, drawn->path, spatial, rng);
+    const std::optional<nlohmann::json> obstacles = place_clutter(clutter, *drawn, spatial, rng);
     if (!obstacles) continue;
     const std::string description =
         case_title(c) + ": " + drawn->arm.summary + " among " + obstacle_summary(*obstacles) + ", each more than " +
-        fixed_digits(clutter.clearance, 3) + " m from every link of the start configuration and off the hand's path; " +
-        path_summary(drawn->path) + ".";
-    return case_document(c, description, path_options.dt, drawn->path.duration,
-                         robot_with_q0(drawn->arm, drawn->path.configurations[0]), *obstacles,
-                         path_task(drawn->path, space));
+        fixed_digits(clutter.clearance, 3) + " m from every link of the witness arm at every step; " +
+        witness_summary(drawn->witness, int(drawn->path.configurations.size()) - 1) + ".";
+    return witnessed_document(c, description, *drawn, *obstacles, space);
   }
   no_case_found(c, "options.obstacles, options.obstacle_size or options.clearance");
 }

@@ -1,4 +1,4 @@
-// Static clutter around a generated arm and its hand's path: the obstacles of
+// Static clutter around a generated arm's witness: the obstacles of
 // planar_clutter, spatial_clutter and planar_limits.
 #pragma once
 
@@ -9,20 +9,20 @@
 #include "scenario/generator_arms.hpp"
 #include "scenario/generator_case.hpp"
 #include "scenario/generator_obstacles.hpp"
-#include "scenario/generator_path.hpp"
+#include "scenario/generator_witness.hpp"
 
 namespace rrlab {
 
 // Draws the option's obstacle count: every other obstacle (the 1st, 3rd, ...)
-// within 0.25 reach of a random point of the path, where it matters, the rest
-// anywhere within reach of the base; each more than the clearance from every
-// link of the start configuration and off the hand's path. Nullopt when one
-// found no place.
-std::optional<nlohmann::json> place_clutter(const ClutterOptions& clutter, const GeneratedArm& arm,
-                                            const GeneratedPath& path, bool spatial, Rng& rng);
+// within 0.25 reach of a random point of the hand's trace, where it matters,
+// the rest anywhere within reach of the base; each more than the clearance
+// from every link of the witness arm at every step. Nullopt when one found no
+// place.
+std::optional<nlohmann::json> place_clutter(const ClutterOptions& clutter, const WitnessedArm& drawn, bool spatial,
+                                            Rng& rng);
 
-// A case of planar_clutter or spatial_clutter: an arm from `draw_arm`, a timed
-// path, and static clutter clear of the start and off the path, tracked in `space`.
+// A case of planar_clutter or spatial_clutter: an arm from `draw_arm`, its
+// witness, and static clutter clear of the witness, tracked in `space`.
 nlohmann::json generate_clutter_case(GeneratorCase& c, const ClutterOptions& clutter, const PathOptions& path_options,
                                      const std::function<GeneratedArm(Rng&)>& draw_arm, bool spatial,
                                      TaskSpace space);

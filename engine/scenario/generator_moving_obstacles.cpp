@@ -16,11 +16,10 @@
 // | dt             | time step                                            | 0.01                        | s       |
 // | time_law       | "linear" (constant speed) or "quintic" (per segment) | linear                      | —       |
 //
-// Each obstacle is aimed to pass through a random point of the hand's path at
+// Each obstacle is aimed to pass through a random point of the hand's trace at
 // a random time in [0.2, 0.9] of the run (not when the hand is there), so it
-// crosses the path while the arm works; at t = 0 it keeps the clearance from
-// the start arm, and its track keeps clear of the base (which no method can
-// move away).
+// crosses the path while the arm works, and keeps the clearance from the
+// witness arm at every step: the witness dodges every obstacle in time.
 #include <algorithm>
 #include <cmath>
 
@@ -28,6 +27,7 @@
 #include "scenario/generator_case.hpp"
 #include "scenario/generator_obstacles.hpp"
 #include "scenario/generator_path.hpp"
+#include "scenario/generator_witness.hpp"
 #include "scenario/scenario.hpp"
 
 namespace rrlab {
@@ -36,12 +36,6 @@ namespace {
 
 constexpr double kCrossFrom = 0.2, kCrossTo = 0.9;  // fractions of the duration
 constexpr double kDefaultSpeedMin = 0.1, kDefaultSpeedMax = 0.3;  // reaches per second
-
-double point_segment_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  const Eigen::Vector3d ab = b - a;
-  const double t = ab.squaredNorm() > 0 ? std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
-  return (a + t * ab - p).norm();
-}
 
 }  // namespace
 
@@ -57,25 +51,21 @@ nlohmann::json generate_moving_obstacles(GeneratorCase& c) {
   const PathOptions path_options = read_path_options(options);
   Rng& rng = c.rng;
   for (int attempt = 0; attempt < kCaseAttempts; ++attempt) {
-    std::optional<ArmAndPath> drawn =
-        draw_arm_and_path([&](Rng& r) { return draw_planar_arm(arm_options, r); }, path_options, rng);
+    const std::optional<WitnessedArm> drawn = draw_witnessed_arm(
+        [&](Rng& r) { return draw_planar_arm(arm_options, r); }, path_options, TaskSpace::xy, rng);
     if (!drawn) continue;
     const GeneratedArm& arm = drawn->arm;
-    GeneratedPath* path = &drawn->path;
-    const KeepOut keep_out{arm_capsules(arm.model, path->configurations[0]), clutter.clearance, {}};
+    const KeepOut keep_out{&drawn->sweep, clutter.clearance};
     const Range speed_range =
         speed_given ? given_speed : Range{kDefaultSpeedMin * arm.reach, kDefaultSpeedMax * arm.reach};
+    const double duration = drawn->witness.duration;
     const auto draw = [&](int k, Rng& r) -> std::optional<nlohmann::json> {
       const double size = clutter.size.draw(r) * arm.reach;
       const double speed = speed_range.draw(r), heading = r.uniform(-M_PI, M_PI);
       const Eigen::Vector3d velocity(rounded(speed * std::cos(heading)), rounded(speed * std::sin(heading)), 0);
-      const Eigen::Vector3d crossing = point_along(*path, r.uniform());
-      const Eigen::Vector3d start = crossing - velocity * (r.uniform(kCrossFrom, kCrossTo) * path->duration);
+      const Eigen::Vector3d crossing = point_along(drawn->path, r.uniform());
+      const Eigen::Vector3d start = crossing - velocity * (r.uniform(kCrossFrom, kCrossTo) * duration);
       const std::string& shape = clutter.shapes[r.below(clutter.shapes.size())];
-      // its track, grown by a bound of its extent (sqrt(2) size), must miss the base
-      const double track_to_base =
-          point_segment_distance(Eigen::Vector3d::Zero(), start, start + velocity * path->duration);
-      if (track_to_base <= std::sqrt(2.0) * size + arm.link_radius + clutter.clearance) return std::nullopt;
       nlohmann::json o = draw_obstacle(shape, start, size, false, k + 1, r);
       o["velocity"] = {velocity.x(), velocity.y()};
       return o;
@@ -85,11 +75,10 @@ nlohmann::json generate_moving_obstacles(GeneratorCase& c) {
     const std::string description =
         case_title(c) + ": " + arm.summary + " and " + obstacle_summary(*obstacles) + " moving at " +
         fixed_digits(speed_range.min, 3) + "-" + fixed_digits(speed_range.max, 3) +
-        " m/s, each aimed through a point of the hand's path at 0.2-0.9 of the run and, at t = 0, more than " +
-        fixed_digits(clutter.clearance, 3) + " m from every link of the start configuration; " + path_summary(*path) +
-        ".";
-    return case_document(c, description, path_options.dt, path->duration,
-                         robot_with_q0(arm, path->configurations[0]), *obstacles, path_task(*path, TaskSpace::xy));
+        " m/s, each aimed through a point of the hand's trace at 0.2-0.9 of the run and more than " +
+        fixed_digits(clutter.clearance, 3) + " m from every link of the witness arm at every step; " +
+        witness_summary(drawn->witness, int(drawn->path.configurations.size()) - 1) + ".";
+    return witnessed_document(c, description, *drawn, *obstacles, TaskSpace::xy);
   }
   no_case_found(c, "options.obstacles, options.obstacle_size or options.clearance");
 }

@@ -76,8 +76,7 @@ bool keeps_out(const nlohmann::json& obstacle, const KeepOut& keep_out) {
   } catch (const ScenarioError&) {
     return false;  // a polygon degenerate after rounding: draw another
   }
-  return capsules_clearance(keep_out.start_arm, o) > keep_out.arm_clearance &&
-         capsules_clearance(keep_out.path, o) > 0;
+  return sweep_clearance(*keep_out.sweep, o, keep_out.clearance) > keep_out.clearance;
 }
 
 std::optional<nlohmann::json> place_obstacles(int count, const KeepOut& keep_out, const ObstacleDraw& draw,

@@ -1,6 +1,6 @@
 // Obstacles of generated scenarios: random shapes in scenario syntax, placed
-// by rejection so that each keeps its distance from the start arm (and, when
-// asked, from the hand's path), as the engine's collision code measures it.
+// by rejection so that each keeps its distance from the witness arm at every
+// step, as the engine's collision code measures it.
 #pragma once
 
 #include <Eigen/Core>
@@ -21,7 +21,7 @@ struct ClutterOptions {
   IntRange count{1, 8};
   Range size{0.04, 0.12};  // characteristic size (sphere radius, box half-edge...) in reaches
   std::vector<std::string> shapes;
-  double clearance = 0.05;  // m from every link capsule of the start configuration
+  double clearance = 0.05;  // m from every link capsule of the witness arm at every step
 };
 ClutterOptions read_clutter_options(const GeneratorOptions& options, IntRange default_count,
                                     const std::vector<std::string>& allowed_shapes);
@@ -33,12 +33,11 @@ ClutterOptions read_clutter_options(const GeneratorOptions& options, IntRange de
 nlohmann::json draw_obstacle(const std::string& shape, const Eigen::Vector3d& center, double size, bool spatial,
                              int number, Rng& rng);
 
-// Where obstacles must not come: the start arm's capsules (closer than
-// `arm_clearance`) and the hand's path capsules (any contact).
+// Where obstacles must not come: closer than `clearance` to the witness arm
+// at any step.
 struct KeepOut {
-  std::vector<CapsuleSegment> start_arm;
-  double arm_clearance = 0;
-  std::vector<CapsuleSegment> path;
+  const ArmSweep* sweep = nullptr;
+  double clearance = 0;
 };
 bool keeps_out(const nlohmann::json& obstacle, const KeepOut& keep_out);
 

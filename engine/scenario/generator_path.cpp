@@ -15,6 +15,7 @@ namespace {
 // apart from each other, and segments this far outside the hole; in reaches.
 constexpr double kNearest = 0.15, kFarthest = 0.9, kSeparation = 0.15, kHoleMargin = 0.02;
 constexpr int kWaypointDraws = 100;
+constexpr double kWaypointJointStep = 0.6;  // rad: each joint of a waypoint within this of the previous one
 // Positions derived from kinematics are written to this step (m).
 constexpr double kPointStep = 1e-6;
 
@@ -58,7 +59,12 @@ std::optional<GeneratedPath> draw_path(const GeneratedArm& arm, int count, Rng& 
   while (int(path.points.size()) <= count) {
     bool found = false;
     for (int draw = 0; draw < kWaypointDraws && !found; ++draw) {
-      const Eigen::VectorXd q = draw_configuration(arm, rng);
+      // waypoints near the previous configuration: the witness moves through
+      // them on joint-space lines, which between far configurations sweep
+      // the hand on long detours
+      const Eigen::VectorXd q = path.configurations.empty()
+                                    ? draw_configuration(arm, rng)
+                                    : draw_configuration_near(arm, path.configurations.back(), kWaypointJointStep, rng);
       const Eigen::Vector3d p = hand_position(arm.model, q);
       if (!acceptable(p)) continue;
       path.configurations.push_back(q);
@@ -71,29 +77,6 @@ std::optional<GeneratedPath> draw_path(const GeneratedArm& arm, int count, Rng& 
   return path;
 }
 
-void time_path(GeneratedPath& path, const PathOptions& options, double reach, Rng& rng) {
-  path.speed = options.speed ? rounded(options.speed->draw(rng), 1e-3) : rounded(kDefaultSpeedPerReach * reach, 1e-3);
-  path.speed = std::max(path.speed, 1e-3);
-  const long steps = std::max(1L, long(std::ceil(path.length / path.speed / options.dt - 1e-9)));
-  if (steps > ScenarioLimits::max_steps)
-    throw ScenarioError("options.speed", "gives " + std::to_string(steps) + " steps of dt, at most " +
-                                             std::to_string(ScenarioLimits::max_steps) + " allowed");
-  path.duration = rounded(double(steps) * options.dt, 1e-9);
-  path.time_law = options.time_law;
-}
-
-nlohmann::json path_task(const GeneratedPath& path, TaskSpace space) {
-  nlohmann::json points = nlohmann::json::array();
-  for (const Eigen::Vector3d& p : path.points) {
-    if (space == TaskSpace::xy)
-      points.push_back({p.x(), p.y()});
-    else
-      points.push_back({p.x(), p.y(), p.z()});
-  }
-  return {{"space", to_string(space)},
-          {"trajectory", {{"type", "polyline"}, {"points", points}, {"time_law", path.time_law}}}};
-}
-
 Eigen::Vector3d point_along(const GeneratedPath& path, double u) {
   double remaining = std::clamp(u, 0.0, 1.0) * path.length;
   for (size_t i = 1; i < path.points.size(); ++i) {
@@ -103,13 +86,6 @@ Eigen::Vector3d point_along(const GeneratedPath& path, double u) {
     remaining -= segment;
   }
   return path.points.back();
-}
-
-std::string path_summary(const GeneratedPath& path) {
-  const size_t waypoints = path.points.size() - 1;
-  return "the hand follows a polyline through " + std::to_string(waypoints) +
-         (waypoints == 1 ? " waypoint" : " waypoints") + " (end-effector positions of drawn configurations), " + fixed_digits(path.length, 3) + " m at " +
-         fixed_digits(path.speed, 3) + " m/s (" + fixed_digits(path.duration, 2) + " s, " + path.time_law + " time law)";
 }
 
 }  // namespace rrlab

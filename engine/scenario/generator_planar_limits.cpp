@@ -21,10 +21,13 @@
 // limits, so the waypoints are reachable inside them; a candidate is kept
 // only when a pinv run of it leaves the limits (at most kCaseAttempts
 // candidates, drawn from the case's stream: deterministic).
+#include <cmath>
+
 #include "scenario/generator_arms.hpp"
 #include "scenario/generator_case.hpp"
 #include "scenario/generator_clutter.hpp"
 #include "scenario/generator_path.hpp"
+#include "scenario/generator_witness.hpp"
 #include "scenario/scenario.hpp"
 #include "sim/simulator.hpp"
 
@@ -64,26 +67,23 @@ nlohmann::json generate_planar_limits(GeneratorCase& c) {
   const PathOptions path_options = read_path_options(options);
   Rng& rng = c.rng;
   for (int attempt = 0; attempt < kCaseAttempts; ++attempt) {
-    std::optional<ArmAndPath> drawn =
-        draw_arm_and_path([&](Rng& r) { return draw_planar_arm(arm_options, r); }, path_options, rng);
+    const std::optional<WitnessedArm> drawn = draw_witnessed_arm(
+        [&](Rng& r) { return draw_planar_arm(arm_options, r); }, path_options, TaskSpace::xy, rng);
     if (!drawn) continue;
-    const GeneratedArm& arm = drawn->arm;
-    GeneratedPath* path = &drawn->path;
-    const std::optional<nlohmann::json> obstacles = place_clutter(clutter, arm, *path, false, rng);
+    const std::optional<nlohmann::json> obstacles = place_clutter(clutter, *drawn, false, rng);
     if (!obstacles) continue;
-    nlohmann::json doc = case_document(c, "", path_options.dt, path->duration,
-                                       robot_with_q0(arm, path->configurations[0]), *obstacles,
-                                       path_task(*path, TaskSpace::xy));
+    nlohmann::json doc = witnessed_document(c, "", *drawn, *obstacles, TaskSpace::xy);
     const std::optional<LimitCrossing> crossing = pinv_limit_crossing(doc);
     if (!crossing) continue;
-    std::string description = case_title(c) + ": " + arm.summary + "; " + path_summary(*path) +
-                              "; the start and waypoint configurations lie within 0.9 of the limits, and pinv " +
-                              "drives joint " + std::to_string(crossing->joint + 1) + " past its limit at t = " +
-                              fixed_digits(crossing->t, 2) + " s (checked by simulation, candidate " +
-                              std::to_string(attempt + 1) + ")";
+    std::string description = case_title(c) + ": " + drawn->arm.summary + "; " +
+                              witness_summary(drawn->witness, int(drawn->path.configurations.size()) - 1) +
+                              "; the witness keeps " + fixed_digits(drawn->witness.limit_margin * 180.0 / M_PI, 1) +
+                              " deg inside the limits, and pinv drives joint " + std::to_string(crossing->joint + 1) +
+                              " past its limit at t = " + fixed_digits(crossing->t, 2) +
+                              " s (checked by simulation, candidate " + std::to_string(attempt + 1) + ")";
     if (!obstacles->empty())
       description += "; " + obstacle_summary(*obstacles) + ", each more than " + fixed_digits(clutter.clearance, 3) +
-                     " m from every link of the start configuration and off the hand's path";
+                     " m from every link of the witness arm at every step";
     doc["description"] = description + ".";
     return doc;
   }

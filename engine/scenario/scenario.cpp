@@ -399,6 +399,46 @@ void parse_task(JsonObject task, const Units& units, Scenario& sc) {
   parse_trajectory(task.object("trajectory"), units, sc.task.space, sc.task.trajectory);
 }
 
+// ---- witness ----
+
+// "witness": {"dt", "q": [[...], ...], "difficulty": {...}}: samples from
+// t = 0 every dt covering the run, starting at q0, in the file's angle unit.
+// Whether it solves the task is what `--method witness` shows, not a parse rule.
+void parse_witness(JsonObject w, const Units& units, Scenario& sc) {
+  w.check_keys({"dt", "q", "difficulty"});
+  auto witness = std::make_shared<WitnessTrajectory>();
+  witness->dt = w.number("dt");
+  if (!(witness->dt >= 1e-6) || witness->dt > sc.duration)
+    throw ScenarioError(w.child("dt"), "must be in [1e-6 s, duration], got " + format_number(witness->dt));
+  const int n = sc.model.dof();
+  const json& rows = w.array("q", size_t(ScenarioLimits::max_witness_numbers / std::max(n, 1)));
+  const double needed = std::ceil(sc.duration / witness->dt - 1e-9) + 1;
+  if (double(rows.size()) < needed)
+    throw ScenarioError(w.child("q"), "has " + std::to_string(rows.size()) + " samples; every " +
+                                          format_number(witness->dt) + " s over the run's " +
+                                          format_number(sc.duration) + " s needs " + format_number(needed));
+  for (size_t k = 0; k < rows.size(); ++k) {
+    const std::string path = index_path(w.child("q"), k);
+    const std::vector<double> values = json_numbers(rows[k], path, size_t(n), size_t(n));
+    Eigen::VectorXd q(n);
+    for (int i = 0; i < n; ++i) {
+      const JointType type = sc.model.joints[i].type;
+      const double scale = type == JointType::revolute ? units.angle : 1.0;
+      q[i] = check_quantity(values[i], kPosition.of(type), index_path(path, i), scale) * scale;
+    }
+    witness->q.push_back(std::move(q));
+  }
+  if ((witness->q[0] - sc.q0).cwiseAbs().maxCoeff() > 1e-9)
+    throw ScenarioError(index_path(w.child("q"), 0), "must be robot.q0, where the run starts");
+  if (w.has("difficulty")) {
+    const json& difficulty = w.raw("difficulty");
+    if (!difficulty.is_object()) throw ScenarioError(w.child("difficulty"), "must be an object of numbers");
+    for (auto it = difficulty.begin(); it != difficulty.end(); ++it)
+      if (!it.value().is_number()) throw ScenarioError(w.child("difficulty") + "." + it.key(), "must be a number");
+  }
+  sc.witness = std::move(witness);
+}
+
 // ---- method ----
 
 void parse_method(JsonObject method, Scenario& sc) {
@@ -498,7 +538,7 @@ std::string scenario_catalogue_dir() {
 Scenario parse_scenario(const json& doc, const std::string& dir) {
   JsonObject root(doc, "");
   root.check_keys({"name", "description", "source", "dt", "duration", "angle_unit", "seed", "robot",
-                   "obstacles", "task", "method"});
+                   "obstacles", "task", "method", "witness"});
   Scenario sc;
   sc.json = doc;
   sc.name = root.string("name", "unnamed");
@@ -526,6 +566,7 @@ Scenario parse_scenario(const json& doc, const std::string& dir) {
   parse_robot(root.object("robot"), units, dir, sc);
   if (root.has("obstacles")) parse_obstacles(root.raw("obstacles"), "obstacles", units, dir, sc);
   parse_task(root.object("task"), units, sc);
+  if (root.has("witness")) parse_witness(root.object("witness"), units, sc);
   if (root.has("method")) {
     parse_method(root.object("method"), sc);
   } else {

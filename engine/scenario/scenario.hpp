@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
@@ -13,6 +14,7 @@
 #include "collision/scene.hpp"
 #include "model/model.hpp"
 #include "task/task.hpp"
+#include "task/witness.hpp"
 
 namespace rrlab {
 
@@ -22,6 +24,7 @@ struct ScenarioLimits {
   static constexpr int max_obstacles = 256;
   static constexpr int max_polygon_points = 1024;
   static constexpr int max_path_points = 10000;
+  static constexpr long max_witness_numbers = 2'000'000;  // samples × joints
   static constexpr long max_steps = 10'000'000;
   static constexpr long max_urdf_bytes = 1 << 20;  // a URDF file or inline text
   // Mesh obstacles: per file, and over all of a scenario's mesh obstacles (the
@@ -58,6 +61,8 @@ struct Scenario {
   Scene scene;
   TaskSpec task;
   MethodSpec method;
+  // "witness": a joint trajectory known to solve the task (generated cases)
+  std::shared_ptr<const WitnessTrajectory> witness;
   nlohmann::json json;  // the document as given
 
   long steps() const;

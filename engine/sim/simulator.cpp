@@ -50,7 +50,8 @@ Simulator::~Simulator() = default;
 void Simulator::install_method(const std::string& name) {
   const MethodInfo* info = find_method(name);
   if (!info) throw ParamError("method", "unknown method \"" + name + "\" (known: " + method_names() + ")");
-  method_ = info->make({scenario_.model, scenario_.task.space, int(scene_.obstacles.size()), scenario_.seed});
+  method_ = info->make(
+      {scenario_.model, scenario_.task.space, int(scene_.obstacles.size()), scenario_.seed, scenario_.witness});
   method_name_ = name;
   const int n = scenario_.model.dof();
   out_.qdot = Eigen::VectorXd::Zero(n);

@@ -121,7 +121,23 @@ INSTANTIATE_TEST_SUITE_P(
                   "robot.limits.velocity[0]", "must be > 0"},
         Malformed{"zero-area polygon", [](json& d) { d["obstacles"][0]["points"] = {{0, 0}, {1, 0}, {2, 0}}; },
                   "obstacles[0].points", "area"},
-        Malformed{"unstable gain", [](json& d) { d["task"]["gain"] = 500; }, "task.gain", "1/dt"}),
+        Malformed{"unstable gain", [](json& d) { d["task"]["gain"] = 500; }, "task.gain", "1/dt"},
+        Malformed{"witness dt", [](json& d) { d["witness"] = {{"dt", 0}, {"q", {d["robot"]["q0"], d["robot"]["q0"]}}}; },
+                  "witness.dt", "must be in [1e-6 s, duration]"},
+        Malformed{"witness too short",
+                  [](json& d) { d["witness"] = {{"dt", 0.25}, {"q", {d["robot"]["q0"], d["robot"]["q0"]}}}; },
+                  "witness.q", "needs 5"},
+        Malformed{"witness row size", [](json& d) { d["witness"] = {{"dt", 1.0}, {"q", {d["robot"]["q0"], {1, 2}}}}; },
+                  "witness.q[1]", "must have 3 numbers"},
+        Malformed{"witness not at q0", [](json& d) { d["witness"] = {{"dt", 1.0}, {"q", {{0, 0, 0}, {0, 0, 0}}}}; },
+                  "witness.q[0]", "must be robot.q0"},
+        Malformed{"witness difficulty",
+                  [](json& d) {
+                    d["witness"] = {{"dt", 1.0}, {"q", {d["robot"]["q0"], d["robot"]["q0"]}}, {"difficulty", {{"gap", "wide"}}}};
+                  },
+                  "witness.difficulty.gap", "must be a number"},
+        Malformed{"witness key", [](json& d) { d["witness"] = {{"dt", 1.0}, {"q", {d["robot"]["q0"]}}, {"t", 1}}; },
+                  "witness.t", "unknown key"}),
     [](const ::testing::TestParamInfo<Malformed>& info) {
       std::string name = info.param.what;
       for (char& c : name)
