@@ -18,6 +18,15 @@ constexpr Migration kMigrations[] = {
      "ALTER TABLE runs ADD COLUMN frame_bytes INTEGER NOT NULL DEFAULT 0;"
      "UPDATE runs SET frame_bytes = (SELECT COALESCE(SUM(length(data)), 0) FROM frames "
      "WHERE frames.run_id = runs.id);"},
+    // sweep_runs may be missing in a version-1 file (it was added without a
+    // version change): made in its version-2 shape first, then widened
+    {3, "sweep_runs.failure_mode and failure_t: a failed sweep run's first failure and when it began",
+     "CREATE TABLE IF NOT EXISTS sweep_runs (sweep TEXT NOT NULL, key TEXT NOT NULL, "
+     "run_id INTEGER NOT NULL REFERENCES runs(id) ON DELETE CASCADE, scenario_key TEXT NOT NULL, "
+     "config_key TEXT NOT NULL, family TEXT NOT NULL, success INTEGER NOT NULL, PRIMARY KEY (sweep, key)) "
+     "WITHOUT ROWID;"
+     "ALTER TABLE sweep_runs ADD COLUMN failure_mode TEXT;"
+     "ALTER TABLE sweep_runs ADD COLUMN failure_t REAL;"},
 };
 static_assert(std::size(kMigrations) > 0 && kMigrations[std::size(kMigrations) - 1].to_version == kSchemaVersion,
               "schema.sql's version must be the last migration's");

@@ -66,6 +66,10 @@ struct StoredFrame {
 struct SweepRunRow {
   std::string sweep, key, scenario_key, config_key, family;
   bool success = false;
+  // a failed run's first failure (sweep/failure_watch.hpp) and when it began;
+  // none for a run that passed or one stored before rrlab recorded them
+  std::optional<std::string> failure_mode = std::nullopt;
+  std::optional<double> failure_t = std::nullopt;
 };
 
 // A run stored whole, once it has ended: status "completed".
@@ -83,6 +87,7 @@ struct SweepRunEntry {
   std::int64_t run_id = 0;
   std::uint64_t seed = 0;
   std::optional<std::string> summary_json;
+  std::optional<std::string> difficulty_json = std::nullopt;  // the scenario's witness.difficulty (generated cases)
 };
 
 struct RunFilter {

@@ -52,17 +52,14 @@ std::optional<std::int64_t> RunStore::add_sweep_run(const FinishedRun& finished,
       insert.reset();
     }
   }
-  db_->prepare(
-         "INSERT INTO sweep_runs(sweep, key, run_id, scenario_key, config_key, family, success) "
-         "VALUES (?,?,?,?,?,?,?)")
-      .bind(1, row.sweep)
-      .bind(2, row.key)
-      .bind(3, id)
-      .bind(4, row.scenario_key)
-      .bind(5, row.config_key)
-      .bind(6, row.family)
-      .bind(7, row.success ? 1 : 0)
-      .step();
+  Statement insert_row = db_->prepare(
+      "INSERT INTO sweep_runs(sweep, key, run_id, scenario_key, config_key, family, success, failure_mode, failure_t) "
+      "VALUES (?,?,?,?,?,?,?,?,?)");
+  insert_row.bind(1, row.sweep).bind(2, row.key).bind(3, id).bind(4, row.scenario_key).bind(5, row.config_key);
+  insert_row.bind(6, row.family).bind(7, row.success ? 1 : 0);
+  if (row.failure_mode) insert_row.bind(8, *row.failure_mode); else insert_row.bind_null(8);
+  if (row.failure_t) insert_row.bind(9, *row.failure_t); else insert_row.bind_null(9);
+  insert_row.step();
   tx.commit();
   total_frame_bytes_ += frame_bytes;
   added = id;
@@ -82,7 +79,8 @@ std::vector<std::string> RunStore::sweep_keys(const std::string& sweep) {
 std::vector<SweepRunEntry> RunStore::sweep_runs(const std::optional<std::string>& sweep) {
   std::lock_guard lock(read_mutex_);
   Statement s = read_db_->prepare(
-      "SELECT w.sweep, w.key, w.scenario_key, w.config_key, w.family, w.success, w.run_id, r.seed, r.summary "
+      "SELECT w.sweep, w.key, w.scenario_key, w.config_key, w.family, w.success, w.run_id, r.seed, r.summary, "
+      "w.failure_mode, w.failure_t, json_extract(r.scenario, '$.witness.difficulty') "
       "FROM sweep_runs w JOIN runs r ON r.id = w.run_id WHERE (?1 IS NULL OR w.sweep = ?1) ORDER BY w.sweep, w.key");
   if (sweep) s.bind(1, *sweep); else s.bind_null(1);
   std::vector<SweepRunEntry> out;
@@ -93,6 +91,9 @@ std::vector<SweepRunEntry> RunStore::sweep_runs(const std::optional<std::string>
     e.run_id = s.column_int(6);
     e.seed = std::uint64_t(s.column_int(7));
     if (!s.is_null(8)) e.summary_json = s.column_text(8);
+    if (!s.is_null(9)) e.row.failure_mode = s.column_text(9);
+    if (!s.is_null(10)) e.row.failure_t = s.column_double(10);
+    if (!s.is_null(11)) e.difficulty_json = s.column_text(11);
     out.push_back(std::move(e));
   }
   return out;

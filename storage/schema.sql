@@ -1,4 +1,4 @@
--- rrlab storage schema. Version 2. A new file gets this whole schema; an older
+-- rrlab storage schema. Version 3. A new file gets this whole schema; an older
 -- one is migrated step by step (storage/migrations.cpp), then this is applied
 -- again, which only adds what is missing (every statement is IF NOT EXISTS).
 -- A run's frames are numbered by seq, the count of steps taken in the run
@@ -68,6 +68,8 @@ CREATE TABLE IF NOT EXISTS sweep_runs (
   config_key   TEXT NOT NULL,                  -- method{param=value,...}
   family       TEXT NOT NULL,                  -- generator family, or "file"
   success      INTEGER NOT NULL,
+  failure_mode TEXT,                           -- a failed run's first failure (version 3; NULL: passed, or stored before)
+  failure_t    REAL,                           -- s, when it began
   PRIMARY KEY (sweep, key)
 ) WITHOUT ROWID;
 CREATE INDEX IF NOT EXISTS sweep_runs_run ON sweep_runs(run_id);

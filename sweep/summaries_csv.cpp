@@ -34,14 +34,20 @@ constexpr const char* kSummaryColumns[] = {"steps", "collided", "min_distance", 
                                            "max_qdot_ratio", "max_qddot_ratio", "max_condition_number",
                                            "nonfinite_steps"};
 
+// The generated cases' difficulty (witness.difficulty), empty for other runs.
+constexpr const char* kDifficultyColumns[] = {"clearance",  "limit_margin",       "gap_width",
+                                              "path_length", "duration",          "min_manipulability",
+                                              "interpolation_error", "peak_joint_speed"};
+
 }  // namespace
 
 void write_summaries_csv(std::ostream& out, const std::vector<SweepCase>& cases,
                          const std::vector<storage::SweepRunEntry>& stored) {
   std::unordered_map<std::string, const storage::SweepRunEntry*> by_key;
   for (const storage::SweepRunEntry& e : stored) by_key[e.row.key] = &e;
-  out << "key,scenario_key,config,family,seed,success,run";
+  out << "key,scenario_key,config,family,seed,success,failure_mode,failure_t,run";
   for (const char* column : kSummaryColumns) out << ',' << column;
+  for (const char* column : kDifficultyColumns) out << ",difficulty_" << column;
   out << ",step_us_mean,step_us_p50,step_us_p99\n";
   for (const SweepCase& c : cases) {
     const auto it = by_key.find(c.key);
@@ -49,8 +55,12 @@ void write_summaries_csv(std::ostream& out, const std::vector<SweepCase>& cases,
     const storage::SweepRunEntry& e = *it->second;
     const nlohmann::json summary = e.summary_json ? parse_json(*e.summary_json) : nlohmann::json::object();
     out << quoted(c.key) << ',' << quoted(c.scenario_key) << ',' << quoted(c.config_key) << ',' << quoted(c.family)
-        << ',' << e.seed << ',' << (e.row.success ? 1 : 0) << ',' << e.run_id;
+        << ',' << e.seed << ',' << (e.row.success ? 1 : 0) << ',' << quoted(e.row.failure_mode.value_or(""))
+        << ',' << (e.row.failure_t ? field(*e.row.failure_t) : "") << ',' << e.run_id;
     for (const char* column : kSummaryColumns) out << ',' << field(summary.value(column, nlohmann::json()));
+    const nlohmann::json difficulty = e.difficulty_json ? parse_json(*e.difficulty_json) : nlohmann::json::object();
+    for (const char* column : kDifficultyColumns)
+      out << ',' << field(difficulty.is_object() ? difficulty.value(column, nlohmann::json()) : nlohmann::json());
     const nlohmann::json step = summary.value("step_us", nlohmann::json::object());
     out << ',' << field(step.value("mean", nlohmann::json())) << ',' << field(step.value("p50", nlohmann::json()))
         << ',' << field(step.value("p99", nlohmann::json())) << '\n';

@@ -6,6 +6,7 @@
 #include "storage/frame_codec.hpp"
 #include "storage/quotas.hpp"
 #include "storage/resimulation.hpp"
+#include "sweep/failure_watch.hpp"
 
 namespace rrlab::sweep {
 
@@ -58,13 +59,18 @@ CaseResult run_case(const SweepSpec& spec, const SweepCase& c, bool with_frames,
   CaseResult result;
   FrameCollector collector(result.run.frames);
   if (with_frames) result.run.frames.reserve(size_t(std::min<long>(sim.total_steps(), kMaxStoredFrames)));
-  result.summary = run_to_end(sim, with_frames ? &collector : nullptr, stop);
+  FailureWatch watch(spec.success, with_frames ? &collector : nullptr);
+  result.summary = run_to_end(sim, &watch, stop);
 
   result.run.run = storage::new_run_of(scenario, sim, "batch");
   result.run.summary_json = summary_to_json(result.summary).dump();
 
   const bool success = judge_success(spec.success, result.summary);
-  result.row = {spec.name, c.key, c.scenario_key, c.config_key, c.family, success};
+  result.row = {spec.name, c.key, c.scenario_key, c.config_key, c.family, success, std::nullopt, std::nullopt};
+  if (const std::optional<FirstFailure> failure = watch.first(success)) {
+    result.row.failure_mode = failure->mode;
+    result.row.failure_t = failure->t;
+  }
   return result;
 }
 

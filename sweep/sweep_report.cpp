@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "methods/witness_playback.hpp"
 #include "util/nesting_depth.hpp"
 
 namespace rrlab::sweep {
@@ -69,6 +70,7 @@ GroupStats group_stats(const std::vector<const RunFacts*>& runs) {
   size_t limits = 0, nonfinite = 0;
   for (const RunFacts* f : runs) {
     g.successes += f->entry->row.success ? 1 : 0;
+    if (!f->entry->row.success) ++g.failure_modes[f->entry->row.failure_mode.value_or("unrecorded")];
     if (std::isfinite(f->min_distance)) distances.push_back(f->min_distance);
     if (!std::isnan(f->max_tracking_error)) errors.push_back(f->max_tracking_error);
     limits += f->joint_limit_violated ? 1 : 0;
@@ -101,6 +103,89 @@ void tally(WinLossTie& t, int outcome) {
   else ++t.ties;
 }
 
+
+constexpr const char* kPinv = "pinv";
+
+// The group key's configuration is pinv with its defaults.
+bool is_pinv(const std::string& config_key) { return config_key == kPinv || config_key == "pinv{}"; }
+
+std::vector<double> step_p50s(const std::vector<const RunFacts*>& runs) {
+  std::vector<double> out;
+  for (const RunFacts* f : runs) out.push_back(f->step_p50);
+  return out;
+}
+
+using GroupKey = std::tuple<std::string, std::string, std::string>;  // sweep, config, family
+
+void step_ratios(const std::map<GroupKey, std::vector<const RunFacts*>>& groups, std::vector<GroupStats>& stats) {
+  for (GroupStats& g : stats) {
+    for (const auto& [key, runs] : groups) {
+      if (std::get<0>(key) != g.sweep || std::get<2>(key) != g.family || !is_pinv(std::get<1>(key))) continue;
+      const double pinv = shifted_geometric_mean(step_p50s(runs), kStepTimeShift);
+      const double own = shifted_geometric_mean(step_p50s(groups.at({g.sweep, g.config_key, g.family})), kStepTimeShift);
+      if (pinv > 0) g.step_ratio_to_pinv = own / pinv;
+    }
+  }
+}
+
+using CaseRuns = std::map<std::pair<std::string, std::uint64_t>, std::map<std::string, const RunFacts*>>;
+
+FamilyComparison compare_on_family(const CaseRuns& cases, const std::string& sweep, const std::string& family,
+                                   const std::string& config, const std::string& reference, const char* role) {
+  FamilyComparison c{sweep, family, config, reference, role, 0, {}, 1};
+  for (const auto& [case_key, runs] : cases) {
+    const auto a = runs.find(config), b = runs.find(reference);
+    if (a == runs.end() || b == runs.end() || report_family(a->second->entry->row) != family) continue;
+    ++c.cases;
+    tally(c.success, int(a->second->entry->row.success) - int(b->second->entry->row.success));
+  }
+  c.mcnemar_p = mcnemar_exact_p(c.success.wins, c.success.losses);
+  return c;
+}
+
+bool better(const GroupStats& x, const GroupStats& y) {
+  if (x.success_rate != y.success_rate) return x.success_rate > y.success_rate;
+  const double ex = std::isnan(x.median_max_tracking_error) ? kInf : x.median_max_tracking_error;
+  const double ey = std::isnan(y.median_max_tracking_error) ? kInf : y.median_max_tracking_error;
+  if (ex != ey) return ex < ey;
+  return x.config_key < y.config_key;
+}
+
+// Per sweep and family: every configuration against pinv and against the
+// best, and the configurations not significantly worse than the best.
+void compare_within_families(std::map<std::string, CaseRuns>& cases, SweepReport& report) {
+  std::map<std::pair<std::string, std::string>, std::vector<size_t>> families;  // (sweep, family) -> groups
+  for (size_t i = 0; i < report.groups.size(); ++i)
+    families[{report.groups[i].sweep, report.groups[i].family}].push_back(i);
+  for (const auto& [where, members] : families) {
+    const auto& [sweep, family] = where;
+    std::vector<size_t> order = members;
+    std::stable_sort(order.begin(), order.end(),
+                     [&](size_t x, size_t y) { return better(report.groups[x], report.groups[y]); });
+    // the witness lane is a reference (it solves every case by construction), never the best
+    std::erase_if(order, [&](size_t i) { return report.groups[i].config_key == kWitnessMethod; });
+    if (order.empty()) continue;
+    const std::string& best = report.groups[order.front()].config_key;
+    std::string pinv;
+    for (size_t i : members)
+      if (is_pinv(report.groups[i].config_key)) pinv = report.groups[i].config_key;
+    FamilyVerdict verdict{sweep, family, best, {}};
+    for (size_t i : order) {
+      const std::string& config = report.groups[i].config_key;
+      if (!pinv.empty() && config != pinv)
+        report.comparisons.push_back(compare_on_family(cases[sweep], sweep, family, config, pinv, "pinv"));
+      if (config == best) {
+        verdict.contenders.push_back(i);
+        continue;
+      }
+      const FamilyComparison against_best = compare_on_family(cases[sweep], sweep, family, config, best, "best");
+      report.comparisons.push_back(against_best);
+      const bool worse = against_best.success.losses > against_best.success.wins && against_best.mcnemar_p < kSignificance;
+      if (!worse) verdict.contenders.push_back(i);
+    }
+    report.verdicts.push_back(std::move(verdict));
+  }
+}
 }  // namespace
 
 SweepReport build_report(const std::vector<storage::SweepRunEntry>& entries) {
@@ -109,7 +194,7 @@ SweepReport build_report(const std::vector<storage::SweepRunEntry>& entries) {
   for (const storage::SweepRunEntry& e : entries) facts.push_back(facts_of(e));
 
   SweepReport report;
-  std::map<std::tuple<std::string, std::string, std::string>, std::vector<const RunFacts*>> groups;
+  std::map<GroupKey, std::vector<const RunFacts*>> groups;
   std::map<std::string, std::map<std::string, std::vector<const RunFacts*>>> by_config;  // sweep -> config -> runs
   // sweep -> (scenario key, seed) -> config -> run
   std::map<std::string, std::map<std::pair<std::string, std::uint64_t>, std::map<std::string, const RunFacts*>>> cases;
@@ -120,6 +205,7 @@ SweepReport build_report(const std::vector<storage::SweepRunEntry>& entries) {
     cases[row.sweep][{row.scenario_key, f.entry->seed}][row.config_key] = &f;
   }
   for (const auto& [key, runs] : groups) report.groups.push_back(group_stats(runs));
+  step_ratios(groups, report.groups);
 
   for (const auto& [sweep, configs] : by_config) {
     report.sweeps.push_back(sweep);
@@ -150,6 +236,7 @@ SweepReport build_report(const std::vector<storage::SweepRunEntry>& entries) {
       }
     }
   }
+  compare_within_families(cases, report);
   return report;
 }
 

@@ -10,9 +10,22 @@
 //    cases (same scenario key and seed): wins/losses/ties on success, and on
 //    min distance (larger wins; within 1e-9 is a tie);
 //  - a ranking of each sweep's configurations by success rate, then median
-//    max tracking error.
+//    max tracking error;
+//  - per group also the failed runs' first failure modes (collision,
+//    joint_limit, tracking_lost, stalled, nonfinite; "unrecorded" for runs
+//    stored before modes were) and the step time as a ratio to pinv's on the
+//    same family (shifted geometric means of the runs' step_us.p50, shift 1 µs);
+//  - per sweep × family, each configuration paired with pinv and with the
+//    family's best (highest success rate, then lowest median max tracking
+//    error) on the same cases: success wins/losses/ties and the exact McNemar
+//    p-value;
+//  - "which method when": per sweep × family, the configurations whose
+//    success is not significantly below the best's (not: fewer wins than
+//    losses against it with p < 0.05), best first, with their step time.
 #pragma once
 
+#include <limits>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -31,6 +44,8 @@ struct GroupStats {
   double median_max_tracking_error = 0;
   double joint_limit_share = 0, nonfinite_share = 0;
   double step_us_p50 = 0, step_us_p99 = 0;  // medians over runs of each run's p50 / p99
+  std::map<std::string, size_t> failure_modes;  // failed runs by first failure mode
+  double step_ratio_to_pinv = std::numeric_limits<double>::quiet_NaN();  // NaN: no pinv group to compare with
 };
 
 struct WinLossTie {
@@ -43,6 +58,24 @@ struct PairedComparison {
   WinLossTie success, min_distance;
 };
 
+// One configuration against a reference configuration on one family's cases.
+struct FamilyComparison {
+  std::string sweep, family, config_key, reference;  // wins are config_key's
+  std::string role;                                   // "pinv" or "best"
+  size_t cases = 0;
+  WinLossTie success;
+  double mcnemar_p = 1;
+};
+
+// Which method when: the family's best and those not significantly worse.
+struct FamilyVerdict {
+  std::string sweep, family, best;
+  std::vector<size_t> contenders;  // indices into SweepReport::groups: the best first, then by success rate
+};
+
+inline constexpr double kSignificance = 0.05;
+inline constexpr double kStepTimeShift = 1.0;  // µs
+
 struct RankEntry {
   std::string sweep, config_key;
   size_t n = 0;
@@ -54,6 +87,8 @@ struct SweepReport {
   std::vector<GroupStats> groups;       // by sweep, configuration, family
   std::vector<PairedComparison> pairs;  // by sweep, then a, b
   std::vector<RankEntry> ranking;       // by sweep, best first
+  std::vector<FamilyComparison> comparisons;  // by sweep, family, then configuration (the family's best first)
+  std::vector<FamilyVerdict> verdicts;        // by sweep, family
 };
 
 inline constexpr double kDistanceTie = 1e-9;

@@ -84,7 +84,7 @@ void write_report_html(std::ostream& out, const SweepReport& report) {
     success_chart(out, report, sweep);
     out << "<table><tr><th>method config</th><th>family</th><th>n</th><th>success</th><th>95% CI</th>"
            "<th>min dist median</th><th>min dist p10</th><th>max track err median</th><th>joint-limit viol.</th>"
-           "<th>non-finite</th><th>step µs p50</th><th>step µs p99</th></tr>\n";
+           "<th>non-finite</th><th>step µs p50</th><th>step µs p99</th><th>step × pinv</th><th>first failures</th></tr>\n";
     for (const GroupStats& g : report.groups) {
       if (g.sweep != sweep) continue;
       out << "<tr><td>" << escape(g.config_key) << "</td><td>" << escape(g.family) << "</td><td class=\"n\">" << g.n
@@ -93,7 +93,31 @@ void write_report_html(std::ostream& out, const SweepReport& report) {
           << "</td><td class=\"n\">" << short_number(g.p10_min_distance) << "</td><td class=\"n\">"
           << short_number(g.median_max_tracking_error) << "</td><td class=\"n\">" << percent(g.joint_limit_share)
           << "</td><td class=\"n\">" << percent(g.nonfinite_share) << "</td><td class=\"n\">"
-          << short_number(g.step_us_p50) << "</td><td class=\"n\">" << short_number(g.step_us_p99) << "</td></tr>\n";
+          << short_number(g.step_us_p50) << "</td><td class=\"n\">" << short_number(g.step_us_p99)
+          << "</td><td class=\"n\">" << short_number(g.step_ratio_to_pinv) << "</td><td>"
+          << escape(failure_modes_text(g)) << "</td></tr>\n";
+    }
+    out << "</table>\n<h3>Which method when</h3>\n<p class=\"note\">Per family: the best configuration and every "
+           "one whose success is not significantly below it (paired on the same cases, exact McNemar p &lt; 0.05), "
+           "with step time.</p>\n<table><tr><th>family</th><th>configurations (success, step µs p50, × pinv)</th></tr>\n";
+    for (const FamilyVerdict& v : report.verdicts) {
+      if (v.sweep != sweep) continue;
+      std::string list;
+      for (size_t i : v.contenders) {
+        const GroupStats& g = report.groups[i];
+        list += (list.empty() ? "" : "; ") + g.config_key + " (" + percent(g.success_rate) + ", " +
+                short_number(g.step_us_p50) + " µs, " + short_number(g.step_ratio_to_pinv) + "×)";
+      }
+      out << "<tr><td>" << escape(v.family) << "</td><td>" << escape(list) << "</td></tr>\n";
+    }
+    out << "</table>\n<h3>Against pinv and the family's best</h3>\n<table><tr><th>family</th><th>method config</th>"
+           "<th>against</th><th>cases</th><th>success W/L/T</th><th>McNemar p</th></tr>\n";
+    for (const FamilyComparison& c : report.comparisons) {
+      if (c.sweep != sweep) continue;
+      out << "<tr><td>" << escape(c.family) << "</td><td>" << escape(c.config_key) << "</td><td>" << c.role << " ("
+          << escape(c.reference) << ")</td><td class=\"n\">" << c.cases << "</td><td>" << c.success.wins << "/"
+          << c.success.losses << "/" << c.success.ties << "</td><td class=\"n\">" << p_value(c.mcnemar_p)
+          << "</td></tr>\n";
     }
     out << "</table>\n<h3>Ranking</h3>\n<table><tr><th>rank</th><th>method config</th><th>n</th><th>success</th>"
            "<th>max track err median</th></tr>\n";

@@ -29,7 +29,9 @@ nlohmann::json report_json(const SweepReport& report) {
                       {"joint_limit_share", number(g.joint_limit_share)},
                       {"nonfinite_share", number(g.nonfinite_share)},
                       {"step_us_p50", number(g.step_us_p50)},
-                      {"step_us_p99", number(g.step_us_p99)}});
+                      {"step_us_p99", number(g.step_us_p99)},
+                      {"step_ratio_to_pinv", number(g.step_ratio_to_pinv)},
+                      {"failure_modes", g.failure_modes}});
   for (const PairedComparison& p : report.pairs)
     pairs.push_back({{"sweep", p.sweep},
                      {"a", p.a},
@@ -43,7 +45,23 @@ nlohmann::json report_json(const SweepReport& report) {
                        {"n", r.n},
                        {"success_rate", number(r.success_rate)},
                        {"median_max_tracking_error", number(r.median_max_tracking_error)}});
-  return {{"sweeps", report.sweeps}, {"groups", groups}, {"pairs", pairs}, {"ranking", ranking}};
+  nlohmann::json comparisons = nlohmann::json::array(), verdicts = nlohmann::json::array();
+  for (const FamilyComparison& c : report.comparisons)
+    comparisons.push_back({{"sweep", c.sweep},
+                           {"family", c.family},
+                           {"config", c.config_key},
+                           {"against", c.reference},
+                           {"role", c.role},
+                           {"cases", c.cases},
+                           {"success", tally(c.success)},
+                           {"mcnemar_p", number(c.mcnemar_p)}});
+  for (const FamilyVerdict& v : report.verdicts) {
+    nlohmann::json contenders = nlohmann::json::array();
+    for (size_t i : v.contenders) contenders.push_back(report.groups[i].config_key);
+    verdicts.push_back({{"sweep", v.sweep}, {"family", v.family}, {"best", v.best}, {"not_worse", contenders}});
+  }
+  return {{"sweeps", report.sweeps}, {"groups", groups},           {"pairs", pairs},
+          {"ranking", ranking},      {"comparisons", comparisons}, {"verdicts", verdicts}};
 }
 
 }  // namespace rrlab::sweep

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <vector>
+#include <algorithm>
 
 namespace rrlab::sweep {
 
@@ -36,6 +38,24 @@ std::string wlt(const WinLossTie& t) {
 
 }  // namespace
 
+std::string failure_modes_text(const GroupStats& g) {
+  std::vector<std::pair<size_t, std::string>> modes;
+  for (const auto& [mode, count] : g.failure_modes) modes.emplace_back(count, mode);
+  std::stable_sort(modes.begin(), modes.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
+  std::string text;
+  for (const auto& [count, mode] : modes) text += (text.empty() ? "" : ", ") + mode + " " + std::to_string(count);
+  return text.empty() ? "—" : text;
+}
+
+std::string p_value(double p) {
+  char buf[40];
+  if (p < 1e-4)
+    std::snprintf(buf, sizeof buf, "%.1e", p);
+  else
+    std::snprintf(buf, sizeof buf, "%.4f", p);
+  return buf;
+}
+
 std::string short_number(double value) {
   if (std::isnan(value)) return "—";
   char buf[40];
@@ -58,8 +78,8 @@ void write_report_markdown(std::ostream& out, const SweepReport& report) {
   for (const std::string& sweep : report.sweeps) {
     out << "\n## " << sweep << "\n\n"
         << "| method config | family | n | success | 95% CI | min dist median | min dist p10 | max track err median "
-           "| joint-limit viol. | non-finite | step µs p50 | step µs p99 |\n"
-        << "|---|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|\n";
+           "| joint-limit viol. | non-finite | step µs p50 | step µs p99 | step × pinv | first failures |\n"
+        << "|---|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---|\n";
     for (const GroupStats& g : report.groups) {
       if (g.sweep != sweep) continue;
       out << "| " << cell(g.config_key) << " | " << cell(g.family) << " | " << g.n << " | " << percent(g.success_rate)
@@ -67,7 +87,30 @@ void write_report_markdown(std::ostream& out, const SweepReport& report) {
           << short_number(g.median_min_distance) << " | " << short_number(g.p10_min_distance) << " | "
           << short_number(g.median_max_tracking_error) << " | " << percent(g.joint_limit_share) << " | "
           << percent(g.nonfinite_share) << " | " << short_number(g.step_us_p50) << " | " << short_number(g.step_us_p99)
-          << " |\n";
+          << " | " << short_number(g.step_ratio_to_pinv) << " | " << cell(failure_modes_text(g)) << " |\n";
+    }
+    out << "\n### Which method when\n\nPer family: the best configuration (success rate, then median max "
+           "tracking error) and every one whose success is not significantly below it (paired on the same "
+           "cases: not fewer wins than losses with an exact McNemar p < 0.05), with step time.\n\n"
+        << "| family | configurations (success, step µs p50, × pinv) |\n|---|---|\n";
+    for (const FamilyVerdict& v : report.verdicts) {
+      if (v.sweep != sweep) continue;
+      std::string list;
+      for (size_t i : v.contenders) {
+        const GroupStats& g = report.groups[i];
+        list += (list.empty() ? "" : "; ") + g.config_key + " (" + percent(g.success_rate) + ", " +
+                short_number(g.step_us_p50) + " µs, " + short_number(g.step_ratio_to_pinv) + "×)";
+      }
+      out << "| " << cell(v.family) << " | " << cell(list) << " |\n";
+    }
+    out << "\n### Against pinv and the family's best\n\nPaired on the same cases of a family: the "
+           "configuration's wins/losses/ties on success, and the exact McNemar p-value of the wins against "
+           "the losses.\n\n"
+        << "| family | method config | against | cases | success W/L/T | McNemar p |\n|---|---|---|---:|---|---:|\n";
+    for (const FamilyComparison& c : report.comparisons) {
+      if (c.sweep != sweep) continue;
+      out << "| " << cell(c.family) << " | " << cell(c.config_key) << " | " << c.role << " (" << cell(c.reference)
+          << ") | " << c.cases << " | " << wlt(c.success) << " | " << p_value(c.mcnemar_p) << " |\n";
     }
     out << "\n### Ranking\n\nBy success rate, then median max tracking error.\n\n"
         << "| rank | method config | n | success | max track err median |\n|---:|---|---:|---:|---:|\n";
@@ -90,14 +133,16 @@ void write_report_markdown(std::ostream& out, const SweepReport& report) {
 
 void write_report_csv(std::ostream& out, const SweepReport& report) {
   out << "sweep,config,family,n,successes,success_rate,ci_low,ci_high,min_distance_median,min_distance_p10,"
-         "max_tracking_error_median,joint_limit_share,nonfinite_share,step_us_p50_median,step_us_p99_median\n";
+         "max_tracking_error_median,joint_limit_share,nonfinite_share,step_us_p50_median,step_us_p99_median,"
+         "step_ratio_to_pinv,first_failures\n";
   for (const GroupStats& g : report.groups) {
     out << csv_field(g.sweep) << ',' << csv_field(g.config_key) << ',' << csv_field(g.family) << ',' << g.n << ','
         << g.successes << ',' << csv_number(g.success_rate) << ',' << csv_number(g.success_interval.low) << ','
         << csv_number(g.success_interval.high) << ',' << csv_number(g.median_min_distance) << ','
         << csv_number(g.p10_min_distance) << ',' << csv_number(g.median_max_tracking_error) << ','
         << csv_number(g.joint_limit_share) << ',' << csv_number(g.nonfinite_share) << ','
-        << csv_number(g.step_us_p50) << ',' << csv_number(g.step_us_p99) << '\n';
+        << csv_number(g.step_us_p50) << ',' << csv_number(g.step_us_p99) << ',' << csv_number(g.step_ratio_to_pinv)
+        << ',' << csv_field(failure_modes_text(g) == "—" ? "" : failure_modes_text(g)) << '\n';
   }
 }
 

@@ -14,5 +14,9 @@ void write_report_csv(std::ostream& out, const SweepReport& report);
 // Shared by the formats: %.4g, "—" for NaN; a share as a percentage.
 std::string short_number(double value);
 std::string percent(double share);
+// "collision 6, stalled 2" (most frequent first), "—" when no run failed.
+std::string failure_modes_text(const GroupStats& g);
+// A p-value with 4 decimals, or in exponent form below 1e-4.
+std::string p_value(double p);
 
 }  // namespace rrlab::sweep

@@ -24,4 +24,23 @@ double quantile(std::vector<double> values, double q) {
   return values[lo] + (h - double(lo)) * (values[hi] - values[lo]);
 }
 
+double mcnemar_exact_p(size_t b, size_t c) {
+  const size_t n = b + c, k = std::min(b, c);
+  if (n == 0) return 1.0;
+  // sum of C(n, i) / 2^n for i <= k, in logs (n may be thousands)
+  const double log_half_n = double(n) * std::log(0.5);
+  const double log_n_fact = std::lgamma(double(n) + 1);
+  double tail = 0;
+  for (size_t i = 0; i <= k; ++i)
+    tail += std::exp(log_n_fact - std::lgamma(double(i) + 1) - std::lgamma(double(n - i) + 1) + log_half_n);
+  return std::min(1.0, 2 * tail);
+}
+
+double shifted_geometric_mean(const std::vector<double>& values, double shift) {
+  if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
+  double log_sum = 0;
+  for (double v : values) log_sum += std::log(std::max(v, 0.0) + shift);
+  return std::exp(log_sum / double(values.size())) - shift;
+}
+
 }  // namespace rrlab::sweep

@@ -19,4 +19,13 @@ Interval wilson_interval(size_t successes, size_t n, double z = 1.95996398454005
 // when `values` is empty.
 double quantile(std::vector<double> values, double q);
 
+// Exact McNemar test of paired binary outcomes: `b` pairs where only the
+// first succeeded, `c` where only the second did. Two-sided p-value,
+// min(1, 2 P(X <= min(b, c))) for X ~ Binomial(b + c, 1/2); 1 when b + c = 0.
+double mcnemar_exact_p(size_t b, size_t c);
+
+// Shifted geometric mean, exp(mean(log(x + shift))) - shift: a mean of times
+// that neither a few slow runs nor near-zero ones dominate (NaN when empty).
+double shifted_geometric_mean(const std::vector<double>& values, double shift);
+
 }  // namespace rrlab::sweep

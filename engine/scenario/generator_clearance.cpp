@@ -68,11 +68,14 @@ double capsule_center_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& 
 }
 
 // A ball around the obstacle at t = 0 that holds every point a capsule can
-// touch: for the planar arms' prisms (boxes turned about z, polygons) only
-// their footprint matters, since the capsules lie in z = 0.
-void bounding_ball(const Obstacle& o, bool planar, Eigen::Vector3d& center, double& radius) {
+// touch (for the planar arms' prisms, boxes turned about z and polygons, only
+// their footprint matters: the capsules lie in z = 0), and the radius of a
+// ball about the same centre inside it (0: the centre itself is inside; the
+// generator's boxes and star polygons hold their centre).
+void bounding_ball(const Obstacle& o, bool planar, Eigen::Vector3d& center, double& radius, double& inner) {
   center = o.position0;
   radius = 0;
+  inner = o.shape == ShapeKind::sphere ? o.radius : 0.0;
   switch (o.shape) {
     case ShapeKind::sphere: radius = o.radius; break;
     case ShapeKind::box:
@@ -99,7 +102,9 @@ double sweep_clearance(const ArmSweep& sweep, const Obstacle& obstacle, double e
   double radius = 0;
   const bool planar = std::all_of(sweep.capsules.begin(), sweep.capsules.end(),
                                   [](const CapsuleSegment& c) { return c.a.z() == 0 && c.b.z() == 0; });
-  bounding_ball(obstacle, planar, center, radius);
+  double inner = 0;
+  bounding_ball(obstacle, planar, center, radius, inner);
+  const bool decide = std::isfinite(enough);
   // each capsule, moved into the obstacle's frame at t = 0, with a lower bound of its distance
   struct Candidate {
     double bound;
@@ -112,8 +117,14 @@ double sweep_clearance(const ArmSweep& sweep, const Obstacle& obstacle, double e
     CapsuleSegment moved = sweep.capsules[c];
     moved.a += shift;
     moved.b += shift;
-    const double bound = std::isfinite(radius) ? capsule_center_distance(center, moved.a, moved.b) - moved.radius - radius
-                                               : -std::numeric_limits<double>::infinity();
+    if (!std::isfinite(radius)) {
+      candidates.push_back({-std::numeric_limits<double>::infinity(), moved});
+      continue;
+    }
+    const double to_center = capsule_center_distance(center, moved.a, moved.b) - moved.radius;
+    // the centre (or the inner ball) is inside the obstacle: it is at most this far
+    if (decide && to_center - inner <= enough) return to_center - inner;
+    const double bound = to_center - radius;
     if (bound <= enough) candidates.push_back({bound, moved});
   }
   std::sort(candidates.begin(), candidates.end(), [](const Candidate& x, const Candidate& y) { return x.bound < y.bound; });

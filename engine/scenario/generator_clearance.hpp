@@ -40,7 +40,8 @@ ArmSweep arm_sweep(const Model& model, const std::vector<Eigen::VectorXd>& steps
 // run moves it (position0 + velocity t), by the engine's collision code.
 // Capsules whose bounding distance exceeds the best found so far (or
 // `enough`, when finite: then a result above it only says "more than
-// enough") are not measured.
+// enough", and one at or below it may be an upper bound, found without
+// measuring) are not measured.
 double sweep_clearance(const ArmSweep& sweep, const Obstacle& obstacle,
                        double enough = std::numeric_limits<double>::infinity());
 

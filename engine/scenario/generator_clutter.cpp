@@ -1,24 +1,73 @@
 #include "scenario/generator_clutter.hpp"
 
+#include <algorithm>
+
+#include "scenario/scenario.hpp"
+#include "sim/simulator.hpp"
+
 namespace rrlab {
 
 namespace {
 
-constexpr double kNearPath = 0.25;  // reaches
+constexpr double kNearWitness = 0.05;  // reaches: farther out than the clearance, at most
 
 }  // namespace
 
+std::optional<ArmSweep> minimum_norm_sweep(const GeneratorCase& c, const WitnessedArm& drawn, TaskSpace space) {
+  Simulator sim(parse_scenario(witnessed_document(c, "", drawn, nlohmann::json::array(), space)), "pinv");
+  std::vector<Eigen::VectorXd> steps;
+  steps.reserve(size_t(sim.total_steps()) + 1);
+  // the configurations a run measures (frames), not the state after the last step
+  while (!sim.done()) {
+    sim.step();
+    steps.push_back(sim.frame().q);
+  }
+  if (sim.summary().nonfinite_steps > 0) return std::nullopt;
+  return arm_sweep(drawn.arm.model, steps, drawn.witness.step_dt);
+}
+
 std::optional<nlohmann::json> place_clutter(const ClutterOptions& clutter, const WitnessedArm& drawn, bool spatial,
-                                            Rng& rng) {
+                                            Rng& rng, const ArmSweep* blocking) {
   const KeepOut keep_out{&drawn.sweep, clutter.clearance};
+  // pinv's capsules where its arm strays farthest from the witness arm at the
+  // same step (link midpoints): where a blocking obstacle can stand clear of the witness
+  std::vector<size_t> straying;
+  if (blocking) {
+    std::vector<std::pair<double, size_t>> by_distance;
+    const size_t n = std::min(blocking->capsules.size(), drawn.sweep.capsules.size());
+    for (size_t i = 0; i < n; ++i) {
+      const CapsuleSegment &p = blocking->capsules[i], &w = drawn.sweep.capsules[i];
+      by_distance.emplace_back(-((p.a + p.b) - (w.a + w.b)).norm(), i);
+    }
+    const size_t keep = std::max<size_t>(1, by_distance.size() / 10);
+    std::partial_sort(by_distance.begin(), by_distance.begin() + long(keep), by_distance.end());
+    for (size_t i = 0; i < keep; ++i) straying.push_back(by_distance[i].second);
+    std::sort(straying.begin(), straying.end());  // draws independent of sort stability
+  }
   const GeneratedArm& arm = drawn.arm;
   const Eigen::Vector3d base = arm.model.base.translation();
   const auto draw = [&](int k, Rng& r) -> std::optional<nlohmann::json> {
-    const Eigen::Vector3d center =
-        k % 2 == 0 ? point_in_ball(point_along(drawn.path, r.uniform()), kNearPath * arm.reach, spatial, r)
-                   : point_in_ball(base, arm.reach, spatial, r);
     const std::string& shape = clutter.shapes[r.below(clutter.shapes.size())];
-    return draw_obstacle(shape, center, clutter.size.draw(r) * arm.reach, spatial, k + 1, r);
+    const double size = clutter.size.draw(r) * arm.reach;
+    Eigen::Vector3d center;
+    if (k == 0 && blocking) {
+      // on the axis of one of pinv's links at some step (among the tenth that
+      // strays farthest from the witness): pinv, which ignores obstacles, runs into it
+      const CapsuleSegment& link = blocking->capsules[straying[r.below(straying.size())]];
+      center = link.a + r.uniform() * (link.b - link.a);
+    } else if (k % 2 == 0) {
+      // beside the witness arm: a point of one of its links at some step,
+      // then out by the link's radius, the obstacle's size and 1-2 clearances
+      const CapsuleSegment& link = drawn.sweep.capsules[r.below(drawn.sweep.capsules.size())];
+      const Eigen::Vector3d on_link = link.a + r.uniform() * (link.b - link.a);
+      Eigen::Vector3d away = point_in_ball(Eigen::Vector3d::Zero(), 1.0, spatial, r);
+      if (away.norm() < 1e-6) return std::nullopt;
+      away.normalize();
+      center = on_link + (link.radius + size + clutter.clearance * (1.0 + r.uniform()) + kNearWitness * arm.reach * r.uniform()) * away;
+    } else {
+      center = point_in_ball(base, arm.reach, spatial, r);
+    }
+    return draw_obstacle(shape, center, size, spatial, k + 1, r);
   };
   return place_obstacles(clutter.count.draw(rng), keep_out, draw, rng);
 }
@@ -30,11 +79,16 @@ nlohmann::json generate_clutter_case(GeneratorCase& c, const ClutterOptions& clu
   for (int attempt = 0; attempt < kCaseAttempts; ++attempt) {
     const std::optional<WitnessedArm> drawn = draw_witnessed_arm(draw_arm, path_options, space, rng);
     if (!drawn) continue;
-    const std::optional<nlohmann::json> obstacles = place_clutter(clutter, *drawn, spatial, rng);
+    std::optional<ArmSweep> pinv_sweep;
+    if (clutter.block_pinv && !(pinv_sweep = minimum_norm_sweep(c, *drawn, space))) continue;
+    const std::optional<nlohmann::json> obstacles =
+        place_clutter(clutter, *drawn, spatial, rng, pinv_sweep ? &*pinv_sweep : nullptr);
     if (!obstacles) continue;
     const std::string description =
         case_title(c) + ": " + drawn->arm.summary + " among " + obstacle_summary(*obstacles) + ", each more than " +
-        fixed_digits(clutter.clearance, 3) + " m from every link of the witness arm at every step; " +
+        fixed_digits(clutter.clearance, 3) + " m from every link of the witness arm at every step" +
+        (clutter.block_pinv ? std::string(", the first where the arm of the minimum-norm solution (pinv) passes") : "") +
+        "; " +
         witness_summary(drawn->witness, int(drawn->path.configurations.size()) - 1) + ".";
     return witnessed_document(c, description, *drawn, *obstacles, space);
   }

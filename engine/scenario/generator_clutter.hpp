@@ -13,13 +13,19 @@
 
 namespace rrlab {
 
-// Draws the option's obstacle count: every other obstacle (the 1st, 3rd, ...)
-// within 0.25 reach of a random point of the hand's trace, where it matters,
-// the rest anywhere within reach of the base; each more than the clearance
-// from every link of the witness arm at every step. Nullopt when one found no
-// place.
+// The arm of the minimum-norm solution (a pinv run of the case without
+// obstacles) at every step; nullopt when pinv's output was not finite.
+std::optional<ArmSweep> minimum_norm_sweep(const GeneratorCase& c, const WitnessedArm& drawn, TaskSpace space);
+
+// Draws the option's obstacle count: with `blocking`, the first on the axis
+// of one of its links at some step (so that arm runs into it); then every
+// other obstacle beside the witness arm (out from one of its links at some
+// step by the link's radius, the obstacle's size, 1-2 clearances and up to
+// 0.05 reach), the rest anywhere within reach of the base; each more than the
+// clearance from every link of the witness arm at every step. Nullopt when
+// one found no place.
 std::optional<nlohmann::json> place_clutter(const ClutterOptions& clutter, const WitnessedArm& drawn, bool spatial,
-                                            Rng& rng);
+                                            Rng& rng, const ArmSweep* blocking = nullptr);
 
 // A case of planar_clutter or spatial_clutter: an arm from `draw_arm`, its
 // witness, and static clutter clear of the witness, tracked in `space`.

@@ -10,11 +10,11 @@
 // | obstacle_size  | sphere radius / box half-edge / polygon radius       | [0.04, 0.12]                | × reach |
 // | shapes         | shapes drawn from (uniformly)                        | sphere, box, polygon, point | —       |
 // | obstacle_speed | each obstacle's speed, its direction uniform         | [0.1, 0.3] × reach per second | m/s     |
-// | clearance      | least distance of an obstacle from the start arm at t = 0 | 0.05                   | m       |
+// | clearance      | least distance from the witness arm at every step   | 0.05                   | m       |
 // | waypoints      | waypoints after the start                            | [2, 4]                      | —       |
-// | speed          | hand speed along the path (sets the duration)        | 0.2 × reach per second      | m/s     |
+// | speed          | hand speed the witness is timed by                     | 0.2 × reach per second      | m/s     |
 // | dt             | time step                                            | 0.01                        | s       |
-// | time_law       | "linear" (constant speed) or "quintic" (per segment) | linear                      | —       |
+// | time_law       | "quintic" (rest to rest) or "linear" (the witness) | quintic                       | —       |
 //
 // Each obstacle is aimed to pass through a random point of the hand's trace at
 // a random time in [0.2, 0.9] of the run (not when the hand is there), so it

@@ -11,7 +11,7 @@
 // | wall_thickness | each wall's thickness along the path                 | [0.03, 0.08]                 | × reach |
 // | clearance      | least distance of a wall from the witness arm        | 0.05                         | m       |
 // | waypoints      | waypoints after the start                            | [1, 3]                       | —       |
-// | speed          | hand speed along the path (sets the duration)        | 0.2 × reach per second       | m/s     |
+// | speed          | hand speed the witness is timed by                     | 0.2 × reach per second       | m/s     |
 // | dt             | time step                                            | 0.01                         | s       |
 // | time_law       | "quintic" (rest to rest per segment) or "linear"     | quintic                      | —       |
 //

@@ -35,12 +35,15 @@ nlohmann::json star_polygon(const Eigen::Vector3d& center, double size, Rng& rng
 }  // namespace
 
 ClutterOptions read_clutter_options(const GeneratorOptions& options, IntRange default_count,
-                                    const std::vector<std::string>& allowed_shapes) {
+                                    const std::vector<std::string>& allowed_shapes, bool with_block_pinv) {
   ClutterOptions o;
   o.count = options.int_range("obstacles", default_count, {0, 64});
   o.size = options.range("obstacle_size", o.size, {0.001, 1.0});
   o.shapes = options.subset("shapes", allowed_shapes, allowed_shapes);
   o.clearance = options.number("clearance", o.clearance, {0.0, 1.0});
+  if (with_block_pinv) o.block_pinv = options.boolean("block_pinv", true);
+  if (o.block_pinv && o.count.min < 1)
+    throw ScenarioError("options.obstacles", "must be at least 1 with block_pinv (set block_pinv false for none)");
   return o;
 }
 

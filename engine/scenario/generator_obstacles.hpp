@@ -22,9 +22,14 @@ struct ClutterOptions {
   Range size{0.04, 0.12};  // characteristic size (sphere radius, box half-edge...) in reaches
   std::vector<std::string> shapes;
   double clearance = 0.05;  // m from every link capsule of the witness arm at every step
+  // the first obstacle stands on the arm of the minimum-norm solution (pinv)
+  // at some step, clear of the witness: avoiding is needed (planar_clutter,
+  // spatial_clutter)
+  bool block_pinv = false;
 };
+// "block_pinv" is read where `with_block_pinv` (default true).
 ClutterOptions read_clutter_options(const GeneratorOptions& options, IntRange default_count,
-                                    const std::vector<std::string>& allowed_shapes);
+                                    const std::vector<std::string>& allowed_shapes, bool with_block_pinv = false);
 
 // A `shape` ("sphere", "box", "polygon", "point") of characteristic size
 // `size` (m) around `center`, in scenario syntax with id "<shape><number>".

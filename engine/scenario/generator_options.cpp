@@ -78,6 +78,13 @@ double GeneratorOptions::number(const std::string& key, double def, Range allowe
   return v;
 }
 
+bool GeneratorOptions::boolean(const std::string& key, bool def) const {
+  if (!has(key)) return def;
+  const nlohmann::json& v = options_.at(key);
+  if (!v.is_boolean()) throw ScenarioError(path(key), "must be true or false, got " + json_type_name(v));
+  return v.get<bool>();
+}
+
 std::string GeneratorOptions::choice(const std::string& key, const std::vector<std::string>& values,
                                      const std::string& def) const {
   if (!has(key)) return def;

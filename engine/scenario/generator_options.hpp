@@ -34,6 +34,7 @@ class GeneratorOptions {
   Range range(const std::string& key, Range def, Range allowed) const;
   IntRange int_range(const std::string& key, IntRange def, IntRange allowed) const;
   double number(const std::string& key, double def, Range allowed) const;
+  bool boolean(const std::string& key, bool def) const;
   std::string choice(const std::string& key, const std::vector<std::string>& values, const std::string& def) const;
   // A non-empty array of distinct entries of `values`.
   std::vector<std::string> subset(const std::string& key, const std::vector<std::string>& values,

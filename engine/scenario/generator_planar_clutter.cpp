@@ -1,5 +1,5 @@
 // Family planar_clutter: a planar arm among static obstacles of mixed shapes,
-// its hand on a polyline through reachable waypoints.
+// its hand on the trace of a witness (generator_witness.hpp).
 //
 // | option        | meaning                                              | default                 | unit     |
 // |---------------|------------------------------------------------------|-------------------------|----------|
@@ -9,15 +9,16 @@
 // | obstacles     | obstacle count                                       | [1, 8]                  | —        |
 // | obstacle_size | sphere radius / box half-edge / polygon radius       | [0.04, 0.12]            | × reach  |
 // | shapes        | shapes drawn from (uniformly)                        | sphere, box, polygon, point | —    |
-// | clearance     | least distance of an obstacle from the start arm     | 0.05                    | m        |
+// | block_pinv    | the first obstacle stands on the arm of pinv       | true                    | —        |
+// | clearance     | least distance from the witness arm, every step | 0.05                    | m        |
 // | waypoints     | waypoints after the start                            | [2, 4]                  | —        |
-// | speed         | hand speed along the path (sets the duration)        | 0.2 × reach per second  | m/s      |
+// | speed         | hand speed the witness is timed by                     | 0.2 × reach per second  | m/s      |
 // | dt            | time step                                            | 0.01                    | s        |
-// | time_law      | "linear" (constant speed) or "quintic" (per segment) | linear                  | —        |
+// | time_law      | "quintic" (rest to rest) or "linear" (the witness) | quintic                   | —        |
 //
-// Obstacles never touch the hand's path (its capsule of link_radius): the
+// Every obstacle keeps the clearance from the witness arm at every step: the
 // task stays feasible. Every other one is drawn within 0.25 reach of a point
-// of the path, where it matters, the rest anywhere within reach
+// of the hand's trace, where it matters, the rest anywhere within reach
 // (place_clutter, generator_clutter.hpp).
 #include "scenario/generator_arms.hpp"
 #include "scenario/generator_case.hpp"
@@ -29,9 +30,9 @@ namespace rrlab {
 nlohmann::json generate_planar_clutter(GeneratorCase& c) {
   const GeneratorOptions options(c.options, c.family,
                                  {"dof", "link_length", "link_radius", "obstacles", "obstacle_size", "shapes",
-                                  "clearance", "waypoints", "speed", "dt", "time_law"});
+                                  "clearance", "block_pinv", "waypoints", "speed", "dt", "time_law"});
   const PlanarArmOptions arm_options = read_planar_arm_options(options, false);
-  const ClutterOptions clutter = read_clutter_options(options, {1, 8}, {"sphere", "box", "polygon", "point"});
+  const ClutterOptions clutter = read_clutter_options(options, {1, 8}, {"sphere", "box", "polygon", "point"}, true);
   const PathOptions path_options = read_path_options(options);
   return generate_clutter_case(
       c, clutter, path_options, [&](Rng& r) { return draw_planar_arm(arm_options, r); }, false, TaskSpace::xy);

@@ -11,14 +11,14 @@
 // | obstacles     | obstacle count                                       | 0                       | —       |
 // | obstacle_size | sphere radius / box half-edge / polygon radius       | [0.04, 0.12]            | × reach |
 // | shapes        | shapes drawn from (uniformly)                        | sphere, box, polygon, point | —   |
-// | clearance     | least distance of an obstacle from the start arm     | 0.05                    | m       |
+// | clearance     | least distance from the witness arm, every step | 0.05                    | m       |
 // | waypoints     | waypoints after the start                            | [2, 4]                  | —       |
-// | speed         | hand speed along the path (sets the duration)        | 0.2 × reach per second  | m/s     |
+// | speed         | hand speed the witness is timed by                     | 0.2 × reach per second  | m/s     |
 // | dt            | time step                                            | 0.01                    | s       |
-// | time_law      | "linear" (constant speed) or "quintic" (per segment) | linear                  | —       |
+// | time_law      | "quintic" (rest to rest) or "linear" (the witness) | quintic                   | —       |
 //
 // The start and every waypoint configuration are drawn within 0.9 of the
-// limits, so the waypoints are reachable inside them; a candidate is kept
+// limits, so the witness between them keeps inside; a candidate is kept
 // only when a pinv run of it leaves the limits (at most kCaseAttempts
 // candidates, drawn from the case's stream: deterministic).
 #include <cmath>

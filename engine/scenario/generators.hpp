@@ -2,9 +2,11 @@
 // scenario JSON document (what a scenario file holds, with a name such as
 // "planar_clutter-17"), so a generated case is stored with its run and
 // reproduces from its record without the generator.
-// Guarantees, for every family and every index: the start is collision-free
-// and inside the joint limits, and the path is reachable by construction
-// (its waypoints are end-effector positions of sampled joint configurations).
+// Guarantees, for every family and every index: the case carries a witness
+// (a joint trajectory, "witness" in the document) that the engine plays back
+// without collision, inside the limits, tracking the path within 0.5 mm: the
+// path is the witness's hand trace and every obstacle keeps the clearance
+// from the witness arm at every step (generator_witness.hpp).
 #pragma once
 
 #include <cstdint>

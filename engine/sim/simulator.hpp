@@ -30,6 +30,7 @@ class Simulator {
   void step();
   bool done() const { return state_.step >= total_steps_; }
   long total_steps() const { return total_steps_; }
+  long nonfinite_steps() const { return nonfinite_steps_; }  // steps whose method output was not finite
   void set_total_steps(long steps) { total_steps_ = steps; }
   const Frame& frame() const { return frame_; }
   // Compute time of the last step, measured by the caller (not deterministic).

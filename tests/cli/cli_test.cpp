@@ -195,7 +195,14 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"cli_method", "run " + scenario("01_planar7_obstacles.json") + " --method teleport",
                  "--method: unknown method", false},
         BadInput{"steps", "run " + scenario("01_planar7_obstacles.json") + " --steps 0", "--steps: must be in", false},
-        BadInput{"no_command", "", "", false}),
+        BadInput{"no_command", "", "", false},
+        BadInput{"witness_without_one", "run " + scenario("01_planar7_obstacles.json") + " --method witness",
+                 "no witness", false},
+        BadInput{"generate_option", "generate planar_clutter --option dof=2 --out /tmp/rrlab_generate_bad",
+                 "options.dof: 2 is outside the allowed range [3, 64]", false},
+        BadInput{"generate_option_syntax", "generate planar_clutter --option dof --out /tmp/rrlab_generate_bad",
+                 "--option: expects KEY=VALUE", false},
+        BadInput{"generate_family", "generate torus_maze --out /tmp/rrlab_generate_bad", "unknown family", false}),
     [](const ::testing::TestParamInfo<BadInput>& info) { return info.param.name; });
 
 // A scenario file or sweep spec nested 60,000 levels deep (a stack overflow

@@ -74,6 +74,27 @@ TEST_F(MigrationsTest, AVersionOneDatabaseOpensWithEveryRunIntact) {
   EXPECT_EQ(again.migrated_from(), current_schema_version());
 }
 
+// A version-2 file (an older rrlab's sweep of 4 runs and a stored run) gains
+// the sweep runs' failure columns, empty for the runs it had.
+TEST_F(MigrationsTest, AVersionTwoDatabaseOpensWithItsSweepRuns) {
+  write_fixture("schema_v2.sql");
+  ASSERT_EQ(scalar("SELECT version FROM schema_version"), 2);
+  {
+    RunStore store(path_);
+    EXPECT_EQ(store.migrated_from(), 2);
+    const std::vector<SweepRunEntry> runs = store.sweep_runs("v2-fixture");
+    ASSERT_EQ(runs.size(), 4u);
+    for (const SweepRunEntry& e : runs) {
+      EXPECT_FALSE(e.row.failure_mode);
+      EXPECT_FALSE(e.row.failure_t);
+      EXPECT_TRUE(e.summary_json);
+    }
+    EXPECT_EQ(store.runs({}).size(), 5u);
+    EXPECT_EQ(scalar("SELECT COUNT(*) FROM frames"), 5);
+  }
+  EXPECT_EQ(scalar("SELECT version FROM schema_version"), current_schema_version());
+}
+
 TEST_F(MigrationsTest, ANewFileGetsTheCurrentSchema) {
   RunStore store(path_);
   EXPECT_EQ(store.migrated_from(), 0);

@@ -146,3 +146,37 @@ TEST(SweepRunner, AddSweepRunStoresAKeyOnce) {
 
 }  // namespace
 }  // namespace rrlab::sweep
+
+namespace rrlab::sweep {
+namespace {
+
+// A failed run is stored with its first failure mode and time; a passed one
+// with none; generated cases with their witness's difficulty, and the witness
+// lane passes them all.
+TEST(SweepRunner, FailedRunsStoreTheirFirstFailureAndCasesTheirDifficulty) {
+  testing::TempDir dir;
+  const SweepSpec spec = parse_spec(nlohmann::json::parse(R"({
+    "name": "modes",
+    "scenarios": [{"generator": "planar_clutter", "count": 3, "seed": 5}],
+    "methods": ["pinv", "witness"],
+    "success": {"max_tracking_error": 0.01, "collision": false, "joint_limits": true}})"));
+  const std::vector<SweepCase> cases = expand_sweep(spec);
+  storage::RunStore store(dir.file("modes.db"));
+  EXPECT_EQ(run_all(spec, cases, store, 2).stored, 6u);
+  for (const storage::SweepRunEntry& e : store.sweep_runs("modes")) {
+    ASSERT_TRUE(e.difficulty_json) << e.row.key;
+    EXPECT_TRUE(nlohmann::json::parse(*e.difficulty_json).contains("clearance"));
+    if (e.row.config_key == "witness") {
+      EXPECT_TRUE(e.row.success) << e.row.key;
+      EXPECT_FALSE(e.row.failure_mode);
+    } else {  // block_pinv: pinv runs into the first obstacle
+      EXPECT_FALSE(e.row.success) << e.row.key;
+      EXPECT_EQ(e.row.failure_mode, "collision") << e.row.key;
+      ASSERT_TRUE(e.row.failure_t);
+      EXPECT_GT(*e.row.failure_t, 0);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace rrlab::sweep

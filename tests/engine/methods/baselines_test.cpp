@@ -1,6 +1,8 @@
 // The property that defines each baseline method, shown on small scenarios.
 #include <gtest/gtest.h>
 
+#include <map>
+
 #include "engine/sim_helpers.hpp"
 #include "engine/test_models.hpp"
 #include "methods/registry.hpp"
@@ -157,38 +159,49 @@ TEST(ObstacleAvoidance, TaskPriorityAndClosestPointKeepDistanceWherePinvCollides
   }
 }
 
-// Defaults chosen on generated cases (seed 1001) hold on a case none was tuned on
-// (seed 2001): pinv drives a joint 0.503 rad past its limit, gpm's default
-// (joint_range, gain 200) keeps a 0.336 rad margin.
-TEST(Defaults, GpmHoldsLimitsOnAnUntunedPlanarLimitsCase) {
-  const json doc = generate_scenario("planar_limits", json::object(), 2001, 2);
-  const auto pinv = run_scenario(doc, "pinv");
-  const auto gpm = run_scenario(doc, "gpm");
-  std::cout << "[ defaults ] planar_limits 2001/2 min limit margin pinv " << pinv.summary.min_joint_limit_margin
-            << " rad, gpm " << gpm.summary.min_joint_limit_margin << " rad\n";
-  EXPECT_LT(pinv.summary.min_joint_limit_margin, -0.4);  // measured -0.503 (29 deg past)
-  EXPECT_GT(gpm.summary.min_joint_limit_margin, 0.2);    // measured 0.336
-  EXPECT_LT(gpm.summary.max_tracking_error, 0.002);      // measured 0.0005
+// Defaults chosen on generated cases (seed 1001) hold on cases none was tuned
+// on (seed 2001, 10 planar_limits cases, where pinv crosses a limit on every
+// one by construction). Measured: gpm (joint_range, gain 200) holds the limits
+// on 10 of 10, least margin 0.134 rad, tracking error at most 1.4 mm.
+TEST(Defaults, GpmHoldsLimitsOnUntunedPlanarLimitsCases) {
+  int pinv_crossed = 0, held = 0;
+  for (int index = 0; index < 10; ++index) {
+    const json doc = generate_scenario("planar_limits", json::object(), 2001, index);
+    pinv_crossed += run_scenario(doc, "pinv").summary.joint_limit_violated;
+    const auto gpm = run_scenario(doc, "gpm");
+    std::cout << "[ defaults ] planar_limits 2001/" << index << " gpm min limit margin "
+              << gpm.summary.min_joint_limit_margin << " rad, max tracking error " << gpm.summary.max_tracking_error
+              << " m\n";
+    held += !gpm.summary.joint_limit_violated && gpm.summary.max_tracking_error < 0.003;
+  }
+  EXPECT_EQ(pinv_crossed, 10);
+  EXPECT_GE(held, 9);  // measured 10
 }
 
-// The obstacle-aware baselines with their defaults on an untuned planar_clutter
-// case (seed 2001) where pinv touches an obstacle. Before the secondary
-// inverse was damped (secondary_lambda = 0) task_priority and closest_point
-// lost the path by metres on most such cases (q̇ ~ 1e12 at J₂N₁ → 0).
-TEST(Defaults, ObstacleBaselinesAvoidWherePinvCollidesOnAnUntunedCase) {
-  const json doc = generate_scenario("planar_clutter", json::object(), 2001, 9);
-  const auto pinv = run_scenario(doc, "pinv");
-  EXPECT_TRUE(pinv.summary.collided);  // measured min distance -0.002
-  // measured: task_priority 0.270, closest_point 0.189, sr_task_priority 0.128 m
-  for (const auto& [method, least] : std::vector<std::pair<const char*, double>>{
-           {"task_priority", 0.2}, {"closest_point", 0.12}, {"sr_task_priority", 0.08}}) {
-    const auto r = run_scenario(doc, method);
-    std::cout << "[ defaults ] planar_clutter 2001/9 " << method << " min distance " << r.summary.min_distance
-              << " m, max tracking error " << r.summary.max_tracking_error << " m\n";
-    EXPECT_FALSE(r.summary.collided) << method;
-    EXPECT_GT(r.summary.min_distance, least) << method;
-    EXPECT_LT(r.summary.max_tracking_error, 0.003) << method;  // measured <= 0.0006
+// The obstacle-aware baselines with their defaults on untuned planar_clutter
+// cases (seed 2001, 10 cases; the first obstacle of each stands where pinv's
+// arm passes, so pinv collides on every one). Before the secondary inverse was
+// damped (secondary_lambda = 0) task_priority and closest_point lost the path
+// by metres on most such cases (q̇ ~ 1e12 at J₂N₁ → 0). Measured: avoided with
+// the path tracked within 1 cm on 10 (task_priority), 10 (closest_point) and 8
+// (sr_task_priority: one collision, one 1.1 cm error) of 10.
+TEST(Defaults, ObstacleBaselinesAvoidWherePinvCollidesOnUntunedCases) {
+  std::map<std::string, int> avoided;
+  int pinv_collided = 0;
+  for (int index = 0; index < 10; ++index) {
+    const json doc = generate_scenario("planar_clutter", json::object(), 2001, index);
+    pinv_collided += run_scenario(doc, "pinv").summary.collided;
+    for (const char* method : {"task_priority", "closest_point", "sr_task_priority"}) {
+      const auto r = run_scenario(doc, method);
+      std::cout << "[ defaults ] planar_clutter 2001/" << index << " " << method << " min distance "
+                << r.summary.min_distance << " m, max tracking error " << r.summary.max_tracking_error << " m\n";
+      avoided[method] += !r.summary.collided && r.summary.max_tracking_error <= 0.01;
+    }
   }
+  EXPECT_EQ(pinv_collided, 10);
+  EXPECT_GE(avoided["task_priority"], 9);
+  EXPECT_GE(avoided["closest_point"], 9);
+  EXPECT_GE(avoided["sr_task_priority"], 7);
 }
 
 TEST(SrTaskPriority, JointCentringLeavesTheTaskAlone) {

@@ -128,18 +128,22 @@ TEST(ChenSim3, UnderPinvJointFourCrossesNotThePapersJointSix) {
   EXPECT_LT(peak[5], 1.4);          // joint 6: measured 1.339 rad, far from 2.356
 }
 
-// The default (unweighted) criteria hold the limits on a generated
-// planar_limits case (seed 2001, not used for tuning) that pinv leaves by
-// 0.503 rad. Not on every case: 5 of these 10 held (pinv 0 of 10).
+// The default (unweighted) criteria hold the limits on generated
+// planar_limits cases (seed 2001, not used for tuning; pinv crosses a limit
+// on every one by construction). Measured: held on 10 of 10, least margin
+// 0.040 rad, tracking error at most 1.3 mm.
 TEST(PostureGenerationDefaults, HoldLimitsWherePinvDoesNot) {
-  const nlohmann::json doc = generate_scenario("planar_limits", nlohmann::json::object(), 2001, 2);
-  const auto pinv = test::run_scenario(doc, "pinv");
-  const auto chen = test::run_scenario(doc, "posture_generation");
-  std::printf("[ defaults ] planar_limits 2001/2 min limit margin: pinv %.3f, posture_generation %.3f rad\n",
-              pinv.summary.min_joint_limit_margin, chen.summary.min_joint_limit_margin);
-  EXPECT_LT(pinv.summary.min_joint_limit_margin, -0.4);  // measured -0.503
-  EXPECT_GT(chen.summary.min_joint_limit_margin, 0.2);   // measured 0.336
-  EXPECT_LT(chen.summary.max_tracking_error, 0.003);     // measured 0.0005
+  int pinv_crossed = 0, held = 0;
+  for (int index = 0; index < 10; ++index) {
+    const nlohmann::json doc = generate_scenario("planar_limits", nlohmann::json::object(), 2001, index);
+    pinv_crossed += test::run_scenario(doc, "pinv").summary.joint_limit_violated;
+    const auto chen = test::run_scenario(doc, "posture_generation");
+    std::printf("[ defaults ] planar_limits 2001/%d posture_generation min limit margin %.3f rad, error %.4f m\n",
+                index, chen.summary.min_joint_limit_margin, chen.summary.max_tracking_error);
+    held += !chen.summary.joint_limit_violated && chen.summary.max_tracking_error < 0.003;
+  }
+  EXPECT_EQ(pinv_crossed, 10);
+  EXPECT_GE(held, 9);  // measured 10
 }
 
 TEST(ChenSim1, Planar12TracksWithoutCollisionOrLimit) {

@@ -148,7 +148,14 @@ TEST(Generators, ListsTheFamilies) {
 
 // Thousands of cases, each witness played back: Release only (suites named
 // ...AtScale, see the Makefile); the sanitized build runs the smaller checks below.
-TEST(GeneratorWitnessesAtScale, PlanarClutter) { check_family("planar_clutter", 1000, json::object()); }
+// block_pinv (the default): pinv, which ignores obstacles, runs into the first.
+std::string pinv_collides(const json& doc) {
+  Simulator sim(parse_scenario(doc), "pinv");
+  while (!sim.done()) sim.step();
+  return sim.summary().collided ? "" : "pinv does not collide";
+}
+
+TEST(GeneratorWitnessesAtScale, PlanarClutter) { check_family("planar_clutter", 1000, json::object(), pinv_collides); }
 
 TEST(GeneratorWitnessesAtScale, NarrowPassage) {
   check_family("narrow_passage", 1000, json::object(), [](const json& doc) -> std::string {
@@ -160,7 +167,7 @@ TEST(GeneratorWitnessesAtScale, NarrowPassage) {
 std::string spatial_problem(const json& doc) {
   if (doc["task"]["space"] != "xyz" || doc["robot"]["kind"] != "dh" || doc["robot"]["links"].size() != 7)
     return "not a 7-DOF DH arm on an xyz task";
-  return "";
+  return pinv_collides(doc);
 }
 
 TEST(GeneratorWitnessesAtScale, SpatialClutter) { check_family("spatial_clutter", 1000, json::object(), spatial_problem); }
@@ -194,7 +201,7 @@ TEST(GeneratorWitnessesAtScale, PlanarLimitsMakePinvViolateALimit) {
 
 // The same checks on fewer cases, for the sanitized build.
 TEST(Generators, EveryFamilysCasesCarryAWitnessThatSolvesThem) {
-  check_family("planar_clutter", 30, json::object());
+  check_family("planar_clutter", 30, json::object(), pinv_collides);
   check_family("narrow_passage", 30, json::object());
   check_family("spatial_clutter", 30, json::object(), spatial_problem);
   check_family("moving_obstacles", 30, json::object(), moving_obstacles_problem);
@@ -211,6 +218,7 @@ TEST(Generators, NonDefaultOptionsKeepTheGuarantees) {
   check_family("spatial_clutter", 20, {{"obstacles", 16}, {"length_scale", {0.5, 2}}, {"a_offset", 0.1}});
   check_family("moving_obstacles", 20, {{"obstacles", 4}, {"obstacle_speed", {0.01, 3}}, {"shapes", {"point"}}});
   check_family("planar_clutter", 10, {{"dt", 0.002}, {"speed", 2.0}});
+  check_family("planar_clutter", 10, {{"block_pinv", false}, {"obstacles", 0}});
 }
 
 TEST(Generators, SameInputsGiveTheSameDocument) {
@@ -279,6 +287,9 @@ TEST(Generators, BadOptionsNameTheirPath) {
   expect_error("spatial_clutter", {{"shapes", {"polygon"}}}, "options.shapes[0]", "sphere, box");
   expect_error("spatial_clutter", {{"dof", 7}}, "options.dof", "unknown option of spatial_clutter");
   expect_error("narrow_passage", {{"gap_width", 0.03}}, "options.gap_width", "allowed range");
+  expect_error("planar_clutter", {{"block_pinv", 1}}, "options.block_pinv", "must be true or false");
+  expect_error("spatial_clutter", {{"obstacles", 0}}, "options.obstacles", "at least 1 with block_pinv");
+  expect_error("moving_obstacles", {{"block_pinv", true}}, "options.block_pinv", "unknown option");
   expect_error("planar_limits", {{"limit_deg", {60, 200}}}, "options.limit_deg[1]", "[10, 180]");
   expect_error("moving_obstacles", {{"obstacles", 0}}, "options.obstacles", "at least 1");
   expect_error("moving_obstacles", {{"obstacle_speed", 0}}, "options.obstacle_speed", "allowed range [0.001, 100]");
