@@ -26,26 +26,27 @@ std::optional<ArmSweep> minimum_norm_sweep(const GeneratorCase& c, const Witness
   return arm_sweep(drawn.arm.model, steps, drawn.witness.step_dt);
 }
 
+std::vector<size_t> straying_capsules(const ArmSweep& pinv, const ArmSweep& witness) {
+  std::vector<std::pair<double, size_t>> by_distance;
+  const size_t n = std::min(pinv.capsules.size(), witness.capsules.size());
+  for (size_t i = 0; i < n; ++i) {
+    const CapsuleSegment &p = pinv.capsules[i], &w = witness.capsules[i];
+    by_distance.emplace_back(-((p.a + p.b) - (w.a + w.b)).norm(), i);
+  }
+  const size_t keep = std::max<size_t>(1, by_distance.size() / 10);
+  std::partial_sort(by_distance.begin(), by_distance.begin() + long(keep), by_distance.end());
+  std::vector<size_t> out;
+  for (size_t i = 0; i < keep && i < by_distance.size(); ++i) out.push_back(by_distance[i].second);
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
 std::optional<nlohmann::json> place_clutter(const ClutterOptions& clutter, const WitnessedArm& drawn, bool spatial,
                                             Rng& rng, const ArmSweep* blocking) {
   const KeepOut keep_out{&drawn.sweep, clutter.clearance};
-  // pinv's capsules where its arm strays farthest from the witness arm at the
-  // same step (link midpoints): where a blocking obstacle can stand clear of the witness
-  std::vector<size_t> straying;
-  if (blocking) {
-    std::vector<std::pair<double, size_t>> by_distance;
-    const size_t n = std::min(blocking->capsules.size(), drawn.sweep.capsules.size());
-    for (size_t i = 0; i < n; ++i) {
-      const CapsuleSegment &p = blocking->capsules[i], &w = drawn.sweep.capsules[i];
-      by_distance.emplace_back(-((p.a + p.b) - (w.a + w.b)).norm(), i);
-    }
-    const size_t keep = std::max<size_t>(1, by_distance.size() / 10);
-    std::partial_sort(by_distance.begin(), by_distance.begin() + long(keep), by_distance.end());
-    for (size_t i = 0; i < keep; ++i) straying.push_back(by_distance[i].second);
-    std::sort(straying.begin(), straying.end());  // draws independent of sort stability
-  }
   const GeneratedArm& arm = drawn.arm;
   const Eigen::Vector3d base = arm.model.base.translation();
+  const std::vector<size_t> straying = blocking ? straying_capsules(*blocking, drawn.sweep) : std::vector<size_t>{};
   const auto draw = [&](int k, Rng& r) -> std::optional<nlohmann::json> {
     const std::string& shape = clutter.shapes[r.below(clutter.shapes.size())];
     const double size = clutter.size.draw(r) * arm.reach;
@@ -92,7 +93,7 @@ nlohmann::json generate_clutter_case(GeneratorCase& c, const ClutterOptions& clu
         witness_summary(drawn->witness, int(drawn->path.configurations.size()) - 1) + ".";
     return witnessed_document(c, description, *drawn, *obstacles, space);
   }
-  no_case_found(c, "options.obstacles, options.obstacle_size or options.clearance");
+  no_case_found(c, "options.obstacles, options.obstacle_size, options.clearance or options.block_pinv");
 }
 
 }  // namespace rrlab

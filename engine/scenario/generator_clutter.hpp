@@ -17,6 +17,11 @@ namespace rrlab {
 // obstacles) at every step; nullopt when pinv's output was not finite.
 std::optional<ArmSweep> minimum_norm_sweep(const GeneratorCase& c, const WitnessedArm& drawn, TaskSpace space);
 
+// The capsules of `pinv` (indices, ascending) where its arm strays farthest
+// from the witness arm at the same step (link midpoints): the tenth of them
+// where an obstacle on pinv's arm can stand clear of the witness.
+std::vector<size_t> straying_capsules(const ArmSweep& pinv, const ArmSweep& witness);
+
 // Draws the option's obstacle count: with `blocking`, the first on the axis
 // of one of its links at some step (so that arm runs into it); then every
 // other obstacle beside the witness arm (out from one of its links at some

@@ -25,6 +25,7 @@
 
 #include "scenario/generator_arms.hpp"
 #include "scenario/generator_case.hpp"
+#include "scenario/generator_clutter.hpp"
 #include "scenario/generator_obstacles.hpp"
 #include "scenario/generator_path.hpp"
 #include "scenario/generator_witness.hpp"
@@ -42,9 +43,9 @@ constexpr double kDefaultSpeedMin = 0.1, kDefaultSpeedMax = 0.3;  // reaches per
 nlohmann::json generate_moving_obstacles(GeneratorCase& c) {
   const GeneratorOptions options(c.options, c.family,
                                  {"dof", "link_length", "link_radius", "obstacles", "obstacle_size", "shapes",
-                                  "obstacle_speed", "clearance", "waypoints", "speed", "dt", "time_law"});
+                                  "obstacle_speed", "clearance", "block_pinv", "waypoints", "speed", "dt", "time_law"});
   const PlanarArmOptions arm_options = read_planar_arm_options(options, false);
-  const ClutterOptions clutter = read_clutter_options(options, {1, 4}, {"sphere", "box", "polygon", "point"});
+  const ClutterOptions clutter = read_clutter_options(options, {1, 4}, {"sphere", "box", "polygon", "point"}, true);
   if (clutter.count.min < 1) throw ScenarioError("options.obstacles", "must be at least 1 in this family");
   const bool speed_given = options.has("obstacle_speed");
   const Range given_speed = options.range("obstacle_speed", {}, {0.001, 100.0});
@@ -56,6 +57,10 @@ nlohmann::json generate_moving_obstacles(GeneratorCase& c) {
     if (!drawn) continue;
     const GeneratedArm& arm = drawn->arm;
     const KeepOut keep_out{&drawn->sweep, clutter.clearance};
+    std::optional<ArmSweep> pinv_sweep;
+    if (clutter.block_pinv && !(pinv_sweep = minimum_norm_sweep(c, *drawn, TaskSpace::xy))) continue;
+    const std::vector<size_t> straying =
+        pinv_sweep ? straying_capsules(*pinv_sweep, drawn->sweep) : std::vector<size_t>{};
     const Range speed_range =
         speed_given ? given_speed : Range{kDefaultSpeedMin * arm.reach, kDefaultSpeedMax * arm.reach};
     const double duration = drawn->witness.duration;
@@ -63,8 +68,18 @@ nlohmann::json generate_moving_obstacles(GeneratorCase& c) {
       const double size = clutter.size.draw(r) * arm.reach;
       const double speed = speed_range.draw(r), heading = r.uniform(-M_PI, M_PI);
       const Eigen::Vector3d velocity(rounded(speed * std::cos(heading)), rounded(speed * std::sin(heading)), 0);
-      const Eigen::Vector3d crossing = point_along(drawn->path, r.uniform());
-      const Eigen::Vector3d start = crossing - velocity * (r.uniform(kCrossFrom, kCrossTo) * duration);
+      Eigen::Vector3d start;
+      if (k == 0 && pinv_sweep) {
+        // at some step on the axis of one of pinv's links (where pinv strays
+        // from the witness): pinv, which ignores obstacles, runs into it
+        const size_t index = straying[r.below(straying.size())];
+        const CapsuleSegment& link = pinv_sweep->capsules[index];
+        const double t = double(index / size_t(pinv_sweep->links)) * pinv_sweep->dt;
+        start = link.a + r.uniform() * (link.b - link.a) - velocity * t;
+      } else {
+        const Eigen::Vector3d crossing = point_along(drawn->path, r.uniform());
+        start = crossing - velocity * (r.uniform(kCrossFrom, kCrossTo) * duration);
+      }
       const std::string& shape = clutter.shapes[r.below(clutter.shapes.size())];
       nlohmann::json o = draw_obstacle(shape, start, size, false, k + 1, r);
       o["velocity"] = {velocity.x(), velocity.y()};
@@ -75,12 +90,13 @@ nlohmann::json generate_moving_obstacles(GeneratorCase& c) {
     const std::string description =
         case_title(c) + ": " + arm.summary + " and " + obstacle_summary(*obstacles) + " moving at " +
         fixed_digits(speed_range.min, 3) + "-" + fixed_digits(speed_range.max, 3) +
-        " m/s, each aimed through a point of the hand's trace at 0.2-0.9 of the run and more than " +
+        " m/s, " + (clutter.block_pinv ? "the first where the arm of the minimum-norm solution (pinv) passes at some step, the others " : "each ") +
+        "aimed through a point of the hand's trace at 0.2-0.9 of the run, all more than " +
         fixed_digits(clutter.clearance, 3) + " m from every link of the witness arm at every step; " +
         witness_summary(drawn->witness, int(drawn->path.configurations.size()) - 1) + ".";
     return witnessed_document(c, description, *drawn, *obstacles, TaskSpace::xy);
   }
-  no_case_found(c, "options.obstacles, options.obstacle_size or options.clearance");
+  no_case_found(c, "options.obstacles, options.obstacle_size, options.clearance or options.block_pinv");
 }
 
 }  // namespace rrlab

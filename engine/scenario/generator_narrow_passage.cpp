@@ -10,6 +10,7 @@
 // | wall_length    | each wall's length across the path (at most)         | [0.2, 0.4]                   | × reach |
 // | wall_thickness | each wall's thickness along the path                 | [0.03, 0.08]                 | × reach |
 // | clearance      | least distance of a wall from the witness arm        | 0.05                         | m       |
+// | block_pinv     | keep only walls the arm of pinv runs into            | true                         | —       |
 // | waypoints      | waypoints after the start                            | [1, 3]                       | —       |
 // | speed          | hand speed the witness is timed by                     | 0.2 × reach per second       | m/s     |
 // | dt             | time step                                            | 0.01                         | s       |
@@ -21,11 +22,13 @@
 // clearance) marks an interval across the trace; the walls begin where the
 // interval around the hand ends, and stop before any other. So the witness
 // passes with the clearance, and the gap is as narrow as the witness allows.
+// With block_pinv the minimum-norm solution's arm (a pinv run) must hit a wall.
 #include <algorithm>
 #include <cmath>
 
 #include "scenario/generator_arms.hpp"
 #include "scenario/generator_case.hpp"
+#include "scenario/generator_clutter.hpp"
 #include "scenario/generator_obstacles.hpp"
 #include "scenario/generator_witness.hpp"
 #include "scenario/scenario.hpp"
@@ -129,13 +132,14 @@ std::optional<Passage> passage_at(const WitnessedArm& drawn, size_t j, double le
 nlohmann::json generate_narrow_passage(GeneratorCase& c) {
   const GeneratorOptions options(c.options, c.family,
                                  {"dof", "link_length", "link_radius", "gap_width", "wall_length", "wall_thickness",
-                                  "clearance", "waypoints", "speed", "dt", "time_law"});
+                                  "clearance", "block_pinv", "waypoints", "speed", "dt", "time_law"});
   const PlanarArmOptions arm_options = read_planar_arm_options(options, false);
   const double r = arm_options.link_radius;
   const Range gap_width = options.range("gap_width", {4 * r, 20 * r}, {2 * r + 1e-4, 10.0});
   const Range wall_length = options.range("wall_length", {0.2, 0.4}, {0.01, 2.0});
   const Range wall_thickness = options.range("wall_thickness", {0.03, 0.08}, {0.001, 1.0});
   const double clearance = options.number("clearance", 0.05, {0.0, 1.0});
+  const bool block_pinv = options.boolean("block_pinv", true);
   const PathOptions path_options = read_path_options(options, {1, 3});
   Rng& rng = c.rng;
   for (int attempt = 0; attempt < kCaseAttempts; ++attempt) {
@@ -145,6 +149,8 @@ nlohmann::json generate_narrow_passage(GeneratorCase& c) {
     const GeneratedArm& arm = drawn->arm;
     const size_t samples = drawn->witness.hand.size();
     if (samples < 5) continue;
+    std::optional<ArmSweep> pinv_sweep;
+    if (block_pinv && !(pinv_sweep = minimum_norm_sweep(c, *drawn, TaskSpace::xy))) continue;
     std::optional<Passage> passage;
     for (int draw = 0; draw < kWallDraws && !passage; ++draw) {
       const size_t j = std::clamp(size_t(rng.uniform(kWallAtFrom, kWallAtTo) * double(samples - 1)), size_t(1), samples - 2);
@@ -153,6 +159,8 @@ nlohmann::json generate_narrow_passage(GeneratorCase& c) {
       passage = passage_at(*drawn, j, length, thickness, clearance, gap_width);
       // the rule is the engine's measure, not the construction
       if (passage && witness_clearance(drawn->sweep, passage->walls) <= clearance) passage.reset();
+      // with block_pinv, only walls the minimum-norm solution's arm runs into
+      if (passage && pinv_sweep && witness_clearance(*pinv_sweep, passage->walls) > 0) passage.reset();
     }
     if (!passage) continue;
     const std::string description =
@@ -165,7 +173,7 @@ nlohmann::json generate_narrow_passage(GeneratorCase& c) {
     doc["witness"]["difficulty"]["gap_width"] = rounded(passage->gap, 1e-6);
     return doc;
   }
-  no_case_found(c, "options.gap_width, options.wall_length or options.clearance");
+  no_case_found(c, "options.gap_width, options.wall_length, options.clearance or options.block_pinv");
 }
 
 }  // namespace rrlab

@@ -160,7 +160,7 @@ TEST(GeneratorWitnessesAtScale, PlanarClutter) { check_family("planar_clutter", 
 TEST(GeneratorWitnessesAtScale, NarrowPassage) {
   check_family("narrow_passage", 1000, json::object(), [](const json& doc) -> std::string {
     if (doc["obstacles"].size() != 2) return "not two walls";
-    return "";
+    return pinv_collides(doc);
   });
 }
 
@@ -177,7 +177,7 @@ std::string moving_obstacles_problem(const json& doc) {
   if (n < 1 || n > 4) return "obstacle count " + std::to_string(n);
   for (const json& o : doc["obstacles"])
     if (!o.contains("velocity")) return "obstacle " + o["id"].get<std::string>() + " does not move";
-  return "";
+  return pinv_collides(doc);
 }
 
 TEST(GeneratorWitnessesAtScale, MovingObstacles) {
@@ -202,7 +202,7 @@ TEST(GeneratorWitnessesAtScale, PlanarLimitsMakePinvViolateALimit) {
 // The same checks on fewer cases, for the sanitized build.
 TEST(Generators, EveryFamilysCasesCarryAWitnessThatSolvesThem) {
   check_family("planar_clutter", 30, json::object(), pinv_collides);
-  check_family("narrow_passage", 30, json::object());
+  check_family("narrow_passage", 30, json::object(), pinv_collides);
   check_family("spatial_clutter", 30, json::object(), spatial_problem);
   check_family("moving_obstacles", 30, json::object(), moving_obstacles_problem);
   check_family("planar_limits", 15, json::object(), pinv_crosses_a_limit);
@@ -213,7 +213,8 @@ TEST(Generators, NonDefaultOptionsKeepTheGuarantees) {
   check_family("planar_clutter", 20, {{"obstacles", {8, 8}}, {"obstacle_size", {0.2, 0.3}}, {"clearance", 0.2}});
   check_family("planar_clutter", 20, {{"dof", 3}, {"waypoints", 10}, {"time_law", "linear"}});
   check_family("planar_clutter", 10, {{"dof", 64}, {"link_length", {0.01, 0.02}}, {"link_radius", 0.004}});
-  check_family("narrow_passage", 20, {{"gap_width", {0.041, 0.2}}, {"dof", 3}, {"waypoints", {4, 6}}});
+  // a 3-link arm has one redundant joint: pinv rarely strays into a wall the witness passes
+  check_family("narrow_passage", 20, {{"gap_width", {0.041, 0.2}}, {"dof", 3}, {"waypoints", {4, 6}}, {"block_pinv", false}});
   check_family("planar_limits", 10, {{"obstacles", {3, 5}}, {"limit_deg", {120, 180}}});
   check_family("spatial_clutter", 20, {{"obstacles", 16}, {"length_scale", {0.5, 2}}, {"a_offset", 0.1}});
   check_family("moving_obstacles", 20, {{"obstacles", 4}, {"obstacle_speed", {0.01, 3}}, {"shapes", {"point"}}});
@@ -289,7 +290,8 @@ TEST(Generators, BadOptionsNameTheirPath) {
   expect_error("narrow_passage", {{"gap_width", 0.03}}, "options.gap_width", "allowed range");
   expect_error("planar_clutter", {{"block_pinv", 1}}, "options.block_pinv", "must be true or false");
   expect_error("spatial_clutter", {{"obstacles", 0}}, "options.obstacles", "at least 1 with block_pinv");
-  expect_error("moving_obstacles", {{"block_pinv", true}}, "options.block_pinv", "unknown option");
+  expect_error("planar_limits", {{"block_pinv", true}}, "options.block_pinv", "unknown option");
+  expect_error("narrow_passage", {{"block_pinv", "yes"}}, "options.block_pinv", "must be true or false");
   expect_error("planar_limits", {{"limit_deg", {60, 200}}}, "options.limit_deg[1]", "[10, 180]");
   expect_error("moving_obstacles", {{"obstacles", 0}}, "options.obstacles", "at least 1");
   expect_error("moving_obstacles", {{"obstacle_speed", 0}}, "options.obstacle_speed", "allowed range [0.001, 100]");
