@@ -102,13 +102,7 @@ void write_report_html(std::ostream& out, const SweepReport& report) {
            "with step time.</p>\n<table><tr><th>family</th><th>configurations (success, step µs p50, × pinv)</th></tr>\n";
     for (const FamilyVerdict& v : report.verdicts) {
       if (v.sweep != sweep) continue;
-      std::string list;
-      for (size_t i : v.contenders) {
-        const GroupStats& g = report.groups[i];
-        list += (list.empty() ? "" : "; ") + g.config_key + " (" + percent(g.success_rate) + ", " +
-                short_number(g.step_us_p50) + " µs, " + short_number(g.step_ratio_to_pinv) + "×)";
-      }
-      out << "<tr><td>" << escape(v.family) << "</td><td>" << escape(list) << "</td></tr>\n";
+      out << "<tr><td>" << escape(v.family) << "</td><td>" << escape(contenders_text(report, v)) << "</td></tr>\n";
     }
     out << "</table>\n<h3>Against pinv and the family's best</h3>\n<table><tr><th>family</th><th>method config</th>"
            "<th>against</th><th>cases</th><th>success W/L/T</th><th>McNemar p</th></tr>\n";

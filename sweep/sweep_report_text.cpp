@@ -47,6 +47,16 @@ std::string failure_modes_text(const GroupStats& g) {
   return text.empty() ? "—" : text;
 }
 
+std::string contenders_text(const SweepReport& report, const FamilyVerdict& verdict) {
+  std::string list;
+  for (size_t i : verdict.contenders) {
+    const GroupStats& g = report.groups[i];
+    list += (list.empty() ? "" : "; ") + g.config_key + " (" + percent(g.success_rate) + ", " +
+            short_number(g.step_us_p50) + " µs, " + short_number(g.step_ratio_to_pinv) + "×)";
+  }
+  return list;
+}
+
 std::string p_value(double p) {
   char buf[40];
   if (p < 1e-4)
@@ -95,13 +105,7 @@ void write_report_markdown(std::ostream& out, const SweepReport& report) {
         << "| family | configurations (success, step µs p50, × pinv) |\n|---|---|\n";
     for (const FamilyVerdict& v : report.verdicts) {
       if (v.sweep != sweep) continue;
-      std::string list;
-      for (size_t i : v.contenders) {
-        const GroupStats& g = report.groups[i];
-        list += (list.empty() ? "" : "; ") + g.config_key + " (" + percent(g.success_rate) + ", " +
-                short_number(g.step_us_p50) + " µs, " + short_number(g.step_ratio_to_pinv) + "×)";
-      }
-      out << "| " << cell(v.family) << " | " << cell(list) << " |\n";
+      out << "| " << cell(v.family) << " | " << cell(contenders_text(report, v)) << " |\n";
     }
     out << "\n### Against pinv and the family's best\n\nPaired on the same cases of a family: the "
            "configuration's wins/losses/ties on success, and the exact McNemar p-value of the wins against "

@@ -16,6 +16,8 @@ std::string short_number(double value);
 std::string percent(double share);
 // "collision 6, stalled 2" (most frequent first), "—" when no run failed.
 std::string failure_modes_text(const GroupStats& g);
+// "a (95.0%, 8 µs, 4×); b (...)": a verdict's contenders with success and step time.
+std::string contenders_text(const SweepReport& report, const FamilyVerdict& verdict);
 // A p-value with 4 decimals, or in exponent form below 1e-4.
 std::string p_value(double p);
 

@@ -201,24 +201,24 @@ TEST(GeneratorWitnessesAtScale, PlanarLimitsMakePinvViolateALimit) {
 
 // The same checks on fewer cases, for the sanitized build.
 TEST(Generators, EveryFamilysCasesCarryAWitnessThatSolvesThem) {
-  check_family("planar_clutter", 30, json::object(), pinv_collides);
-  check_family("narrow_passage", 30, json::object(), pinv_collides);
-  check_family("spatial_clutter", 30, json::object(), spatial_problem);
-  check_family("moving_obstacles", 30, json::object(), moving_obstacles_problem);
-  check_family("planar_limits", 15, json::object(), pinv_crosses_a_limit);
+  check_family("planar_clutter", 10, json::object(), pinv_collides);
+  check_family("narrow_passage", 10, json::object(), pinv_collides);
+  check_family("spatial_clutter", 10, json::object(), spatial_problem);
+  check_family("moving_obstacles", 10, json::object(), moving_obstacles_problem);
+  check_family("planar_limits", 5, json::object(), pinv_crosses_a_limit);
 }
 
 // Options away from the defaults keep the guarantees, witness included.
 TEST(Generators, NonDefaultOptionsKeepTheGuarantees) {
-  check_family("planar_clutter", 20, {{"obstacles", {8, 8}}, {"obstacle_size", {0.2, 0.3}}, {"clearance", 0.2}});
-  check_family("planar_clutter", 20, {{"dof", 3}, {"waypoints", 10}, {"time_law", "linear"}});
-  check_family("planar_clutter", 10, {{"dof", 64}, {"link_length", {0.01, 0.02}}, {"link_radius", 0.004}});
+  check_family("planar_clutter", 10, {{"obstacles", {8, 8}}, {"obstacle_size", {0.2, 0.3}}, {"clearance", 0.2}});
+  check_family("planar_clutter", 10, {{"dof", 3}, {"waypoints", 10}, {"time_law", "linear"}});
+  check_family("planar_clutter", 3, {{"dof", 64}, {"link_length", {0.01, 0.02}}, {"link_radius", 0.004}});
   // a 3-link arm has one redundant joint: pinv rarely strays into a wall the witness passes
-  check_family("narrow_passage", 20, {{"gap_width", {0.041, 0.2}}, {"dof", 3}, {"waypoints", {4, 6}}, {"block_pinv", false}});
-  check_family("planar_limits", 10, {{"obstacles", {3, 5}}, {"limit_deg", {120, 180}}});
-  check_family("spatial_clutter", 20, {{"obstacles", 16}, {"length_scale", {0.5, 2}}, {"a_offset", 0.1}});
-  check_family("moving_obstacles", 20, {{"obstacles", 4}, {"obstacle_speed", {0.01, 3}}, {"shapes", {"point"}}});
-  check_family("planar_clutter", 10, {{"dt", 0.002}, {"speed", 2.0}});
+  check_family("narrow_passage", 10, {{"gap_width", {0.041, 0.2}}, {"dof", 3}, {"waypoints", {4, 6}}, {"block_pinv", false}});
+  check_family("planar_limits", 5, {{"obstacles", {3, 5}}, {"limit_deg", {120, 180}}});
+  check_family("spatial_clutter", 10, {{"obstacles", 16}, {"length_scale", {0.5, 2}}, {"a_offset", 0.1}});
+  check_family("moving_obstacles", 10, {{"obstacles", 4}, {"obstacle_speed", {0.01, 3}}, {"shapes", {"point"}}});
+  check_family("planar_clutter", 5, {{"dt", 0.002}, {"speed", 2.0}});
   check_family("planar_clutter", 10, {{"block_pinv", false}, {"obstacles", 0}});
 }
 
