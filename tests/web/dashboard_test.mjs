@@ -175,6 +175,12 @@ await suite('dashboard', [
     await until(async () => (await pageState.lane(t.page)).target[1] > before[1] + 0.01, 'the target to move up');
     await t.page.keyboard.up('ArrowUp');
     check((await t.get(`/api/runs/${id}/events`)).some((e) => e.kind === 'joystick'), 'joystick events are stored');
+    // the release is sent too (rate-limited, maybe later): stopping before it
+    // arrives would refuse it (409) on a slow or busy machine
+    await until(async () => {
+      const events = (await t.get(`/api/runs/${id}/events`)).filter((e) => e.kind === 'joystick');
+      return events.length && events.at(-1).payload.linear.every((v) => v === 0);
+    }, 'the released key to send a zero command');
     await t.post(`/api/runs/${id}/control`, { action: 'stop' });  // 3600 s otherwise
   }],
 
