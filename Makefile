@@ -16,14 +16,14 @@ SANITIZE_FLAGS = -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEB
 # Dockerfile, docs and Slurm checks (they test no C++ of rrlab's), and the
 # long paper reproductions (suites named ...Paper: the same code runs under
 # the sanitizers in the methods' unit tests, in a fraction of the time) and
-# the witness checks of thousands of generated cases and the re-run of the
-# committed benchmark (...AtScale: the witness checks run on a few dozen cases
-# per family under the sanitizers; the benchmark rows are the Release build's).
+# the witness checks of thousands of generated cases (...AtScale: the same
+# checks run on ten cases per family under the sanitizers), and the re-run of
+# a slice of the committed benchmark (its rows are the Release build's).
 # Every other test (unit, HTTP, command line, Python client) runs against the
 # ASan + UBSan build.
-RELEASE_TESTS = ^(Web|Docker|Docs|Slurm|Soak|[A-Za-z]+Paper|[A-Za-z]+AtScale)\.
+RELEASE_TESTS = ^(Web|Docker|Docs|Slurm|Soak|Benchmark|[A-Za-z]+Paper|[A-Za-z]+AtScale)\.
 # What those need of the Release build (the benchmarks are built so they keep compiling).
-RELEASE_TARGETS = rrlab rrlab_engine_tests rrlab_sweep_tests rrlab_soak rrlab_bench rrlab_server_load
+RELEASE_TARGETS = rrlab rrlab_engine_tests rrlab_soak rrlab_bench rrlab_server_load
 TIMED = ./scripts/timed
 
 .PHONY: deps deps-serve configure configure-sanitize build serve demo test test-release-part test-sanitize \
