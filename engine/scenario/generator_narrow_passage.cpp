@@ -51,9 +51,11 @@ struct Interval {
 };
 
 // The intervals across the trace (u) that capsules passing through the strip
-// |v| <= half_width cover, each grown by its radius and the clearance.
+// |v| <= half_width cover, each grown by its radius and the clearance, merged;
+// only those that reach into |u| < reach_out (the farthest a gap and a wall can
+// extend: beyond, none can change a passage).
 std::vector<Interval> covered(const ArmSweep& sweep, const Eigen::Vector3d& at, const Eigen::Vector3d& along,
-                              const Eigen::Vector3d& across, double half_width, double clearance) {
+                              const Eigen::Vector3d& across, double half_width, double clearance, double reach_out) {
   std::vector<Interval> out;
   for (const CapsuleSegment& c : sweep.capsules) {
     const double grow = c.radius + clearance;
@@ -72,7 +74,8 @@ std::vector<Interval> covered(const ArmSweep& sweep, const Eigen::Vector3d& at, 
       if (s0 > s1) continue;
     }
     const double u0 = ua + s0 * (ub - ua), u1 = ua + s1 * (ub - ua);
-    out.push_back({std::min(u0, u1) - grow, std::max(u0, u1) + grow});
+    const Interval i{std::min(u0, u1) - grow, std::max(u0, u1) + grow};
+    if (i.hi > -reach_out && i.lo < reach_out) out.push_back(i);
   }
   std::sort(out.begin(), out.end(), [](const Interval& a, const Interval& b) { return a.lo < b.lo; });
   std::vector<Interval> merged;
@@ -104,7 +107,11 @@ std::optional<Passage> passage_at(const WitnessedArm& drawn, size_t j, double le
   if (direction.norm() < 1e-9) return std::nullopt;  // the hand rests here
   const Eigen::Vector3d along = direction.normalized(), across(-along.y(), along.x(), 0);
   const Eigen::Vector3d at = hand[j];
-  const std::vector<Interval> intervals = covered(drawn.sweep, at, along, across, 0.5 * thickness, clearance);
+  // a gap wider than gap_width.max is refused, and a wall ends at most
+  // `length` beyond the gap: intervals farther out cannot matter
+  const double reach_out = gap_width.max + length + 1.0;
+  const std::vector<Interval> intervals =
+      covered(drawn.sweep, at, along, across, 0.5 * thickness, clearance, reach_out);
   const auto around = std::find_if(intervals.begin(), intervals.end(),
                                    [](const Interval& i) { return i.lo <= 0 && 0 <= i.hi; });
   if (around == intervals.end()) return std::nullopt;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <fstream>
 #include <functional>
 #include <iostream>
 #include <sstream>
@@ -210,23 +211,23 @@ TEST(Generators, EveryFamilysCasesCarryAWitnessThatSolvesThem) {
 
 // Options away from the defaults keep the guarantees, witness included.
 TEST(Generators, NonDefaultOptionsKeepTheGuarantees) {
-  check_family("planar_clutter", 10, {{"obstacles", {8, 8}}, {"obstacle_size", {0.2, 0.3}}, {"clearance", 0.2}});
-  check_family("planar_clutter", 10, {{"dof", 3}, {"waypoints", 10}, {"time_law", "linear"}});
-  check_family("planar_clutter", 3, {{"dof", 64}, {"link_length", {0.01, 0.02}}, {"link_radius", 0.004}});
+  check_family("planar_clutter", 5, {{"obstacles", {8, 8}}, {"obstacle_size", {0.2, 0.3}}, {"clearance", 0.2}});
+  check_family("planar_clutter", 5, {{"dof", 3}, {"waypoints", 10}, {"time_law", "linear"}});
+  check_family("planar_clutter", 2, {{"dof", 64}, {"link_length", {0.01, 0.02}}, {"link_radius", 0.004}});
   // a 3-link arm has one redundant joint: pinv rarely strays into a wall the witness passes
-  check_family("narrow_passage", 10, {{"gap_width", {0.041, 0.2}}, {"dof", 3}, {"waypoints", {4, 6}}, {"block_pinv", false}});
+  check_family("narrow_passage", 5, {{"gap_width", {0.041, 0.2}}, {"dof", 3}, {"waypoints", {4, 6}}, {"block_pinv", false}});
   check_family("planar_limits", 5, {{"obstacles", {3, 5}}, {"limit_deg", {120, 180}}});
-  check_family("spatial_clutter", 10, {{"obstacles", 16}, {"length_scale", {0.5, 2}}, {"a_offset", 0.1}});
-  check_family("moving_obstacles", 10, {{"obstacles", 4}, {"obstacle_speed", {0.01, 3}}, {"shapes", {"point"}}});
-  check_family("planar_clutter", 5, {{"dt", 0.002}, {"speed", 2.0}});
-  check_family("planar_clutter", 10, {{"block_pinv", false}, {"obstacles", 0}});
+  check_family("spatial_clutter", 5, {{"obstacles", 16}, {"length_scale", {0.5, 2}}, {"a_offset", 0.1}});
+  check_family("moving_obstacles", 5, {{"obstacles", 4}, {"obstacle_speed", {0.01, 3}}, {"shapes", {"point"}}});
+  check_family("planar_clutter", 3, {{"dt", 0.002}, {"speed", 2.0}});
+  check_family("planar_clutter", 5, {{"block_pinv", false}, {"obstacles", 0}});
 }
 
 TEST(Generators, SameInputsGiveTheSameDocument) {
   const json options = {{"dof", {4, 9}}, {"time_law", "linear"}};
   for (const std::string& family : generator_families()) {
     const json opts = family == "spatial_clutter" ? json{{"time_law", "linear"}} : options;
-    for (int index : {0, 1, 31}) {
+    for (int index : {0, 31}) {
       const json doc = generate_scenario(family, opts, 42, index);
       EXPECT_EQ(doc.dump(), generate_scenario(family, opts, 42, index).dump()) << family << " " << index;
       EXPECT_NE(doc.dump(), generate_scenario(family, opts, 42, index + 1).dump()) << family << " " << index;
@@ -302,6 +303,18 @@ TEST(Generators, BadOptionsNameTheirPath) {
     ADD_FAILURE() << "negative index accepted";
   } catch (const ScenarioError& e) {
     EXPECT_EQ(e.path(), "index");
+  }
+}
+
+// Case 0 of seed 9 of every family, as the gcc Release build wrote it
+// (`rrlab generate FAMILY --seed 9 --count 1`): this suite also runs in the
+// clang sanitized build, so generation is the same across compilers.
+TEST(Generators, DocumentsAreTheSameWhateverTheCompiler) {
+  for (const std::string& family : generator_families()) {
+    std::ifstream file(std::string(RRLAB_SOURCE_DIR) + "/tests/engine/scenario/fixtures/generated-" + family +
+                       "-seed9-0.json");
+    ASSERT_TRUE(file) << family;
+    EXPECT_EQ(generate_scenario(family, nullptr, 9, 0), json::parse(file)) << family;
   }
 }
 
