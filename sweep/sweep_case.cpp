@@ -32,9 +32,9 @@ class FrameCollector : public Recorder {
 
 Scenario scenario_of_case(const SweepSpec& spec, const SweepCase& c) {
   const ScenarioEntry& entry = spec.scenarios.at(c.entry);
-  Scenario scenario = entry.generated()
-                          ? parse_scenario(generate_scenario(entry.family, entry.options, entry.seed, c.index))
-                          : *entry.scenario;
+  Scenario scenario = !entry.generated()                   ? *entry.scenario
+                      : c.index == 0 && entry.first_case ? *entry.first_case
+                          : parse_scenario(generate_scenario(entry.family, entry.options, entry.seed, c.index));
   const MethodConfig& config = spec.configs.at(c.config);
   scenario.method.name = config.method;
   scenario.method.params.clear();

@@ -81,7 +81,8 @@ ScenarioEntry generator_entry(const nlohmann::json& value, const std::string& pa
     if (it.key() != "generator" && it.key() != "count" && it.key() != "seed") entry.options[it.key()] = it.value();
   // the options are checked by generating the first case
   try {
-    parse_scenario(generate_scenario(entry.family, entry.options, entry.seed, 0));
+    entry.first_case = std::make_shared<const Scenario>(
+        parse_scenario(generate_scenario(entry.family, entry.options, entry.seed, 0)));
   } catch (const ScenarioError& e) {
     std::string at = e.path();
     if (at.starts_with("options.")) at = at.substr(8);

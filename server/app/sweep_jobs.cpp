@@ -59,7 +59,8 @@ SweepJobs::SweepJobs(RunManager& runs, std::string scenarios_dir) : runs_(runs),
 // A sweep is admitted like the runs it makes (summaries only: no frame
 // limits): its cost estimate, summed over every run, against
 // --max-run-cost. Runs of one scenario entry and method configuration cost
-// alike: the first case of each stands for the others.
+// alike: the first case of each (case 0, made when the spec was read) stands
+// for the others.
 void SweepJobs::admit(const Job& job) {
   std::map<std::pair<size_t, size_t>, LaneEstimate> by_kind;
   std::vector<LaneEstimate> lanes;
@@ -69,7 +70,10 @@ void SweepJobs::admit(const Job& job) {
     if (it == by_kind.end()) {
       LaneEstimate estimate;
       try {
-        const Scenario scenario = sweep::scenario_of_case(job.spec, c);
+        // the entry's first case (kept from reading the spec: no generation here)
+        sweep::SweepCase first = c;
+        first.index = 0;
+        const Scenario scenario = sweep::scenario_of_case(job.spec, first);
         const std::int64_t steps = job.spec.steps ? *job.spec.steps : std::llround(scenario.duration / scenario.dt);
         estimate = estimate_lane(scenario, steps, 0);
       } catch (const std::exception&) {
