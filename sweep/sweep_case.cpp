@@ -1,5 +1,8 @@
 #include "sweep/sweep_case.hpp"
 
+#include <deque>
+#include <mutex>
+
 #include "scenario/generators.hpp"
 #include "sim/recorder.hpp"
 #include "sim/simulator.hpp"
@@ -30,11 +33,30 @@ class FrameCollector : public Recorder {
 
 }  // namespace
 
+std::shared_ptr<const Scenario> generated_case(const ScenarioEntry& entry, int index) {
+  // the runs of one case (its method configurations and seeds) follow each
+  // other in the expansion: the last few cases made serve them all
+  constexpr size_t kKept = 16;
+  static std::mutex mutex;
+  static std::deque<std::pair<std::string, std::shared_ptr<const Scenario>>> kept;
+  const std::string key = entry.family + '\n' + entry.options.dump() + '\n' + std::to_string(entry.seed) + '\n' +
+                          std::to_string(index);
+  {
+    std::lock_guard lock(mutex);
+    for (const auto& [k, scenario] : kept)
+      if (k == key) return scenario;
+  }
+  auto made = std::make_shared<const Scenario>(
+      parse_scenario(generate_scenario(entry.family, entry.options, entry.seed, index)));
+  std::lock_guard lock(mutex);
+  kept.emplace_back(key, made);
+  if (kept.size() > kKept) kept.pop_front();
+  return made;
+}
+
 Scenario scenario_of_case(const SweepSpec& spec, const SweepCase& c) {
   const ScenarioEntry& entry = spec.scenarios.at(c.entry);
-  Scenario scenario = !entry.generated()                   ? *entry.scenario
-                      : c.index == 0 && entry.first_case ? *entry.first_case
-                          : parse_scenario(generate_scenario(entry.family, entry.options, entry.seed, c.index));
+  Scenario scenario = entry.generated() ? *generated_case(entry, c.index) : *entry.scenario;
   const MethodConfig& config = spec.configs.at(c.config);
   scenario.method.name = config.method;
   scenario.method.params.clear();

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <atomic>
+#include <memory>
 
 #include "sim/frame.hpp"
 #include "storage/run_store.hpp"
@@ -17,6 +18,10 @@ struct CaseResult {
   storage::SweepRunRow row;
   Summary summary;
 };
+
+// Case `index` of a generated entry. The last 16 made are kept (process-wide,
+// thread-safe), so the runs of one case do not generate it again.
+std::shared_ptr<const Scenario> generated_case(const ScenarioEntry& entry, int index);
 
 // The scenario of a case: the file's or the generated one, with the case's
 // seed and method configuration (parameters not set keep the method's

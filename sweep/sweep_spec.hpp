@@ -32,9 +32,6 @@ struct ScenarioEntry {
   nlohmann::json options = nlohmann::json::object();  // generator options
   std::uint64_t seed = 0;            // generator seed
   int count = 1;                     // cases
-  // generated: case 0, made when the spec is read (its options are checked so)
-  // and kept, since generating a case costs far more than copying it
-  std::shared_ptr<const Scenario> first_case;
 
   bool generated() const { return family != "file"; }
   // file:NAME, or gen:FAMILY:SEED:INDEX

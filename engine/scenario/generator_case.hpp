@@ -22,6 +22,9 @@ struct GeneratorCase {
   int index;
   std::uint64_t key;  // mixed from family, seed and index: seeds `rng`
   Rng rng;
+  // check_generator_options(): the family reads its options (throwing for a
+  // bad one) and returns null before drawing anything
+  bool options_only = false;
 };
 
 // Drawn quantities are rounded to this step (m or rad) so documents read well;

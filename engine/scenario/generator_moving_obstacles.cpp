@@ -50,6 +50,7 @@ nlohmann::json generate_moving_obstacles(GeneratorCase& c) {
   const bool speed_given = options.has("obstacle_speed");
   const Range given_speed = options.range("obstacle_speed", {}, {0.001, 100.0});
   const PathOptions path_options = read_path_options(options);
+  if (c.options_only) return nullptr;
   Rng& rng = c.rng;
   for (int attempt = 0; attempt < kCaseAttempts; ++attempt) {
     const std::optional<WitnessedArm> drawn = draw_witnessed_arm(

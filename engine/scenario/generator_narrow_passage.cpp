@@ -148,6 +148,7 @@ nlohmann::json generate_narrow_passage(GeneratorCase& c) {
   const double clearance = options.number("clearance", 0.05, {0.0, 1.0});
   const bool block_pinv = options.boolean("block_pinv", true);
   const PathOptions path_options = read_path_options(options, {1, 3});
+  if (c.options_only) return nullptr;
   Rng& rng = c.rng;
   for (int attempt = 0; attempt < kCaseAttempts; ++attempt) {
     const std::optional<WitnessedArm> drawn = draw_witnessed_arm(

@@ -34,6 +34,7 @@ nlohmann::json generate_planar_clutter(GeneratorCase& c) {
   const PlanarArmOptions arm_options = read_planar_arm_options(options, false);
   const ClutterOptions clutter = read_clutter_options(options, {1, 8}, {"sphere", "box", "polygon", "point"}, true);
   const PathOptions path_options = read_path_options(options);
+  if (c.options_only) return nullptr;
   return generate_clutter_case(
       c, clutter, path_options, [&](Rng& r) { return draw_planar_arm(arm_options, r); }, false, TaskSpace::xy);
 }

@@ -65,6 +65,7 @@ nlohmann::json generate_planar_limits(GeneratorCase& c) {
   const PlanarArmOptions arm_options = read_planar_arm_options(options, true);
   const ClutterOptions clutter = read_clutter_options(options, {0, 0}, {"sphere", "box", "polygon", "point"});
   const PathOptions path_options = read_path_options(options);
+  if (c.options_only) return nullptr;
   Rng& rng = c.rng;
   for (int attempt = 0; attempt < kCaseAttempts; ++attempt) {
     const std::optional<WitnessedArm> drawn = draw_witnessed_arm(

@@ -35,6 +35,7 @@ nlohmann::json generate_spatial_clutter(GeneratorCase& c) {
   const DhArmOptions arm_options = read_dh_arm_options(options);
   const ClutterOptions clutter = read_clutter_options(options, {1, 8}, {"sphere", "box"}, true);
   const PathOptions path_options = read_path_options(options);
+  if (c.options_only) return nullptr;
   return generate_clutter_case(
       c, clutter, path_options, [&](Rng& r) { return draw_dh7_arm(arm_options, r); }, true, TaskSpace::xyz);
 }

@@ -88,10 +88,10 @@ const std::vector<std::string>& generator_families() {
   return families;
 }
 
-nlohmann::json generate_scenario(const std::string& family, const nlohmann::json& options, std::uint64_t seed,
-                                 int index) {
-  if (index < 0) throw ScenarioError("index", "must be >= 0, got " + std::to_string(index));
-  GeneratorCase c(family, options, seed, index);
+namespace {
+
+nlohmann::json generate(GeneratorCase& c) {
+  const std::string& family = c.family;
   if (family == "planar_clutter") return generate_planar_clutter(c);
   if (family == "planar_limits") return generate_planar_limits(c);
   if (family == "narrow_passage") return generate_narrow_passage(c);
@@ -100,6 +100,21 @@ nlohmann::json generate_scenario(const std::string& family, const nlohmann::json
   std::string known;
   for (const std::string& f : generator_families()) known += (known.empty() ? "" : ", ") + f;
   throw ScenarioError("generator", "unknown family \"" + family + "\" (known: " + known + ")");
+}
+
+}  // namespace
+
+nlohmann::json generate_scenario(const std::string& family, const nlohmann::json& options, std::uint64_t seed,
+                                 int index) {
+  if (index < 0) throw ScenarioError("index", "must be >= 0, got " + std::to_string(index));
+  GeneratorCase c(family, options, seed, index);
+  return generate(c);
+}
+
+void check_generator_options(const std::string& family, const nlohmann::json& options) {
+  GeneratorCase c(family, options, 0, 0);
+  c.options_only = true;
+  generate(c);
 }
 
 }  // namespace rrlab

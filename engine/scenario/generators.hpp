@@ -30,4 +30,10 @@ const std::vector<std::string>& generator_families();
 nlohmann::json generate_scenario(const std::string& family, const nlohmann::json& options, std::uint64_t seed,
                                  int index);
 
+// The family's options alone, without generating a case (a case can take
+// tens of milliseconds): throws the ScenarioError generate_scenario() would
+// for an unknown family or a bad option. Options that no case can meet are
+// found only by generating.
+void check_generator_options(const std::string& family, const nlohmann::json& options);
+
 }  // namespace rrlab

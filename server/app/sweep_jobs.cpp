@@ -23,6 +23,7 @@ using nlohmann::json;
 namespace {
 
 constexpr size_t kMaxRunsPerSweep = 100'000;
+constexpr size_t kMaxGeneratorEntries = 64;
 constexpr int kMaxRunningSweeps = 4;
 constexpr size_t kMaxKeptSweeps = 64;  // finished ones beyond this are forgotten (their runs stay stored)
 
@@ -59,8 +60,8 @@ SweepJobs::SweepJobs(RunManager& runs, std::string scenarios_dir) : runs_(runs),
 // A sweep is admitted like the runs it makes (summaries only: no frame
 // limits): its cost estimate, summed over every run, against
 // --max-run-cost. Runs of one scenario entry and method configuration cost
-// alike: the first case of each (case 0, made when the spec was read) stands
-// for the others.
+// alike: the entry's case 0 stands for the others (generated once: the
+// last cases made are kept, sweep_case.hpp).
 void SweepJobs::admit(const Job& job) {
   std::map<std::pair<size_t, size_t>, LaneEstimate> by_kind;
   std::vector<LaneEstimate> lanes;
@@ -70,7 +71,7 @@ void SweepJobs::admit(const Job& job) {
     if (it == by_kind.end()) {
       LaneEstimate estimate;
       try {
-        // the entry's first case (kept from reading the spec: no generation here)
+        // the entry's first case: generated once for all its configurations
         sweep::SweepCase first = c;
         first.index = 0;
         const Scenario scenario = sweep::scenario_of_case(job.spec, first);
@@ -102,6 +103,14 @@ json SweepJobs::start(const json& body, int jobs) {
     throw ApiError(422, "invalid",
                    "this spec expands to " + std::to_string(runs) + " runs; over REST at most " +
                        std::to_string(kMaxRunsPerSweep) + " (the command line has no limit)",
+                   "scenarios");
+  // admitting generates each generator entry's first case (tens of ms each)
+  const auto generated = size_t(std::count_if(job->spec.scenarios.begin(), job->spec.scenarios.end(),
+                                              [](const sweep::ScenarioEntry& e) { return e.generated(); }));
+  if (generated > kMaxGeneratorEntries)
+    throw ApiError(422, "invalid",
+                   "this spec has " + std::to_string(generated) + " generator entries; over REST at most " +
+                       std::to_string(kMaxGeneratorEntries) + " (the command line has no limit)",
                    "scenarios");
   job->cases = sweep::expand_sweep(job->spec);
   admit(*job);

@@ -42,6 +42,13 @@ TEST_F(SweepRoutes, AHugeSpecIsRefusedBeforeItIsExpanded) {
   EXPECT_EQ(refused.status, 422) << refused.body;
   EXPECT_NE(refused.body.find("expands to 300000000 runs"), std::string::npos) << refused.body;
   EXPECT_EQ(get("/api/health").status, 200);  // the server is still there
+  // each generator entry's first case is generated to admit the sweep: at most 64 entries
+  json many = spec("rest-many", 1);
+  many["scenarios"] = json::array();
+  for (int i = 0; i < 65; ++i) many["scenarios"].push_back({{"generator", "planar_clutter"}, {"count", 1}, {"seed", i}});
+  const HttpResult too_many = send("POST", "/api/sweeps", many);
+  EXPECT_EQ(too_many.status, 422) << too_many.body;
+  EXPECT_NE(too_many.body.find("65 generator entries; over REST at most 64"), std::string::npos) << too_many.body;
 }
 
 TEST_F(SweepRoutes, RunsToTheEndAndAnswersWithItsReport) {

@@ -318,6 +318,14 @@ TEST(Generators, DocumentsAreTheSameWhateverTheCompiler) {
   }
 }
 
+// Options are checked without generating a case (sweep specs do so).
+TEST(Generators, OptionsAreCheckedWithoutACase) {
+  EXPECT_NO_THROW(check_generator_options("narrow_passage", {{"dof", {4, 6}}, {"block_pinv", false}}));
+  EXPECT_THROW(check_generator_options("narrow_passage", {{"gap_width", 0.03}}), ScenarioError);
+  EXPECT_THROW(check_generator_options("planar_clutter", {{"dofs", 5}}), ScenarioError);
+  EXPECT_THROW(check_generator_options("torus_maze", nullptr), ScenarioError);
+}
+
 TEST(Generators, NullOptionsAreTheDefaults) {
   EXPECT_EQ(generate_scenario("planar_clutter", json(), 3, 4).dump(),
             generate_scenario("planar_clutter", json::object(), 3, 4).dump());
