@@ -9,21 +9,6 @@
 
 namespace rrlab {
 
-std::vector<CapsuleSegment> arm_capsules(const Model& model, const Eigen::VectorXd& q) {
-  KinematicsData kin(model);
-  forward_kinematics(model, q, kin);
-  std::vector<CapsuleSegment> capsules;
-  for (int l = 0; l < model.link_count(); ++l)
-    capsules.push_back({kin.link_start.col(l), kin.link_end.col(l), model.links[l].radius});
-  return capsules;
-}
-
-std::vector<CapsuleSegment> path_capsules(const std::vector<Eigen::Vector3d>& points, double radius) {
-  std::vector<CapsuleSegment> capsules;
-  for (size_t i = 1; i < points.size(); ++i) capsules.push_back({points[i - 1], points[i], radius});
-  return capsules;
-}
-
 double capsules_clearance(const std::vector<CapsuleSegment>& capsules, const Obstacle& obstacle) {
   if (capsules.empty()) return std::numeric_limits<double>::infinity();
   // A stand-in chain with one link per capsule carries the radii; its link

@@ -18,12 +18,6 @@ struct CapsuleSegment {
   double radius = 0;
 };
 
-// The link capsules of `model` at configuration q.
-std::vector<CapsuleSegment> arm_capsules(const Model& model, const Eigen::VectorXd& q);
-
-// The polyline through `points` as capsules of `radius` (the hand's swept path).
-std::vector<CapsuleSegment> path_capsules(const std::vector<Eigen::Vector3d>& points, double radius);
-
 // Smallest signed distance (m, < 0 when penetrating) from the capsules to the
 // obstacle placed at its position0 (t = 0).
 double capsules_clearance(const std::vector<CapsuleSegment>& capsules, const Obstacle& obstacle);
