@@ -3,6 +3,7 @@
 // backend, link shape and obstacle shape.
 #include "collision/collision_world.hpp"
 
+#include <cmath>
 #include <memory>
 #include <utility>
 
@@ -122,6 +123,15 @@ void CollisionWorld::sync(const Scene& scene, bool reshape) {
 }
 
 void CollisionWorld::compute(const KinematicsData& kin, DistanceTable& out, DistanceBackend backend) {
+  compute_pairs(kin, out, backend, kInfinity);
+}
+
+void CollisionWorld::compute_near(const KinematicsData& kin, DistanceTable& out, double cutoff) {
+  compute_pairs(kin, out, DistanceBackend::analytic, cutoff);
+}
+
+void CollisionWorld::compute_pairs(const KinematicsData& kin, DistanceTable& out, DistanceBackend backend,
+                                   double cutoff) {
   const int link_count = static_cast<int>(impl_->link_radii.size());
   const int obstacle_count = static_cast<int>(impl_->obstacles.size());
   out.resize(link_count, obstacle_count);
@@ -131,6 +141,16 @@ void CollisionWorld::compute(const KinematicsData& kin, DistanceTable& out, Dist
     const collision::PairLink link = impl_->pair_link(kin, l, backend);
     for (int o = 0; o < obstacle_count; ++o) {
       const collision::ObstacleGeometry& g = impl_->obstacles[size_t(o)];
+      if (cutoff < kInfinity && shape == collision::LinkShape::capsule && !g.parts.empty()) {
+        const double bound = collision::segment_polytopes_bound(g, link.start, link.end) - link.radius;
+        if (bound > cutoff + collision::kBoundMargin) {
+          LinkObstacleDistance& far = out.at(l, o);
+          far.distance = bound;
+          far.on_link = far.on_obstacle = far.normal = Eigen::Vector3d::Constant(std::nan(""));
+          track_minimum(out, l, o);
+          continue;
+        }
+      }
       const collision::PairObstacle obstacle{&g, impl_->fcl_obstacles[size_t(o)].get()};
       collision::pair_function(backend, shape, g.shape)(link, obstacle, out.at(l, o));
       track_minimum(out, l, o);

@@ -51,11 +51,17 @@ class CollisionWorld {
   // pair by the backend's entry in the pair table; the analytic one by default.
   void compute(const KinematicsData& kin, DistanceTable& out, DistanceBackend backend);
   void compute(const KinematicsData& kin, DistanceTable& out) { compute(kin, out, DistanceBackend::analytic); }
+  // As compute (analytic backend), for callers that only weigh pairs nearer
+  // than `cutoff`: a capsule–box or capsule–polygon pair whose face planes
+  // alone prove it at least `cutoff` apart is not computed; its distance is
+  // that lower bound (> cutoff), its points and normal are NaN.
+  void compute_near(const KinematicsData& kin, DistanceTable& out, double cutoff);
   // The same table from FCL's own queries: compute with DistanceBackend::fcl,
   // kept as a member for callers that take its address (bench/urdf_mesh_bench.cpp).
   void compute_with_fcl(const KinematicsData& kin, DistanceTable& out) { compute(kin, out, DistanceBackend::fcl); }
 
  private:
+  void compute_pairs(const KinematicsData& kin, DistanceTable& out, DistanceBackend backend, double cutoff);
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

@@ -223,6 +223,13 @@ void segment_polytope(const ConvexPolytope& poly, const Vector3d& a, const Vecto
   }
 }
 
+double separating_face_bound(const ConvexPolytope& poly, const Vector3d& a, const Vector3d& b) {
+  double bound = -kInfinity;
+  for (const Face& f : poly.faces)
+    bound = std::max(bound, std::min(f.normal.dot(a), f.normal.dot(b)) - f.offset);
+  return bound;
+}
+
 void segment_sphere(const Vector3d& a, const Vector3d& b, const Vector3d& centre, double radius,
                     LinkObstacleDistance& out) {
   out.on_link = closest_point_on_segment(a, b, centre);

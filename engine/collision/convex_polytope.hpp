@@ -41,6 +41,12 @@ ConvexPolytope make_box(const Eigen::Vector3d& size);
 void segment_polytope(const ConvexPolytope& poly, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                       LinkObstacleDistance& out);
 
+// A lower bound of segment_polytope's signed distance, from the face planes
+// alone: max over faces of min(n·a, n·b) − offset. The polytope lies behind
+// every face plane, so the segment is at least that far from it (and, when
+// they intersect, pushing it out along that face's normal takes no less).
+double separating_face_bound(const ConvexPolytope& poly, const Eigen::Vector3d& a, const Eigen::Vector3d& b);
+
 // Signed distance of segment a-b to a sphere (a point for radius 0).
 void segment_sphere(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& centre, double radius,
                     LinkObstacleDistance& out);

@@ -1,6 +1,7 @@
 // An obstacle's geometry, and a segment's distance to each obstacle kind.
 #include "collision/obstacle_geometry.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -87,6 +88,14 @@ void segment_mesh_obstacle(const ObstacleGeometry& g, const Vector3d& a, const V
   segment_mesh(*g.bvh, g.closed, g.bounds, g.rotation, g.position, a, b, out);
 }
 
+double segment_polytopes_bound(const ObstacleGeometry& g, const Vector3d& a, const Vector3d& b) {
+  const Vector3d a_local = g.rotation.transpose() * (a - g.position);
+  const Vector3d b_local = g.rotation.transpose() * (b - g.position);
+  double bound = kInfinity;
+  for (const ConvexPolytope& part : g.parts) bound = std::min(bound, separating_face_bound(part, a_local, b_local));
+  return bound;
+}
+
 // A box or polygon: the minimum over its convex parts.
 void segment_polytopes(const ObstacleGeometry& g, const Vector3d& a, const Vector3d& b, LinkObstacleDistance& out) {
   // in the obstacle's frame, then back; the minimum over convex parts
@@ -95,6 +104,8 @@ void segment_polytopes(const ObstacleGeometry& g, const Vector3d& a, const Vecto
   LinkObstacleDistance part_result;
   out.distance = kInfinity;
   for (const ConvexPolytope& part : g.parts) {
+    // a part whose face planes keep it farther than the nearest so far cannot be the nearest
+    if (separating_face_bound(part, a_local, b_local) > out.distance + kBoundMargin) continue;
     segment_polytope(part, a_local, b_local, part_result);
     if (part_result.distance < out.distance) out = part_result;
   }

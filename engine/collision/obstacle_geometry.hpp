@@ -44,6 +44,11 @@ void segment_wall_obstacle(const ObstacleGeometry& g, const Eigen::Vector3d& a, 
                            LinkObstacleDistance& out);
 void segment_polytopes(const ObstacleGeometry& g, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                        LinkObstacleDistance& out);
+// A lower bound of segment_polytopes' distance from the parts' face planes
+// (separating_face_bound); kBoundMargin above a distance it proves the exact
+// routine, rounding included, would not come out below that distance.
+double segment_polytopes_bound(const ObstacleGeometry& g, const Eigen::Vector3d& a, const Eigen::Vector3d& b);
+inline constexpr double kBoundMargin = 1e-9;  // m
 void segment_mesh_obstacle(const ObstacleGeometry& g, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                            LinkObstacleDistance& out);
 

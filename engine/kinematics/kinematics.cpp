@@ -42,6 +42,29 @@ Eigen::Matrix3d axis_rotation(const Eigen::Vector3d& axis, double angle) {
       z * x * v - y * s, z * y * v + x * s, c + z * z * v;
   return r;
 }
+
+// rot ← rot · R(axis, angle). About a coordinate axis e_k (planar, DH and
+// most URDF joints) R has c on e_i, e_j, ±s off the diagonal, c + (1 − c) on
+// e_k and zeros elsewhere (Rodrigues with two zero components): two columns
+// mixed instead of a 3 x 3 product, the same numbers since the zeros add
+// nothing. Any other axis takes the product.
+void rotate_about(Eigen::Matrix3d& rot, const Eigen::Vector3d& axis, double angle) {
+  int k = -1;
+  for (int d = 0; d < 3; ++d)
+    if (axis[d] == 1.0 && axis[(d + 1) % 3] == 0.0 && axis[(d + 2) % 3] == 0.0) k = d;
+  if (k < 0) {
+    rot = rot * axis_rotation(axis, angle);
+    return;
+  }
+  const double c = std::cos(angle), s = std::sin(angle), v = 1.0 - c;
+  const int i = (k + 1) % 3, j = (k + 2) % 3;
+  const Eigen::Vector3d ri = rot.col(i), rj = rot.col(j);
+  rot.col(i) = ri * c + rj * s;   // R e_i = c e_i + s e_j
+  rot.col(j) = rj * c - ri * s;   // R e_j = −s e_i + c e_j
+  rot.col(k) *= c + v;            // R e_k = (c + z²v) e_k
+}
+
+bool is_identity(const Eigen::Matrix3d& r) { return r == Eigen::Matrix3d::Identity(); }
 }  // namespace
 
 void forward_kinematics(const Model& model, const Eigen::VectorXd& q, KinematicsData& data) {
@@ -50,18 +73,19 @@ void forward_kinematics(const Model& model, const Eigen::VectorXd& q, Kinematics
   Eigen::Vector3d pos = model.base.translation();
   for (int j = 0; j < model.dof(); ++j) {
     const Joint& joint = model.joints[j];
-    // frame before the motion: T * pre
+    // frame before the motion: T * pre (identities skipped: a product by
+    // one adds only zeros)
     pos += rot * joint.pre.translation();
-    rot = rot * joint.pre.linear();
+    if (!is_identity(joint.pre.linear())) rot = rot * joint.pre.linear();
     data.axis_points.col(j) = pos;
     data.axis_dirs.col(j) = rot * joint.axis;
     if (joint.type == JointType::revolute) {
-      rot = rot * axis_rotation(joint.axis, q[j]);
+      rotate_about(rot, joint.axis, q[j]);
     } else {
       pos += data.axis_dirs.col(j) * q[j];
     }
     pos += rot * joint.post.translation();
-    rot = rot * joint.post.linear();
+    if (!is_identity(joint.post.linear())) rot = rot * joint.post.linear();
     data.joint_frames[j].linear() = rot;
     data.joint_frames[j].translation() = pos;
   }

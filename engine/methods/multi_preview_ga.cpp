@@ -139,7 +139,8 @@ Evaluation ImaginaryManipulator::score_current(const PreviewTarget& target) {
   e.residual = hand_error(target);
   e.amsi = avoidance_.compute(model_, kin_, hand_jacobian_);  // eq. 21
   if (collision_) {
-    collision_->compute(kin_, distances_);
+    // U counts only pairs nearer than the band's width: the others need no exact distance
+    collision_->compute_near(kin_, distances_, width_);
     e.potential = obstacle_potential(distances_, width_, height_);
   }
   e.amsip = e.amsi + e.potential;  // Zhang eq. 22: ¹S = ¹E + U
