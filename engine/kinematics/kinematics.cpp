@@ -56,7 +56,9 @@ void rotate_about(Eigen::Matrix3d& rot, const Eigen::Vector3d& axis, double angl
     rot = rot * axis_rotation(axis, angle);
     return;
   }
-  const double c = std::cos(angle), s = std::sin(angle), v = 1.0 - c;
+  double s, c;
+  ::sincos(angle, &s, &c);  // one call, as the compiler makes of axis_rotation's cos and sin
+  const double v = 1.0 - c;
   const int i = (k + 1) % 3, j = (k + 2) % 3;
   const Eigen::Vector3d ri = rot.col(i), rj = rot.col(j);
   rot.col(i) = ri * c + rj * s;   // R e_i = c e_i + s e_j
@@ -64,7 +66,22 @@ void rotate_about(Eigen::Matrix3d& rot, const Eigen::Vector3d& axis, double angl
   rot.col(k) *= c + v;            // R e_k = (c + z²v) e_k
 }
 
-bool is_identity(const Eigen::Matrix3d& r) { return r == Eigen::Matrix3d::Identity(); }
+// rot ← rot · m for a fixed joint rotation m (a URDF origin's rpy, a DH
+// twist): identity, or about a coordinate axis e_k (m e_k = e_k, e_kᵀ m = e_kᵀ),
+// mixes at most two columns; the zeros a full product would add change
+// nothing.
+void multiply_fixed(Eigen::Matrix3d& rot, const Eigen::Matrix3d& m) {
+  if (m == Eigen::Matrix3d::Identity()) return;
+  for (int k = 0; k < 3; ++k) {
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    if (m(k, k) != 1.0 || m(i, k) != 0.0 || m(j, k) != 0.0 || m(k, i) != 0.0 || m(k, j) != 0.0) continue;
+    const Eigen::Vector3d ri = rot.col(i), rj = rot.col(j);
+    rot.col(i) = ri * m(i, i) + rj * m(j, i);
+    rot.col(j) = ri * m(i, j) + rj * m(j, j);
+    return;
+  }
+  rot = rot * m;
+}
 }  // namespace
 
 void forward_kinematics(const Model& model, const Eigen::VectorXd& q, KinematicsData& data) {
@@ -73,10 +90,9 @@ void forward_kinematics(const Model& model, const Eigen::VectorXd& q, Kinematics
   Eigen::Vector3d pos = model.base.translation();
   for (int j = 0; j < model.dof(); ++j) {
     const Joint& joint = model.joints[j];
-    // frame before the motion: T * pre (identities skipped: a product by
-    // one adds only zeros)
+    // frame before the motion: T * pre
     pos += rot * joint.pre.translation();
-    if (!is_identity(joint.pre.linear())) rot = rot * joint.pre.linear();
+    multiply_fixed(rot, joint.pre.linear());
     data.axis_points.col(j) = pos;
     data.axis_dirs.col(j) = rot * joint.axis;
     if (joint.type == JointType::revolute) {
@@ -85,7 +101,7 @@ void forward_kinematics(const Model& model, const Eigen::VectorXd& q, Kinematics
       pos += data.axis_dirs.col(j) * q[j];
     }
     pos += rot * joint.post.translation();
-    if (!is_identity(joint.post.linear())) rot = rot * joint.post.linear();
+    multiply_fixed(rot, joint.post.linear());
     data.joint_frames[j].linear() = rot;
     data.joint_frames[j].translation() = pos;
   }

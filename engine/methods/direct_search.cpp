@@ -75,6 +75,7 @@ enum { kJra, kJvm, kDm, kObstacle, kCriteria };
 constexpr int kMaxPerturbed = 6;
 constexpr int kMaxOptions = 729;  // 3^6
 constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();  // a criterion not computed
 
 class DirectSearch final : public Method {
   // Parameters by name (Method::slot).
@@ -155,6 +156,11 @@ class DirectSearch final : public Method {
     if (p(kDmFraction) > 0 && p(kDmReference) > 0 && dm_now >= p(kDmFraction) * p(kDmReference)) rule_active_ = true;
     out.diag.values[current_dm_diag_] = std::isfinite(dm_now) ? dm_now : -1.0;
 
+    double weights[kCriteria] = {p(kWJra), p(kWJvm), p(kWDm), p(kWObstacle)};
+    if (rule_active_) weights[kJra] *= 0.8, weights[kJvm] *= 0.2;
+    // DM (an eigen-decomposition per option) only where the selection weighs it
+    dm_for_feasible_ = weights[kDm] > 0;
+
     // 1. generate options (eq 1–6); when no option meets eq 5 within the
     // ranges and speeds, once more with the largest-determinant block (§3.1)
     int feasible = generate_options(in);
@@ -175,8 +181,6 @@ class DirectSearch final : public Method {
     const int count = option_count();
 
     // 2. selection (eq 7–8)
-    double weights[kCriteria] = {p(kWJra), p(kWJvm), p(kWDm), p(kWObstacle)};
-    if (rule_active_) weights[kJra] *= 0.8, weights[kJvm] *= 0.2;
     int chosen = -1;
     if (feasible > 0) {
       double lo[kCriteria], hi[kCriteria];
@@ -207,6 +211,13 @@ class DirectSearch final : public Method {
           best = residual_[j], chosen = j;
     }
 
+    if (chosen >= 0 && std::isnan(criteria_(chosen, kDm))) {
+      // its DM was not needed to choose it: the diagnostic's, at its kinematics
+      theta_ = options_.col(chosen);
+      forward_kinematics(in.model, theta_, probe_);
+      task_jacobian(in.model, probe_, space_, jacobian_);
+      criteria_(chosen, kDm) = dexterity(jacobian_);
+    }
     out.integrated = true;
     if (chosen >= 0)
       out.q_next = options_.col(chosen);
@@ -286,7 +297,7 @@ class DirectSearch final : public Method {
       // criteria at θ^j (probe_ and jacobian_ hold its kinematics)
       criteria_(j, kJra) = (theta_ - centre_).cwiseAbs2().dot(inv_half_range_);
       criteria_(j, kJvm) = (theta_ - q).squaredNorm();
-      criteria_(j, kDm) = dexterity(jacobian_);
+      criteria_(j, kDm) = feasible_[j] && dm_for_feasible_ ? dexterity(jacobian_) : kNaN;
       criteria_(j, kObstacle) = -estimated_clearance(q);
     }
     return feasible;
@@ -465,8 +476,10 @@ class DirectSearch final : public Method {
   TaskSpace space_;
   KinematicsData probe_;
   Eigen::MatrixXd jacobian_, scaled_jacobian_;
-  Eigen::MatrixXd jjt_;
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigenvalues_;
+  // at most 6 x 6 (pose): fixed-capacity storage keeps Eigen's small-matrix paths
+  using TaskSquare = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6>;
+  TaskSquare jjt_;
+  Eigen::SelfAdjointEigenSolver<TaskSquare> eigenvalues_;
   Eigen::MatrixXd block_jacobian_;
   RightInverse block_inverse_, option_inverse_;
   Eigen::MatrixXd options_, criteria_;
@@ -487,7 +500,7 @@ class DirectSearch final : public Method {
   Eigen::Matrix3d target_orientation_ = Eigen::Matrix3d::Identity();
   int perturbed_[kMaxPerturbed] = {}, perturbed_count_ = 0;
   int block_[64] = {}, block_count_ = 0;
-  bool rule_active_ = false, has_distances_ = false;
+  bool rule_active_ = false, has_distances_ = false, dm_for_feasible_ = true;
   int links_with_distance_ = 0;
   int chosen_diag_[kCriteria], weight_diag_[kCriteria];
   int feasible_diag_, options_diag_, chosen_diag_index_, rule_diag_, current_dm_diag_, iterations_diag_,

@@ -112,6 +112,39 @@ const std::vector<Vector2d> kLShape{{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 
 
 // --- polygon -------------------------------------------------------------------------
 
+TEST(CollisionWorld, ComputeNearIsExactBelowTheCutoffAndABoundAboveIt) {
+  // a planar 3-link arm swept over an L and a box: pairs nearer than the
+  // cutoff are the full computation's, bit for bit; the others carry a lower
+  // bound above the cutoff
+  const Model model = make_planar({{0.8, 0.05}, {0.7, 0.05}, {0.5, 0.05}}, Vector2d::Zero());
+  Scene scene = scene_of({polygon(kLShape, Vector3d(0.6, 0.4, 0)), box(Vector3d(-0.9, 0.2, 0), Vector3d(0.3, 0.5, 1))});
+  CollisionWorld world(model, scene);
+  KinematicsData kin(model);
+  DistanceTable full, near;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> angle(-std::numbers::pi, std::numbers::pi);
+  int culled = 0, exact = 0;
+  for (int trial = 0; trial < 500; ++trial) {
+    const VectorXd q = Vector3d(angle(rng), angle(rng), angle(rng));
+    forward_kinematics(model, q, kin);
+    world.compute(kin, full);
+    world.compute_near(kin, near, 0.15);
+    for (size_t k = 0; k < full.pairs.size(); ++k) {
+      if (full.pairs[k].distance <= 0.15) {
+        EXPECT_EQ(near.pairs[k].distance, full.pairs[k].distance) << trial;
+        EXPECT_EQ(near.pairs[k].on_link, full.pairs[k].on_link) << trial;
+        ++exact;
+      } else if (std::isnan(near.pairs[k].normal.x())) {
+        EXPECT_GT(near.pairs[k].distance, 0.15) << trial;
+        EXPECT_LE(near.pairs[k].distance, full.pairs[k].distance + 1e-12) << trial;
+        ++culled;
+      }
+    }
+  }
+  EXPECT_GT(culled, 500);
+  EXPECT_GT(exact, 100);
+}
+
 TEST(CollisionWorld, SquareSeparated) {
   const auto table = one_link_distances(0.7, 0.0, polygon(kSquare));
   expect_pair(table.at(0, 0), 0.3, xy(0.7, 0), xy(1, 0), -Vector3d::UnitX());

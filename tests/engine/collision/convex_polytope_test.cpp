@@ -71,6 +71,25 @@ TEST(ConvexPolytope, SegmentBoxDistanceAgainstSampling) {
   EXPECT_GT(penetrating, 100);
 }
 
+TEST(ConvexPolytope, FacePlaneBoundNeverExceedsTheSignedDistance) {
+  // separated or intersecting, the bound is ≤ the distance (culling relies on it), and tight
+  // when a face is the nearest feature
+  const ConvexPolytope prism = make_prism({{0, 0}, {1, 0}, {1.3, 0.8}, {0.2, 1.1}}, -0.5, 0.5);
+  std::mt19937 rng(47);
+  std::uniform_real_distribution<double> coordinate(-2, 3);
+  int tight = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const Vector3d a(coordinate(rng), coordinate(rng), coordinate(rng) - 0.5);
+    const Vector3d b(coordinate(rng), coordinate(rng), coordinate(rng) - 0.5);
+    LinkObstacleDistance out;
+    segment_polytope(prism, a, b, out);
+    const double bound = separating_face_bound(prism, a, b);
+    EXPECT_LE(bound, out.distance + 1e-12) << trial;
+    tight += std::abs(bound - out.distance) < 1e-12;
+  }
+  EXPECT_GT(tight, 50);  // 91 of 2000 with this seed
+}
+
 TEST(ConvexPolytope, SignInsideAndOutside) {
   const ConvexPolytope box = make_box(Vector3d(2, 2, 2));
   LinkObstacleDistance out;
