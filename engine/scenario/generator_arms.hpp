@@ -23,6 +23,7 @@ struct GeneratedArm {
   double hole_radius = 0;  // around the base, unreachable by the hand (planar arms without limits)
   double link_radius = 0;  // of the hand's link
   std::string summary;     // for descriptions: "a 7-DOF planar arm (links ...)"
+  std::string name;        // shipped URDF arms: "iiwa14", "panda", "gen3"
 };
 
 // Options "dof", "link_length", "link_radius" (planar) and "limit_deg"

@@ -57,5 +57,7 @@ nlohmann::json generate_planar_limits(GeneratorCase& c);
 nlohmann::json generate_narrow_passage(GeneratorCase& c);
 nlohmann::json generate_spatial_clutter(GeneratorCase& c);
 nlohmann::json generate_moving_obstacles(GeneratorCase& c);
+nlohmann::json generate_urdf_tabletop(GeneratorCase& c);
+nlohmann::json generate_urdf_shelf(GeneratorCase& c);
 
 }  // namespace rrlab

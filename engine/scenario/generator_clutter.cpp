@@ -41,6 +41,32 @@ std::vector<size_t> straying_capsules(const ArmSweep& pinv, const ArmSweep& witn
   return out;
 }
 
+std::optional<nlohmann::json> ball_on_pinv(const ArmSweep& pinv, const ArmSweep& witness, double clearance, Range radius,
+                                           Rng& rng, int candidates) {
+  const std::vector<size_t> straying = straying_capsules(pinv, witness);
+  if (straying.empty()) return std::nullopt;
+  Obstacle point;
+  point.shape = ShapeKind::point;
+  double best = -1;
+  Eigen::Vector3d best_centre = Eigen::Vector3d::Zero();
+  for (int k = 0; k < candidates; ++k) {
+    const CapsuleSegment& link = pinv.capsules[straying[rng.below(straying.size())]];
+    Eigen::Vector3d centre = link.a + rng.uniform() * (link.b - link.a);
+    for (int i = 0; i < 3; ++i) centre[i] = rounded(centre[i], 1e-4);
+    point.position = point.position0 = centre;
+    // room for the ball: the witness arm's distance from its centre, less the clearance
+    const double room = sweep_clearance(witness, point) - clearance;
+    if (room > best) best = room, best_centre = centre;
+  }
+  if (best < radius.min) return std::nullopt;
+  const double r = rounded(std::min(best, radius.max) - 1e-4, 1e-4);
+  if (r < radius.min) return std::nullopt;
+  return nlohmann::json{{"id", "ball"},
+                        {"shape", "sphere"},
+                        {"center", {best_centre.x(), best_centre.y(), best_centre.z()}},
+                        {"radius", r}};
+}
+
 std::optional<nlohmann::json> place_clutter(const ClutterOptions& clutter, const WitnessedArm& drawn, bool spatial,
                                             Rng& rng, const ArmSweep* blocking) {
   const KeepOut keep_out{&drawn.sweep, clutter.clearance};

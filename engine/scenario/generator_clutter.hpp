@@ -22,6 +22,14 @@ std::optional<ArmSweep> minimum_norm_sweep(const GeneratorCase& c, const Witness
 // where an obstacle on pinv's arm can stand clear of the witness.
 std::vector<size_t> straying_capsules(const ArmSweep& pinv, const ArmSweep& witness);
 
+// A ball centred on the axis of one of pinv's straying capsules (so that
+// pinv's arm, which ignores obstacles, runs into it), as large as `radius`
+// allows while it keeps `clearance` from the witness arm at every step: the
+// best of `candidates` points drawn on those capsules. Nullopt when none
+// leaves a radius of at least radius.min.
+std::optional<nlohmann::json> ball_on_pinv(const ArmSweep& pinv, const ArmSweep& witness, double clearance, Range radius,
+                                           Rng& rng, int candidates = 24);
+
 // Draws the option's obstacle count: with `blocking`, the first on the axis
 // of one of its links at some step (so that arm runs into it); then every
 // other obstacle beside the witness arm (out from one of its links at some

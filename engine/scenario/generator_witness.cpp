@@ -51,21 +51,23 @@ Eigen::Vector3d rounded_hand(const Model& model, const Eigen::VectorXd& q, Kinem
 }
 
 // Samples every m steps of the smooth witness, the played-back steps between
-// them and how far the played-back hand comes from the task's polyline.
-void sample(const Model& model, const Segments& segments, long steps, long m, KinematicsData& kin,
-            GeneratedWitness& w) {
+// them and how far the played-back hand comes from the task's polyline (and,
+// with an orientation, from it).
+void sample(const Model& model, const SmoothWitness& smooth_at, long steps, long m, const Eigen::Matrix3d* orientation,
+            KinematicsData& kin, GeneratedWitness& w) {
   w.samples.clear();
   w.hand.clear();
   w.steps.clear();
   Eigen::VectorXd q;
   const long intervals = (steps + m - 1) / m;  // the last may hold the end configuration
   for (long j = 0; j <= intervals; ++j) {
-    smooth_at(segments, std::min(j * m, steps), q);
+    smooth_at(std::min(j * m, steps), q);
     for (Eigen::Index i = 0; i < q.size(); ++i) q[i] = rounded(q[i], kSampleStep);
     w.samples.push_back(q);
     w.hand.push_back(rounded_hand(model, q, kin));
   }
   w.interpolation_error = 0;
+  w.orientation_error = 0;
   for (long k = 0; k <= intervals * m; ++k) {
     const long j = std::min(k / m, intervals - 1);
     const double u = double(k - j * m) / double(m);
@@ -73,6 +75,8 @@ void sample(const Model& model, const Segments& segments, long steps, long m, Ki
     forward_kinematics(model, w.steps.back(), kin);
     const Eigen::Vector3d reference = w.hand[j] + u * (w.hand[j + 1] - w.hand[j]);
     w.interpolation_error = std::max(w.interpolation_error, (kin.end_effector().translation() - reference).norm());
+    if (orientation)
+      w.orientation_error = std::max(w.orientation_error, orientation_error(*orientation, kin.end_effector().linear()).norm());
   }
 }
 
@@ -107,25 +111,34 @@ std::optional<GeneratedWitness> build_witness(const Model& model, const std::vec
     segments.to.push_back(b);
     segments.end_step.push_back(steps);
   }
+  if (!finish_witness(model, [&](long k, Eigen::VectorXd& q) { smooth_at(segments, k, q); }, steps, options.dt, space,
+                      nullptr, w))
+    return std::nullopt;
+  return w;
+}
+
+bool finish_witness(const Model& model, const SmoothWitness& smooth, long steps, double dt, TaskSpace space,
+                    const Eigen::Matrix3d* orientation, GeneratedWitness& w) {
+  KinematicsData kin(model);
   // the widest spacing (halving from kMaxSampleSpacing) whose playback stays
-  // within the tolerance; one step per sample always does
-  long m = std::max(1L, long(std::floor(kMaxSampleSpacing / options.dt + 1e-9)));
+  // within the tolerances; one step per sample always does
+  long m = std::max(1L, long(std::floor(kMaxSampleSpacing / dt + 1e-9)));
   for (;;) {
     const bool fits = (steps + m - 1) / m + 1 <= ScenarioLimits::max_path_points;
     if (fits) {
-      sample(model, segments, steps, m, kin, w);
-      if (w.interpolation_error <= kInterpolationTolerance) break;
+      sample(model, smooth, steps, m, orientation, kin, w);
+      if (w.interpolation_error <= kInterpolationTolerance && w.orientation_error <= kOrientationTolerance) break;
     }
     if (m == 1) {
-      if (!fits) return std::nullopt;
+      if (!fits) return false;
       break;
     }
     m = std::max(1L, m / 2);
   }
-  w.dt = rounded(double(m) * options.dt, 1e-9);
+  w.dt = rounded(double(m) * dt, 1e-9);
   // the run lasts a whole number of sample intervals (the witness holds its
   // last configuration for the remainder)
-  w.duration = rounded(double(w.steps.size() - 1) * options.dt, 1e-9);
+  w.duration = rounded(double(w.steps.size() - 1) * dt, 1e-9);
   for (size_t j = 1; j < w.hand.size(); ++j) w.length += (w.hand[j] - w.hand[j - 1]).norm();
   // what a run of it meets: the limits' margin and the joint rates at the steps
   for (size_t k = 0; k < w.steps.size(); ++k) {
@@ -133,7 +146,7 @@ std::optional<GeneratedWitness> build_witness(const Model& model, const std::vec
     if (model.limits.has_position())
       w.limit_margin = std::min({w.limit_margin, (q - model.limits.lower).minCoeff(),
                                  (model.limits.upper - q).minCoeff()});
-    if (k > 0) w.peak_joint_speed = std::max(w.peak_joint_speed, (q - w.steps[k - 1]).cwiseAbs().maxCoeff() / options.dt);
+    if (k > 0) w.peak_joint_speed = std::max(w.peak_joint_speed, (q - w.steps[k - 1]).cwiseAbs().maxCoeff() / dt);
   }
   Eigen::MatrixXd jac(task_rows(space), model.dof());
   w.min_manipulability = std::numeric_limits<double>::infinity();
@@ -142,7 +155,7 @@ std::optional<GeneratedWitness> build_witness(const Model& model, const std::vec
     task_jacobian(model, kin, space, jac);
     w.min_manipulability = std::min(w.min_manipulability, std::sqrt(std::max(0.0, (jac * jac.transpose()).determinant())));
   }
-  return w;
+  return true;
 }
 
 nlohmann::json witness_task(const GeneratedWitness& w, TaskSpace space) {
@@ -155,8 +168,12 @@ nlohmann::json witness_task(const GeneratedWitness& w, TaskSpace space) {
   }
   for (size_t j = 1; j < w.hand.size(); ++j)
     durations.push_back(w.dt);
-  return {{"space", to_string(space)},
-          {"trajectory", {{"type", "polyline"}, {"points", points}, {"durations", durations}, {"time_law", "linear"}}}};
+  nlohmann::json task = {
+      {"space", to_string(space)},
+      {"trajectory", {{"type", "polyline"}, {"points", points}, {"durations", durations}, {"time_law", "linear"}}}};
+  if (space == TaskSpace::pose && w.orientation_rpy)
+    task["orientation"] = {w.orientation_rpy->x(), w.orientation_rpy->y(), w.orientation_rpy->z()};
+  return task;
 }
 
 nlohmann::json witness_json(const GeneratedWitness& w, std::optional<double> clearance) {
@@ -173,6 +190,7 @@ nlohmann::json witness_json(const GeneratedWitness& w, std::optional<double> cle
                                {"peak_joint_speed", rounded(w.peak_joint_speed, 1e-6)}};
   if (clearance && std::isfinite(*clearance)) difficulty["clearance"] = rounded(*clearance, 1e-6);
   if (std::isfinite(w.limit_margin)) difficulty["limit_margin"] = rounded(w.limit_margin, 1e-6);
+  if (w.orientation_rpy) difficulty["orientation_error"] = rounded(w.orientation_error, 1e-9);
   return {{"dt", w.dt}, {"q", q}, {"difficulty", difficulty}};
 }
 

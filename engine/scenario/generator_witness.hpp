@@ -6,6 +6,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -26,6 +27,9 @@ namespace rrlab {
 // task's polyline at every step (m).
 constexpr double kInterpolationTolerance = 5e-4;
 constexpr double kMaxSampleSpacing = 0.1;  // s
+// Pose tasks: the played-back hand's orientation stays this close to the
+// task's (rad).
+constexpr double kOrientationTolerance = 1e-3;
 // Sample joint values are written to this step (rad, or m for prismatic joints).
 constexpr double kSampleStep = 1e-6;
 // Where joint velocity limits exist, the witness peaks at this share of them.
@@ -40,6 +44,8 @@ struct GeneratedWitness {
   double speed = 0;                        // the hand speed it was timed by (m/s)
   double length = 0;                       // of the hand's polyline (m)
   double interpolation_error = 0;          // largest |hand at a step − task reference| (m)
+  double orientation_error = 0;            // pose tasks: largest hand orientation error at a step (rad)
+  std::optional<Eigen::Vector3d> orientation_rpy;  // pose tasks: the task's fixed orientation (rad)
   double limit_margin = std::numeric_limits<double>::infinity();  // least distance to a limit (rad)
   double min_manipulability = 0;           // least sqrt(det(J Jᵀ)) of the task rows, over the samples
   double peak_joint_speed = 0;             // largest |q̇| of any joint over the steps (rad/s)
@@ -54,6 +60,17 @@ struct GeneratedWitness {
 // polyline may hold or steps than a scenario may run.
 std::optional<GeneratedWitness> build_witness(const Model& model, const std::vector<Eigen::VectorXd>& configurations,
                                               const PathOptions& options, double reach, TaskSpace space, Rng& rng);
+
+// The witness's configuration at a step of its smooth trajectory (before sampling).
+using SmoothWitness = std::function<void(long step, Eigen::VectorXd& q)>;
+
+// The rest of a witness whose smooth trajectory has `steps` steps of `dt`:
+// samples at the widest spacing that keeps the playback within the
+// tolerances (position, and the orientation when given), the played-back
+// steps, duration, length and difficulty measures. `w` has its speed and time
+// law set. False when the samples do not fit a task polyline.
+bool finish_witness(const Model& model, const SmoothWitness& smooth, long steps, double dt, TaskSpace space,
+                    const Eigen::Matrix3d* orientation, GeneratedWitness& w);
 
 // The document's "task" (a polyline through the witness's hand samples, one
 // sample interval per segment, linear time law) and "witness" (samples and

@@ -84,7 +84,8 @@ void no_case_found(const GeneratorCase& c, const std::string& what_to_loosen) {
 
 const std::vector<std::string>& generator_families() {
   static const std::vector<std::string> families = {"planar_clutter", "planar_limits", "narrow_passage",
-                                                    "spatial_clutter", "moving_obstacles"};
+                                                    "spatial_clutter", "moving_obstacles", "urdf_tabletop",
+                                                    "urdf_shelf"};
   return families;
 }
 
@@ -97,6 +98,8 @@ nlohmann::json generate(GeneratorCase& c) {
   if (family == "narrow_passage") return generate_narrow_passage(c);
   if (family == "spatial_clutter") return generate_spatial_clutter(c);
   if (family == "moving_obstacles") return generate_moving_obstacles(c);
+  if (family == "urdf_tabletop") return generate_urdf_tabletop(c);
+  if (family == "urdf_shelf") return generate_urdf_shelf(c);
   std::string known;
   for (const std::string& f : generator_families()) known += (known.empty() ? "" : ", ") + f;
   throw ScenarioError("generator", "unknown family \"" + family + "\" (known: " + known + ")");

@@ -17,7 +17,7 @@
 namespace rrlab {
 
 // The families: planar_clutter, planar_limits, narrow_passage,
-// spatial_clutter, moving_obstacles.
+// spatial_clutter, moving_obstacles, urdf_tabletop, urdf_shelf.
 const std::vector<std::string>& generator_families();
 
 // Case `index` of `family` under `seed` with the family's options (DOF range,

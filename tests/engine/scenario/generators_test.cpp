@@ -75,8 +75,14 @@ std::string witness_problem(const json& doc) {
   const Scenario sc = parse_scenario(doc);
   if (!sc.witness) return "no witness";
   Simulator sim(sc, "witness");
-  while (!sim.done()) sim.step();
+  double orientation_error = 0;  // pose tasks: the hand's orientation error at every step
+  while (!sim.done()) {
+    sim.step();
+    orientation_error = std::max(orientation_error, sim.frame().orientation_error);
+  }
   const Summary& s = sim.summary();
+  if (orientation_error > kOrientationTolerance + 1e-5)
+    return "the witness holds the orientation within " + std::to_string(orientation_error) + " rad only";
   if (s.collided) return "the witness collides (min distance " + std::to_string(s.min_distance) + ")";
   if (s.joint_limit_violated) return "the witness crosses a joint limit";
   if (s.max_qdot_ratio && *s.max_qdot_ratio > 1) return "the witness exceeds a velocity limit";
@@ -144,7 +150,7 @@ FamilyRun check_family(const std::string& family, int cases, const json& options
 TEST(Generators, ListsTheFamilies) {
   EXPECT_EQ(generator_families(),
             (std::vector<std::string>{"planar_clutter", "planar_limits", "narrow_passage", "spatial_clutter",
-                                      "moving_obstacles"}));
+                                      "moving_obstacles", "urdf_tabletop", "urdf_shelf"}));
 }
 
 // Thousands of cases, each witness played back: Release only (suites named
@@ -200,6 +206,18 @@ TEST(GeneratorWitnessesAtScale, PlanarLimitsMakePinvViolateALimit) {
   check_family("planar_limits", 1000, json::object(), pinv_crosses_a_limit);
 }
 
+// The URDF families: a pose task (fixed orientation) on a shipped arm whose
+// URDF the case carries inline; block_pinv (the default) hangs a ball on
+// pinv's arm.
+std::string urdf_pose_problem(const json& doc) {
+  if (doc["task"]["space"] != "pose" || !doc["task"].contains("orientation")) return "not a pose task with an orientation";
+  if (doc["robot"]["kind"] != "urdf" || !doc["robot"].contains("urdf")) return "not an inline URDF arm";
+  return pinv_collides(doc);
+}
+
+TEST(GeneratorWitnessesAtScale, UrdfTabletop) { check_family("urdf_tabletop", 200, json::object(), urdf_pose_problem); }
+TEST(GeneratorWitnessesAtScale, UrdfShelf) { check_family("urdf_shelf", 200, json::object(), urdf_pose_problem); }
+
 // The same checks on fewer cases, for the sanitized build.
 TEST(Generators, EveryFamilysCasesCarryAWitnessThatSolvesThem) {
   check_family("planar_clutter", 10, json::object(), pinv_collides);
@@ -207,6 +225,8 @@ TEST(Generators, EveryFamilysCasesCarryAWitnessThatSolvesThem) {
   check_family("spatial_clutter", 10, json::object(), spatial_problem);
   check_family("moving_obstacles", 10, json::object(), moving_obstacles_problem);
   check_family("planar_limits", 5, json::object(), pinv_crosses_a_limit);
+  check_family("urdf_tabletop", 3, json::object(), urdf_pose_problem);
+  check_family("urdf_shelf", 3, json::object(), urdf_pose_problem);
 }
 
 // Options away from the defaults keep the guarantees, witness included.
@@ -221,12 +241,15 @@ TEST(Generators, NonDefaultOptionsKeepTheGuarantees) {
   check_family("moving_obstacles", 5, {{"obstacles", 4}, {"obstacle_speed", {0.01, 3}}, {"shapes", {"point"}}});
   check_family("planar_clutter", 3, {{"dt", 0.002}, {"speed", 2.0}});
   check_family("planar_clutter", 5, {{"block_pinv", false}, {"obstacles", 0}});
+  check_family("urdf_tabletop", 3, {{"arms", {"panda"}}, {"objects", 8}, {"time_law", "linear"}, {"block_pinv", false}});
+  check_family("urdf_shelf", 3, {{"arms", {"iiwa14", "panda"}}, {"gap", 0.005}, {"clearance", 0.05}});
 }
 
 TEST(Generators, SameInputsGiveTheSameDocument) {
   const json options = {{"dof", {4, 9}}, {"time_law", "linear"}};
   for (const std::string& family : generator_families()) {
-    const json opts = family == "spatial_clutter" ? json{{"time_law", "linear"}} : options;
+    const bool fixed_arms = family == "spatial_clutter" || family.rfind("urdf_", 0) == 0;  // no "dof" option
+    const json opts = fixed_arms ? json{{"time_law", "linear"}} : options;
     for (int index : {0, 31}) {
       const json doc = generate_scenario(family, opts, 42, index);
       EXPECT_EQ(doc.dump(), generate_scenario(family, opts, 42, index).dump()) << family << " " << index;
@@ -291,6 +314,10 @@ TEST(Generators, BadOptionsNameTheirPath) {
   expect_error("narrow_passage", {{"gap_width", 0.03}}, "options.gap_width", "allowed range");
   expect_error("planar_clutter", {{"block_pinv", 1}}, "options.block_pinv", "must be true or false");
   expect_error("spatial_clutter", {{"obstacles", 0}}, "options.obstacles", "at least 1 with block_pinv");
+  expect_error("urdf_tabletop", {{"arms", {"ur5"}}}, "options.arms[0]", "iiwa14, panda, gen3");
+  expect_error("urdf_tabletop", {{"objects", 0}}, "options.objects", "at least 1 with block_pinv");
+  expect_error("urdf_shelf", {{"gap", 0.0}}, "options.gap", "0.005");
+  expect_error("urdf_shelf", {{"dof", 7}}, "options.dof", "unknown option of urdf_shelf");
   expect_error("planar_limits", {{"block_pinv", true}}, "options.block_pinv", "unknown option");
   expect_error("narrow_passage", {{"block_pinv", "yes"}}, "options.block_pinv", "must be true or false");
   expect_error("planar_limits", {{"limit_deg", {60, 200}}}, "options.limit_deg[1]", "[10, 180]");
