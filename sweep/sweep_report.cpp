@@ -17,6 +17,7 @@ namespace rrlab::sweep {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+using GroupKey = std::tuple<std::string, std::string, std::string>;  // sweep, config, family
 
 // What a report reads of one run's stored summary.
 struct RunFacts {
@@ -26,6 +27,8 @@ struct RunFacts {
   bool joint_limit_violated = false;
   long nonfinite_steps = 0;
   double step_p50 = 0, step_p99 = 0;
+  double clearance = std::numeric_limits<double>::quiet_NaN();     // the witness's, generated cases
+  double limit_margin = std::numeric_limits<double>::quiet_NaN();  // the witness's, generated cases
 };
 
 double number_or(const nlohmann::json& j, const char* key, double def) {
@@ -34,6 +37,14 @@ double number_or(const nlohmann::json& j, const char* key, double def) {
 
 RunFacts facts_of(const storage::SweepRunEntry& e) {
   RunFacts f{&e};
+  if (e.difficulty_json) {
+    try {
+      const nlohmann::json d = parse_json(*e.difficulty_json);
+      f.clearance = number_or(d, "clearance", f.clearance);
+      f.limit_margin = number_or(d, "limit_margin", f.limit_margin);
+    } catch (const std::exception&) {  // a difficulty that is not JSON counts as none
+    }
+  }
   if (!e.summary_json) return f;
   nlohmann::json s;
   try {
@@ -104,6 +115,44 @@ void tally(WinLossTie& t, int outcome) {
 }
 
 
+constexpr int kDifficultyBins = 4;
+
+// Success against difficulty for every group of each (sweep, family): bins at
+// the quartiles of the family's runs' measure, shared by its configurations.
+void difficulty_bins(const std::map<GroupKey, std::vector<const RunFacts*>>& groups, std::vector<GroupStats>& stats) {
+  std::map<std::pair<std::string, std::string>, std::vector<const RunFacts*>> families;
+  for (const auto& [key, runs] : groups)
+    families[{std::get<0>(key), std::get<2>(key)}].insert(families[{std::get<0>(key), std::get<2>(key)}].end(),
+                                                          runs.begin(), runs.end());
+  for (const auto& [where, runs] : families) {
+    const bool obstacles = std::any_of(runs.begin(), runs.end(), [](const RunFacts* f) { return std::isfinite(f->clearance); });
+    const auto measure = [obstacles](const RunFacts* f) { return obstacles ? f->clearance : f->limit_margin; };
+    std::vector<double> values;
+    for (const RunFacts* f : runs)
+      if (std::isfinite(measure(f))) values.push_back(measure(f));
+    if (values.size() < size_t(2 * kDifficultyBins)) continue;
+    std::vector<double> edges;
+    for (int k = 0; k <= kDifficultyBins; ++k) edges.push_back(quantile(values, double(k) / kDifficultyBins));
+    edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+    if (edges.size() < 2) continue;
+    for (GroupStats& g : stats) {
+      if (g.sweep != where.first || g.family != where.second) continue;
+      g.difficulty_measure = obstacles ? "clearance" : "limit_margin";
+      g.by_difficulty.clear();
+      for (size_t k = 0; k + 1 < edges.size(); ++k) g.by_difficulty.push_back({edges[k], edges[k + 1], 0, 0});
+      for (const RunFacts* f : groups.at({g.sweep, g.config_key, g.family})) {
+        const double v = measure(f);
+        if (!std::isfinite(v)) continue;
+        // the bin whose upper edge is the first at or above v (the lowest edge belongs to the first bin)
+        const size_t k = std::min(size_t(std::lower_bound(edges.begin() + 1, edges.end(), v) - (edges.begin() + 1)),
+                                  g.by_difficulty.size() - 1);
+        ++g.by_difficulty[k].n;
+        g.by_difficulty[k].successes += f->entry->row.success ? 1 : 0;
+      }
+    }
+  }
+}
+
 constexpr const char* kPinv = "pinv";
 
 // The group key's configuration is pinv with its defaults.
@@ -115,7 +164,6 @@ std::vector<double> step_p50s(const std::vector<const RunFacts*>& runs) {
   return out;
 }
 
-using GroupKey = std::tuple<std::string, std::string, std::string>;  // sweep, config, family
 
 void step_ratios(const std::map<GroupKey, std::vector<const RunFacts*>>& groups, std::vector<GroupStats>& stats) {
   for (GroupStats& g : stats) {
@@ -206,6 +254,7 @@ SweepReport build_report(const std::vector<storage::SweepRunEntry>& entries) {
   }
   for (const auto& [key, runs] : groups) report.groups.push_back(group_stats(runs));
   step_ratios(groups, report.groups);
+  difficulty_bins(groups, report.groups);
 
   for (const auto& [sweep, configs] : by_config) {
     report.sweeps.push_back(sweep);

@@ -21,7 +21,9 @@
 //    p-value;
 //  - "which method when": per sweep × family, the configurations whose
 //    success is not significantly below the best's (not: fewer wins than
-//    losses against it with p < 0.05), best first, with their step time.
+//    losses against it with p < 0.05), best first, with their step time;
+//  - success against difficulty per group: the family's cases binned at the
+//    quartiles of the witness's clearance (or limit margin).
 #pragma once
 
 #include <limits>
@@ -35,6 +37,13 @@
 
 namespace rrlab::sweep {
 
+// One bin of success against difficulty: the runs whose case's difficulty
+// measure lies in [low, high].
+struct DifficultyBin {
+  double low = 0, high = 0;
+  size_t n = 0, successes = 0;
+};
+
 struct GroupStats {
   std::string sweep, config_key, family;
   size_t n = 0, successes = 0;
@@ -46,6 +55,12 @@ struct GroupStats {
   double step_us_p50 = 0, step_us_p99 = 0;  // medians over runs of each run's p50 / p99
   std::map<std::string, size_t> failure_modes;  // failed runs by first failure mode
   double step_ratio_to_pinv = std::numeric_limits<double>::quiet_NaN();  // NaN: no pinv group to compare with
+  // Success against the case's difficulty (generated cases): `difficulty_measure` is the
+  // witness's "clearance" where the family's cases have obstacles, else its "limit_margin";
+  // the bins split the family's cases at the quartiles of that measure (the same bins for
+  // every configuration of the family). Empty for cases without a witness.
+  std::string difficulty_measure;
+  std::vector<DifficultyBin> by_difficulty;
 };
 
 struct WinLossTie {

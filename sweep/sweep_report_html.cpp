@@ -1,5 +1,6 @@
 #include "sweep/sweep_report_html.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <string>
 
@@ -66,6 +67,68 @@ void success_chart(std::ostream& out, const SweepReport& report, const std::stri
   out << "</svg>\n";
 }
 
+// Success against difficulty, one chart per family: the family's bins (the
+// quartiles of its cases' witness clearance or limit margin) on x, harder
+// (smaller) first, success on y, one line per configuration.
+void difficulty_charts(std::ostream& out, const SweepReport& report, const std::string& sweep) {
+  static const char* kColours[] = {"#4a7fb5", "#d9822b", "#3a9d5d", "#c23b3b", "#8e6bbf", "#8c6d46",
+                                   "#d46fb0", "#6f6f6f", "#b5b531", "#2fb3c4", "#1f3b73", "#e0a100"};
+  constexpr double kLeft = 50, kPlot = 420, kHeight = 200, kTop = 16, kLegend = 260;
+  std::vector<std::string> families;
+  for (const GroupStats& g : report.groups)
+    if (g.sweep == sweep && !g.by_difficulty.empty() && std::find(families.begin(), families.end(), g.family) == families.end())
+      families.push_back(g.family);
+  if (families.empty()) return;
+  out << "<h3>Success against difficulty</h3>\n<p class=\"note\">Each family's cases in four bins at the quartiles "
+         "of the witness's clearance from the obstacles (or, without obstacles, its joint-limit margin): the "
+         "narrowest cases on the left. Success per bin for every configuration (hover a point for its count).</p>\n";
+  for (const std::string& family : families) {
+    std::vector<const GroupStats*> lines;
+    for (const GroupStats& g : report.groups)
+      if (g.sweep == sweep && g.family == family && !g.by_difficulty.empty()) lines.push_back(&g);
+    const std::vector<DifficultyBin>& bins = lines.front()->by_difficulty;
+    const double height = std::max(kHeight, 18.0 * double(lines.size())) + kTop + 46;
+    const double step = bins.size() > 1 ? kPlot / double(bins.size() - 1) : 0;
+    out << "<h4>" << escape(family) << " (" << escape(lines.front()->difficulty_measure) << ")</h4>\n"
+        << "<svg role=\"img\" aria-label=\"success against " << escape(lines.front()->difficulty_measure) << " in "
+        << escape(family) << "\" width=\"" << fixed(kLeft + kPlot + 30 + kLegend) << "\" height=\"" << fixed(height)
+        << "\" xmlns=\"http://www.w3.org/2000/svg\">\n";
+    const auto y_of = [&](double rate) { return kTop + kHeight * (1 - rate); };
+    for (int tick = 0; tick <= 100; tick += 25)
+      out << "<line x1=\"" << fixed(kLeft) << "\" x2=\"" << fixed(kLeft + kPlot) << "\" y1=\"" << fixed(y_of(tick / 100.0))
+          << "\" y2=\"" << fixed(y_of(tick / 100.0)) << "\" stroke=\"#ddd\"/><text x=\"" << fixed(kLeft - 6) << "\" y=\""
+          << fixed(y_of(tick / 100.0) + 4) << "\" font-size=\"11\" text-anchor=\"end\" fill=\"#555\">" << tick << "%</text>\n";
+    for (size_t k = 0; k < bins.size(); ++k)
+      out << "<text x=\"" << fixed(kLeft + step * double(k)) << "\" y=\"" << fixed(kTop + kHeight + 16)
+          << "\" font-size=\"11\" text-anchor=\"middle\" fill=\"#555\">" << short_number(bins[k].low) << "–"
+          << short_number(bins[k].high) << "</text>\n";
+    out << "<text x=\"" << fixed(kLeft + kPlot / 2) << "\" y=\"" << fixed(kTop + kHeight + 34)
+        << "\" font-size=\"11\" text-anchor=\"middle\" fill=\"#555\">" << escape(lines.front()->difficulty_measure)
+        << (lines.front()->difficulty_measure == "clearance" ? " (m)" : " (rad)") << "</text>\n";
+    for (size_t i = 0; i < lines.size(); ++i) {
+      const char* colour = kColours[i % (sizeof kColours / sizeof kColours[0])];
+      std::string path;
+      for (size_t k = 0; k < lines[i]->by_difficulty.size(); ++k) {
+        const DifficultyBin& b = lines[i]->by_difficulty[k];
+        if (b.n == 0) continue;
+        path += (path.empty() ? "M" : "L") + fixed(kLeft + step * double(k)) + " " + fixed(y_of(double(b.successes) / double(b.n)));
+      }
+      out << "<path d=\"" << path << "\" stroke=\"" << colour << "\" stroke-width=\"2\" fill=\"none\"/>\n";
+      for (size_t k = 0; k < lines[i]->by_difficulty.size(); ++k) {
+        const DifficultyBin& b = lines[i]->by_difficulty[k];
+        if (b.n == 0) continue;
+        out << "<circle cx=\"" << fixed(kLeft + step * double(k)) << "\" cy=\"" << fixed(y_of(double(b.successes) / double(b.n)))
+            << "\" r=\"3\" fill=\"" << colour << "\"><title>" << escape(lines[i]->config_key) << ": " << b.successes << " of "
+            << b.n << "</title></circle>\n";
+      }
+      out << "<rect x=\"" << fixed(kLeft + kPlot + 30) << "\" y=\"" << fixed(kTop + 18.0 * double(i)) << "\" width=\"12\" height=\"3\" fill=\""
+          << colour << "\"/><text x=\"" << fixed(kLeft + kPlot + 48) << "\" y=\"" << fixed(kTop + 18.0 * double(i) + 5)
+          << "\" font-size=\"12\">" << escape(lines[i]->config_key) << "</text>\n";
+    }
+    out << "</svg>\n";
+  }
+}
+
 }  // namespace
 
 void write_report_html(std::ostream& out, const SweepReport& report) {
@@ -97,7 +160,9 @@ void write_report_html(std::ostream& out, const SweepReport& report) {
           << "</td><td class=\"n\">" << short_number(g.step_ratio_to_pinv) << "</td><td>"
           << escape(failure_modes_text(g)) << "</td></tr>\n";
     }
-    out << "</table>\n<h3>Which method when</h3>\n<p class=\"note\">Per family: the best configuration and every "
+    out << "</table>\n";
+    difficulty_charts(out, report, sweep);
+    out << "<h3>Which method when</h3>\n<p class=\"note\">Per family: the best configuration and every "
            "one whose success is not significantly below it (paired on the same cases, exact McNemar p &lt; 0.05), "
            "with step time.</p>\n<table><tr><th>family</th><th>configurations (success, step µs p50, × pinv)</th></tr>\n";
     for (const FamilyVerdict& v : report.verdicts) {

@@ -15,7 +15,10 @@ nlohmann::json tally(const WinLossTie& t) { return {{"wins", t.wins}, {"losses",
 nlohmann::json report_json(const SweepReport& report) {
   nlohmann::json groups = nlohmann::json::array(), pairs = nlohmann::json::array(),
                  ranking = nlohmann::json::array();
-  for (const GroupStats& g : report.groups)
+  for (const GroupStats& g : report.groups) {
+    nlohmann::json bins = nlohmann::json::array();
+    for (const DifficultyBin& b : g.by_difficulty)
+      bins.push_back({{"low", number(b.low)}, {"high", number(b.high)}, {"n", b.n}, {"successes", b.successes}});
     groups.push_back({{"sweep", g.sweep},
                       {"config", g.config_key},
                       {"family", g.family},
@@ -31,7 +34,10 @@ nlohmann::json report_json(const SweepReport& report) {
                       {"step_us_p50", number(g.step_us_p50)},
                       {"step_us_p99", number(g.step_us_p99)},
                       {"step_ratio_to_pinv", number(g.step_ratio_to_pinv)},
-                      {"failure_modes", g.failure_modes}});
+                      {"failure_modes", g.failure_modes},
+                      {"difficulty", {{"measure", g.difficulty_measure.empty() ? nlohmann::json() : nlohmann::json(g.difficulty_measure)},
+                                      {"bins", bins}}}});
+  }
   for (const PairedComparison& p : report.pairs)
     pairs.push_back({{"sweep", p.sweep},
                      {"a", p.a},

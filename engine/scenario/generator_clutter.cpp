@@ -1,7 +1,9 @@
 #include "scenario/generator_clutter.hpp"
 
 #include <algorithm>
+#include <limits>
 
+#include "collision/segment_geometry.hpp"
 #include "scenario/scenario.hpp"
 #include "sim/simulator.hpp"
 
@@ -45,17 +47,21 @@ std::optional<nlohmann::json> ball_on_pinv(const ArmSweep& pinv, const ArmSweep&
                                            Rng& rng, int candidates) {
   const std::vector<size_t> straying = straying_capsules(pinv, witness);
   if (straying.empty()) return std::nullopt;
-  Obstacle point;
-  point.shape = ShapeKind::point;
+  // room for a ball at c: the witness arm's least distance from c over every
+  // step (a linear scan: cheaper for a point than sweep_clearance's ordering)
+  const auto room_at = [&](const Eigen::Vector3d& c) {
+    double least = std::numeric_limits<double>::infinity();
+    for (const CapsuleSegment& s : witness.capsules)
+      least = std::min(least, (collision::closest_point_on_segment(s.a, s.b, c) - c).norm() - s.radius);
+    return least - clearance;
+  };
   double best = -1;
   Eigen::Vector3d best_centre = Eigen::Vector3d::Zero();
   for (int k = 0; k < candidates; ++k) {
     const CapsuleSegment& link = pinv.capsules[straying[rng.below(straying.size())]];
     Eigen::Vector3d centre = link.a + rng.uniform() * (link.b - link.a);
     for (int i = 0; i < 3; ++i) centre[i] = rounded(centre[i], 1e-4);
-    point.position = point.position0 = centre;
-    // room for the ball: the witness arm's distance from its centre, less the clearance
-    const double room = sweep_clearance(witness, point) - clearance;
+    const double room = room_at(centre);
     if (room > best) best = room, best_centre = centre;
   }
   if (best < radius.min) return std::nullopt;

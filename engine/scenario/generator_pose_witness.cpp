@@ -48,7 +48,9 @@ std::vector<Eigen::VectorXd> follow_pose(const GeneratedArm& arm, const Eigen::V
   const TimeLaw law = options.time_law == "linear" ? TimeLaw::linear : TimeLaw::quintic;
   std::vector<Eigen::VectorXd> steps{q0};
   too_fast = false;
+  if (!q0.allFinite() || !std::isfinite(speed) || !(speed > 0)) return {};
   for (size_t i = 1; i < hand.size(); ++i) {
+    if (!hand[i].allFinite() || !hand[i - 1].allFinite()) return {};
     const long count = std::max(1L, long(std::ceil((hand[i] - hand[i - 1]).norm() / speed / options.dt - 1e-9)));
     if (long(steps.size()) + count > kMaxPoseWitnessSteps) return {};
     for (long k = 1; k <= count; ++k) {

@@ -74,8 +74,9 @@ GeneratedArm draw_urdf_arm(const std::vector<std::string>& arms, Rng& rng) {
   arm.robot = urdf_robot_json(text);
   arm.name = name;
   arm.reach = arm.model.reach();
-  const Eigen::VectorXd& lower = arm.model.limits.lower;
-  const Eigen::VectorXd& upper = arm.model.limits.upper;
+  // a continuous joint (Gen3's 1, 3, 5, 7) has no position limits: its box is one turn, ±π
+  const Eigen::VectorXd lower = arm.model.limits.lower.unaryExpr([](double v) { return std::isfinite(v) ? v : -M_PI; });
+  const Eigen::VectorXd upper = arm.model.limits.upper.unaryExpr([](double v) { return std::isfinite(v) ? v : M_PI; });
   arm.draw_lower = 0.5 * (lower + upper) - 0.5 * kUrdfDrawShare * (upper - lower);
   arm.draw_upper = 0.5 * (lower + upper) + 0.5 * kUrdfDrawShare * (upper - lower);
   arm.link_radius = arm.model.links.back().radius;

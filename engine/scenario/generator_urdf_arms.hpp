@@ -25,7 +25,8 @@ std::vector<std::string> urdf_arm_names();
 std::vector<std::string> read_urdf_arms(const GeneratorOptions& options);
 
 // One of `arms`, its model (parsed once per process), configurations drawn
-// within 0.9 of each joint's half range around the middle.
+// within 0.9 of each joint's half range around the middle (a continuous
+// joint's range taken as ±π).
 GeneratedArm draw_urdf_arm(const std::vector<std::string>& arms, Rng& rng);
 
 // How far a URDF family's start is drawn from the ready posture, per joint (rad).

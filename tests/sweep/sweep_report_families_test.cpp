@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "sweep/sweep_report.hpp"
+#include "sweep/sweep_report_html.hpp"
 #include "sweep/sweep_report_json.hpp"
 #include "sweep/sweep_report_text.hpp"
 #include "sweep/sweep_stats.hpp"
@@ -122,6 +123,44 @@ TEST(SweepReportFamilies, AnInsignificantDifferenceKeepsBothContenders) {
   EXPECT_EQ(r.verdicts[0].contenders.size(), 2u);  // y loses 2, wins 0: p = 0.5
   for (const GroupStats& g : r.groups) EXPECT_TRUE(std::isnan(g.step_ratio_to_pinv));  // no pinv
   EXPECT_EQ(r.groups[0].failure_modes.at("unrecorded"), 2u);
+}
+
+// Success against difficulty: 20 cases with clearances 0.01..0.20 m; "x"
+// fails the 8 narrowest. Quartile bins, shared by every configuration, in the
+// JSON report and drawn in the HTML one.
+TEST(SweepReportFamilies, SuccessAgainstDifficultyInQuartileBins) {
+  std::vector<storage::SweepRunEntry> runs;
+  std::int64_t id = 0;
+  for (int i = 0; i < 20; ++i)
+    for (const char* config : {"x", "y"}) {
+      storage::SweepRunEntry e;
+      const std::string scenario = "gen:fam:1:" + std::to_string(i);
+      const bool success = std::string(config) == "x" ? i >= 8 : true;
+      e.row = {"s", "s/" + scenario + "/" + config, scenario, config, "fam", success, std::nullopt, std::nullopt};
+      e.run_id = ++id;
+      e.summary_json = R"({"max_tracking_error": 0.001})";
+      e.difficulty_json = nlohmann::json{{"clearance", 0.01 * (i + 1)}, {"limit_margin", 0.5}}.dump();
+      runs.push_back(e);
+    }
+  const SweepReport r = build_report(runs);
+  const GroupStats& x = r.groups[0];
+  ASSERT_EQ(x.config_key, "x");
+  EXPECT_EQ(x.difficulty_measure, "clearance");  // obstacles: clearance, not the limit margin
+  ASSERT_EQ(x.by_difficulty.size(), 4u);
+  EXPECT_NEAR(x.by_difficulty[0].low, 0.01, 1e-12);
+  EXPECT_NEAR(x.by_difficulty[3].high, 0.20, 1e-12);
+  size_t n = 0;
+  for (const DifficultyBin& b : x.by_difficulty) n += b.n;
+  EXPECT_EQ(n, 20u);
+  EXPECT_EQ(x.by_difficulty[0].successes, 0u);                       // the narrowest quarter all fail
+  EXPECT_EQ(x.by_difficulty[3].successes, x.by_difficulty[3].n);     // the widest all pass
+  EXPECT_EQ(r.groups[1].by_difficulty[0].low, x.by_difficulty[0].low);  // the same bins for y
+  const nlohmann::json json = report_json(r);
+  EXPECT_EQ(json["groups"][0]["difficulty"]["measure"], "clearance");
+  EXPECT_EQ(json["groups"][0]["difficulty"]["bins"].size(), 4u);
+  std::ostringstream html;
+  write_report_html(html, r);
+  EXPECT_NE(html.str().find("aria-label=\"success against clearance in fam\""), std::string::npos);
 }
 
 }  // namespace
