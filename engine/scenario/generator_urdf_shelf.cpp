@@ -91,9 +91,11 @@ nlohmann::json generate_urdf_shelf(GeneratorCase& c) {
       const Eigen::Vector3d p = shelf.world({x, yy, zz});
       return Eigen::Vector3d(rounded(p.x(), 1e-4), rounded(p.y(), 1e-4), rounded(p.z(), 1e-4));
     };
+    // one draw per statement: the order of a call's arguments is up to the compiler
+    const double last_back = rng.uniform(0.0, 0.15), last_side = rng.uniform(-0.2, 0.2), last_up = rng.uniform(-0.15, 0.15);
     const std::vector<Eigen::Vector3d> points = {
         at(front - kShelfApproach, y, z), at(front + depth, y, z), at(front - kShelfApproach, y, z),
-        at(front - kShelfApproach - rng.uniform(0.0, 0.15), y + rng.uniform(-0.2, 0.2), z + rng.uniform(-0.15, 0.15))};
+        at(front - kShelfApproach - last_back, y + last_side, z + last_up)};
     const Eigen::VectorXd q0 = draw_ready_configuration(arm, kReadySpread, rng);
     std::optional<WitnessedArm> drawn = pose_witnessed_arm(std::move(arm), q0, points, path, rng);
     if (!drawn) continue;

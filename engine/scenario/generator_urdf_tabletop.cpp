@@ -62,8 +62,11 @@ struct TabletopOptions {
 std::optional<std::vector<Eigen::Vector3d>> draw_table_points(const FloorFrame& table, double top, int count, Rng& rng) {
   std::vector<Eigen::Vector3d> points;
   for (int tries = 0; tries < 100 && int(points.size()) < count; ++tries) {
-    const Eigen::Vector3d local(rng.uniform(-0.4, 0.4) * kTableDepth, rng.uniform(-0.4, 0.4) * kTableWidth,
-                                top + rng.uniform(kHandAboveTable[0], kHandAboveTable[1]));
+    // one draw per statement: the order of a call's arguments is up to the compiler
+    const double along = rng.uniform(-0.4, 0.4) * kTableDepth;
+    const double across = rng.uniform(-0.4, 0.4) * kTableWidth;
+    const double above = rng.uniform(kHandAboveTable[0], kHandAboveTable[1]);
+    const Eigen::Vector3d local(along, across, top + above);
     const Eigen::Vector3d p = table.world(local);
     if (!points.empty() && (p - points.back()).norm() < kTablePointSpacing) continue;
     points.push_back({rounded(p.x(), 1e-4), rounded(p.y(), 1e-4), rounded(p.z(), 1e-4)});
@@ -124,14 +127,17 @@ nlohmann::json generate_urdf_tabletop(GeneratorCase& c) {
         height = std::min(height, hand.z() - top - drawn->arm.link_radius - o.clearance - 0.01);
         if (height < 0.01) return std::nullopt;
       } else {  // beside the hand's trace
-        const double a = r.uniform(0, 2 * M_PI), out = size + drawn->arm.link_radius + o.clearance * (1 + r.uniform()) + 0.05 * r.uniform();
+        const double a = r.uniform(0, 2 * M_PI);
+        const double extra_clearance = r.uniform(), extra = r.uniform();
+        const double out = size + drawn->arm.link_radius + o.clearance * (1 + extra_clearance) + 0.05 * extra;
         at += out * Eigen::Vector3d(std::cos(a), std::sin(a), 0);
       }
       if (std::abs(at.x()) > kTableDepth / 2 - size || std::abs(at.y()) > kTableWidth / 2 - size) return std::nullopt;
       const std::string id = shape + std::to_string(k + 1);
-      if (shape == "box")
-        return frame_box(id, frame, {at.x(), at.y(), top + height / 2},
-                         {2 * size, 2 * size * r.uniform(0.6, 1.4), height}, r.uniform(-M_PI / 4, M_PI / 4));
+      if (shape == "box") {
+        const double aspect = r.uniform(0.6, 1.4), turn = r.uniform(-M_PI / 4, M_PI / 4);
+        return frame_box(id, frame, {at.x(), at.y(), top + height / 2}, {2 * size, 2 * size * aspect, height}, turn);
+      }
       return frame_cylinder(id, frame, at, size, height);
     };
     const int count = o.objects.draw(rng) - (ball ? 1 : 0);
