@@ -74,6 +74,7 @@ void difficulty_charts(std::ostream& out, const SweepReport& report, const std::
   static const char* kColours[] = {"#4a7fb5", "#d9822b", "#3a9d5d", "#c23b3b", "#8e6bbf", "#8c6d46",
                                    "#d46fb0", "#6f6f6f", "#b5b531", "#2fb3c4", "#1f3b73", "#e0a100"};
   constexpr double kLeft = 50, kPlot = 420, kHeight = 200, kTop = 16, kLegend = 260;
+  constexpr double kGap = 70;  // between the plot and its legend: room for the last bin's label
   std::vector<std::string> families;
   for (const GroupStats& g : report.groups)
     if (g.sweep == sweep && !g.by_difficulty.empty() && std::find(families.begin(), families.end(), g.family) == families.end())
@@ -91,7 +92,7 @@ void difficulty_charts(std::ostream& out, const SweepReport& report, const std::
     const double step = bins.size() > 1 ? kPlot / double(bins.size() - 1) : 0;
     out << "<h4>" << escape(family) << " (" << escape(lines.front()->difficulty_measure) << ")</h4>\n"
         << "<svg role=\"img\" aria-label=\"success against " << escape(lines.front()->difficulty_measure) << " in "
-        << escape(family) << "\" width=\"" << fixed(kLeft + kPlot + 30 + kLegend) << "\" height=\"" << fixed(height)
+        << escape(family) << "\" width=\"" << fixed(kLeft + kPlot + kGap + kLegend) << "\" height=\"" << fixed(height)
         << "\" xmlns=\"http://www.w3.org/2000/svg\">\n";
     const auto y_of = [&](double rate) { return kTop + kHeight * (1 - rate); };
     for (int tick = 0; tick <= 100; tick += 25)
@@ -121,8 +122,8 @@ void difficulty_charts(std::ostream& out, const SweepReport& report, const std::
             << "\" r=\"3\" fill=\"" << colour << "\"><title>" << escape(lines[i]->config_key) << ": " << b.successes << " of "
             << b.n << "</title></circle>\n";
       }
-      out << "<rect x=\"" << fixed(kLeft + kPlot + 30) << "\" y=\"" << fixed(kTop + 18.0 * double(i)) << "\" width=\"12\" height=\"3\" fill=\""
-          << colour << "\"/><text x=\"" << fixed(kLeft + kPlot + 48) << "\" y=\"" << fixed(kTop + 18.0 * double(i) + 5)
+      out << "<rect x=\"" << fixed(kLeft + kPlot + kGap) << "\" y=\"" << fixed(kTop + 18.0 * double(i)) << "\" width=\"12\" height=\"3\" fill=\""
+          << colour << "\"/><text x=\"" << fixed(kLeft + kPlot + kGap + 18) << "\" y=\"" << fixed(kTop + 18.0 * double(i) + 5)
           << "\" font-size=\"12\">" << escape(lines[i]->config_key) << "</text>\n";
     }
     out << "</svg>\n";
