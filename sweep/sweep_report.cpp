@@ -121,9 +121,10 @@ constexpr int kDifficultyBins = 4;
 // the quartiles of the family's runs' measure, shared by its configurations.
 void difficulty_bins(const std::map<GroupKey, std::vector<const RunFacts*>>& groups, std::vector<GroupStats>& stats) {
   std::map<std::pair<std::string, std::string>, std::vector<const RunFacts*>> families;
-  for (const auto& [key, runs] : groups)
-    families[{std::get<0>(key), std::get<2>(key)}].insert(families[{std::get<0>(key), std::get<2>(key)}].end(),
-                                                          runs.begin(), runs.end());
+  for (const auto& [key, runs] : groups) {
+    std::vector<const RunFacts*>& family = families[{std::get<0>(key), std::get<2>(key)}];
+    family.insert(family.end(), runs.begin(), runs.end());
+  }
   for (const auto& [where, runs] : families) {
     const bool obstacles = std::any_of(runs.begin(), runs.end(), [](const RunFacts* f) { return std::isfinite(f->clearance); });
     const auto measure = [obstacles](const RunFacts* f) { return obstacles ? f->clearance : f->limit_margin; };

@@ -159,11 +159,11 @@ class DirectSearch final : public Method {
     double weights[kCriteria] = {p(kWJra), p(kWJvm), p(kWDm), p(kWObstacle)};
     if (rule_active_) weights[kJra] *= 0.8, weights[kJvm] *= 0.2;
     // DM (an eigen-decomposition per option) only where the selection weighs it
-    dm_for_feasible_ = weights[kDm] > 0;
+    const bool with_dm = weights[kDm] > 0;
 
     // 1. generate options (eq 1–6); when no option meets eq 5 within the
     // ranges and speeds, once more with the largest-determinant block (§3.1)
-    int feasible = generate_options(in);
+    int feasible = generate_options(in, with_dm);
     if (feasible == 0 && p(kBlockSwitch) > 0 && !alternatives_.empty()) {
       // the block must not hold a joint that its options pushed past a limit:
       // perturbed, such a joint keeps its value or moves by ±Δ
@@ -173,7 +173,7 @@ class DirectSearch final : public Method {
         for (int c = 0; c < block_count_; ++c) block_jacobian_.col(c) = in.task_jacobian.col(block_[c]);
         block_inverse_.factor_pinv(block_jacobian_);
         switched = true;
-        feasible = generate_options(in);
+        feasible = generate_options(in, with_dm);
       }
     }
     out.diag.values[block_sigma_diag_] = block_inverse_.sigma_min();
@@ -241,8 +241,8 @@ class DirectSearch final : public Method {
 
  private:
   // Eq 1–6 for every option with the current joint set; returns the number
-  // of feasible options.
-  int generate_options(const StepInput& in) {
+  // of feasible options. DM is computed for feasible options only with_dm.
+  int generate_options(const StepInput& in, bool with_dm) {
     const Eigen::VectorXd& q = in.state.q;
     const int count = option_count();
     max_iterations_used_ = 0;
@@ -297,7 +297,7 @@ class DirectSearch final : public Method {
       // criteria at θ^j (probe_ and jacobian_ hold its kinematics)
       criteria_(j, kJra) = (theta_ - centre_).cwiseAbs2().dot(inv_half_range_);
       criteria_(j, kJvm) = (theta_ - q).squaredNorm();
-      criteria_(j, kDm) = feasible_[j] && dm_for_feasible_ ? dexterity(jacobian_) : kNaN;
+      criteria_(j, kDm) = feasible_[j] && with_dm ? dexterity(jacobian_) : kNaN;
       criteria_(j, kObstacle) = -estimated_clearance(q);
     }
     return feasible;
@@ -500,7 +500,7 @@ class DirectSearch final : public Method {
   Eigen::Matrix3d target_orientation_ = Eigen::Matrix3d::Identity();
   int perturbed_[kMaxPerturbed] = {}, perturbed_count_ = 0;
   int block_[64] = {}, block_count_ = 0;
-  bool rule_active_ = false, has_distances_ = false, dm_for_feasible_ = true;
+  bool rule_active_ = false, has_distances_ = false;
   int links_with_distance_ = 0;
   int chosen_diag_[kCriteria], weight_diag_[kCriteria];
   int feasible_diag_, options_diag_, chosen_diag_index_, rule_diag_, current_dm_diag_, iterations_diag_,

@@ -6,6 +6,7 @@
 
 #include "kinematics/kinematics.hpp"
 #include "scenario/generator_case.hpp"
+#include "scenario/scenario.hpp"
 #include "task/task.hpp"
 #include "task/trajectory.hpp"
 #include "util/right_inverse.hpp"
@@ -25,12 +26,6 @@ constexpr long kMaxPoseWitnessSteps = 100'000;
 Eigen::Vector3d pose_rpy_of(const Eigen::Matrix3d& r) {
   const Eigen::Vector3d ypr = r.eulerAngles(2, 1, 0);
   return {ypr[2], ypr[1], ypr[0]};
-}
-
-Eigen::Matrix3d pose_rpy_rotation(const Eigen::Vector3d& rpy) {
-  return (Eigen::AngleAxisd(rpy.z(), Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(rpy.y(), Eigen::Vector3d::UnitY()) *
-          Eigen::AngleAxisd(rpy.x(), Eigen::Vector3d::UnitX()))
-      .toRotationMatrix();
 }
 
 // Every step's configuration along the hand's lines at `speed`; empty when
@@ -103,11 +98,10 @@ std::optional<GeneratedWitness> build_pose_witness(const GeneratedArm& arm, cons
   Eigen::Vector3d rpy = pose_rpy_of(kin.end_effector().linear());
   for (int k = 0; k < 3; ++k) rpy[k] = rounded(rpy[k], kSampleStep);
   w.orientation_rpy = rpy;
-  const Eigen::Matrix3d orientation = pose_rpy_rotation(rpy);
+  const Eigen::Matrix3d orientation = rpy_matrix({rpy.x(), rpy.y(), rpy.z()});  // as the task's parser reads it
   std::vector<Eigen::Vector3d> hand{kin.end_effector().translation()};
   hand.insert(hand.end(), points.begin(), points.end());
-  double speed = options.speed ? rounded(options.speed->draw(rng), 1e-3) : rounded(kDefaultSpeedPerReach * arm.reach, 1e-3);
-  speed = std::max(speed, 1e-3);
+  double speed = witness_speed(options, arm.reach, rng);
   // a self-motion of its own: the witness is not the minimum-norm motion
   const Eigen::VectorXd posture = draw_configuration(arm, rng);
   std::vector<Eigen::VectorXd> steps;

@@ -82,13 +82,17 @@ void sample(const Model& model, const SmoothWitness& smooth_at, long steps, long
 
 }  // namespace
 
+double witness_speed(const PathOptions& options, double reach, Rng& rng) {
+  const double speed = options.speed ? rounded(options.speed->draw(rng), 1e-3) : rounded(kDefaultSpeedPerReach * reach, 1e-3);
+  return std::max(speed, 1e-3);
+}
+
 std::optional<GeneratedWitness> build_witness(const Model& model, const std::vector<Eigen::VectorXd>& configurations,
                                               const PathOptions& options, double reach, TaskSpace space, Rng& rng) {
   GeneratedWitness w;
   w.step_dt = options.dt;
   w.time_law = options.time_law;
-  w.speed = options.speed ? rounded(options.speed->draw(rng), 1e-3) : rounded(kDefaultSpeedPerReach * reach, 1e-3);
-  w.speed = std::max(w.speed, 1e-3);
+  w.speed = witness_speed(options, reach, rng);
   Segments segments;
   segments.law = options.time_law == "linear" ? TimeLaw::linear : TimeLaw::quintic;
   const double peak = segments.law == TimeLaw::linear ? 1.0 : kQuinticPeak;

@@ -61,6 +61,10 @@ struct GeneratedWitness {
 std::optional<GeneratedWitness> build_witness(const Model& model, const std::vector<Eigen::VectorXd>& configurations,
                                               const PathOptions& options, double reach, TaskSpace space, Rng& rng);
 
+// The hand speed a witness is timed by: drawn from the options' `speed`, or
+// kDefaultSpeedPerReach × reach; rounded to 1 mm/s, at least that.
+double witness_speed(const PathOptions& options, double reach, Rng& rng);
+
 // The witness's configuration at a step of its smooth trajectory (before sampling).
 using SmoothWitness = std::function<void(long step, Eigen::VectorXd& q)>;
 

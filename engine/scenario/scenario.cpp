@@ -20,6 +20,13 @@
 
 namespace rrlab {
 
+Eigen::Matrix3d rpy_matrix(const std::vector<double>& rpy, double scale) {
+  return (Eigen::AngleAxisd(rpy[2] * scale, Eigen::Vector3d::UnitZ()) *
+          Eigen::AngleAxisd(rpy[1] * scale, Eigen::Vector3d::UnitY()) *
+          Eigen::AngleAxisd(rpy[0] * scale, Eigen::Vector3d::UnitX()))
+      .toRotationMatrix();
+}
+
 namespace {
 
 using nlohmann::json;
@@ -32,12 +39,6 @@ Eigen::Vector3d to_vec3(const std::vector<double>& v) {
   return {v[0], v[1], v.size() > 2 ? v[2] : 0.0};
 }
 
-Eigen::Matrix3d rpy_matrix(const std::vector<double>& rpy, double scale) {
-  return (Eigen::AngleAxisd(rpy[2] * scale, Eigen::Vector3d::UnitZ()) *
-          Eigen::AngleAxisd(rpy[1] * scale, Eigen::Vector3d::UnitY()) *
-          Eigen::AngleAxisd(rpy[0] * scale, Eigen::Vector3d::UnitX()))
-      .toRotationMatrix();
-}
 
 // Every number read below is checked against PhysicalBounds in the file's units.
 void check_all(const std::vector<double>& values, const std::string& path, const Quantity& q, const Units& units) {

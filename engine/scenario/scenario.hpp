@@ -78,6 +78,10 @@ Scenario load_scenario_file(const std::string& file);
 // the URDF "file" of a scenario without a directory of its own (sent over
 // REST, stored, re-simulated) is resolved. Empty until set: such a scenario
 // must then carry its URDF inline ("urdf").
+// The rotation a scenario's [r, p, y] describes (angles times `scale`, the
+// radians per file unit): Rz(y) Ry(p) Rx(r).
+Eigen::Matrix3d rpy_matrix(const std::vector<double>& rpy, double scale = 1.0);
+
 void set_scenario_catalogue_dir(const std::string& dir);
 std::string scenario_catalogue_dir();
 // A JSON file (`what` names it in errors: "scenario file", "sweep spec"):
