@@ -59,7 +59,9 @@ struct SweepOptions {
 };
 
 struct GenerateOptions {
-  std::string family;
+  std::string family;                         // or, with `perturb`, empty
+  std::string perturb;                        // a scenario file or catalogue name: its perturbation family
+  std::optional<std::string> scenarios_dir;   // the catalogue (perturb)
   std::uint64_t seed = 1;
   int count = 1, first = 0;
   std::vector<std::string> options;  // KEY=VALUE, VALUE as JSON where it parses

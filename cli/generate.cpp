@@ -1,30 +1,54 @@
 // rrlab generate FAMILY --seed S --count N [--first I] [--option KEY=VALUE ...] --out DIR:
 // the cases a sweep entry {"generator": FAMILY, "seed": S, "count": N, KEY: VALUE}
 // runs, as scenario files DIR/FAMILY-INDEX.json (witness included).
+// rrlab generate --perturb SCENARIO ... likewise writes the cases of a sweep
+// entry {"perturb": SCENARIO, ...} as DIR/NAME-pINDEX.json; a dotted KEY
+// (obstacles.shift=0.03) sets a key of an object option.
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 
 #include "cli.hpp"
 #include "scenario/generators.hpp"
+#include "scenario/perturbation.hpp"
 #include "scenario/scenario.hpp"
+#include "sweep/sweep_spec.hpp"
 #include "util/nesting_depth.hpp"
 
 namespace rrlab::cli {
 
 namespace {
 
-// KEY=VALUE: VALUE as JSON (numbers, [min, max], arrays of names), else as a string.
+// KEY=VALUE: VALUE as JSON (numbers, [min, max], arrays of names), else as a
+// string; KEY may be dotted (a.b: key b of object option a).
 void add_option(nlohmann::json& options, const std::string& text) {
   const size_t eq = text.find('=');
   if (eq == std::string::npos || eq == 0)
     throw ScenarioError("--option", "expects KEY=VALUE, got '" + text + "'");
   const std::string key = text.substr(0, eq), value = text.substr(eq + 1);
-  try {
-    options[key] = parse_json(value);
-  } catch (const std::exception&) {
-    options[key] = value;
+  nlohmann::json* at = &options;
+  size_t from = 0;
+  for (size_t dot; (dot = key.find('.', from)) != std::string::npos; from = dot + 1) {
+    nlohmann::json& next = (*at)[key.substr(from, dot - from)];
+    if (next.is_null()) next = nlohmann::json::object();
+    if (!next.is_object()) throw ScenarioError("--option", "'" + key + "': " + key.substr(0, dot) + " is not an object");
+    at = &next;
   }
+  try {
+    (*at)[key.substr(from)] = parse_json(value);
+  } catch (const std::exception&) {
+    (*at)[key.substr(from)] = value;
+  }
+}
+
+// The perturbation entry the options describe, read as a sweep reads it.
+sweep::ScenarioEntry perturbation_entry(const GenerateOptions& options, const nlohmann::json& keys) {
+  nlohmann::json entry = keys;
+  entry["perturb"] = options.perturb;
+  entry["count"] = options.count;
+  entry["seed"] = options.seed;
+  const std::string scenarios = find_dir(options.scenarios_dir, "scenarios");
+  return sweep::parse_scenario_entry(entry, "--perturb", {".", scenarios});
 }
 
 }  // namespace
@@ -33,6 +57,12 @@ int generate(const GenerateOptions& options) {
   try {
     nlohmann::json family_options = nlohmann::json::object();
     for (const std::string& text : options.options) add_option(family_options, text);
+    if (options.family.empty() == options.perturb.empty()) {
+      std::cerr << "rrlab: error: generate needs a FAMILY or --perturb SCENARIO (one of them)\n";
+      return 2;
+    }
+    std::optional<sweep::ScenarioEntry> perturbed;
+    if (!options.perturb.empty()) perturbed = perturbation_entry(options, family_options);
     std::error_code error;
     std::filesystem::create_directories(options.out_dir, error);
     if (error) {
@@ -41,8 +71,11 @@ int generate(const GenerateOptions& options) {
     }
     for (int i = 0; i < options.count; ++i) {
       const int index = options.first + i;
-      const nlohmann::json doc = generate_scenario(options.family, family_options, options.seed, index);
-      parse_scenario(doc);  // what a run of the file will read
+      const nlohmann::json doc =
+          perturbed ? perturb_scenario(perturbed->scenario->json, perturbed->dir, perturbed->name, perturbed->perturbation,
+                                       options.seed, index)
+                    : generate_scenario(options.family, family_options, options.seed, index);
+      parse_scenario(doc, perturbed ? perturbed->dir : std::string());  // what a run of the file will read
       const std::filesystem::path file =
           std::filesystem::path(options.out_dir) / (doc["name"].get<std::string>() + ".json");
       std::ofstream out(file);

@@ -116,14 +116,20 @@ int main(int argc, char** argv) {
   rrlab::cli::GenerateOptions generate;
   CLI::App* generate_cmd =
       app.add_subcommand("generate", "write a generated family's cases (with their witnesses) as scenario files");
-  generate_cmd->add_option("family", generate.family, "planar_clutter, planar_limits, narrow_passage, spatial_clutter or moving_obstacles")
-      ->required();
+  generate_cmd->add_option("family", generate.family,
+                           "planar_clutter, planar_limits, narrow_passage, spatial_clutter, moving_obstacles, "
+                           "urdf_tabletop or urdf_shelf (or --perturb)");
+  generate_cmd->add_option("--perturb", generate.perturb,
+                           "instead of a family: the perturbation family of this scenario (catalogue name or .json "
+                           "path); --option obstacles.shift=M, obstacles.rotate_deg=D, speed=[MIN,MAX], "
+                           "q0_self_motion=RAD, path.shift=M");
+  generate_cmd->add_option("--scenarios", generate.scenarios_dir, "directory of catalogue scenarios (NAME.json)");
   generate_cmd->add_option("--seed", generate.seed, "the family's seed (as a sweep entry's \"seed\")");
   generate_cmd->add_option("--count", generate.count, "cases to write")->check(CLI::Range(1, 1000000));
   generate_cmd->add_option("--first", generate.first, "index of the first case (default 0)")
       ->check(CLI::Range(0, 1000000000));
   generate_cmd->add_option("--option", generate.options, "family option KEY=VALUE, VALUE as JSON (repeatable)");
-  generate_cmd->add_option("--out", generate.out_dir, "directory to write FAMILY-INDEX.json files into")->required();
+  generate_cmd->add_option("--out", generate.out_dir, "directory to write FAMILY-INDEX.json (NAME-pINDEX.json) files into")->required();
 
   rrlab::cli::MergeOptions merge;
   CLI::App* merge_cmd = app.add_subcommand("merge", "merge shard databases' sweep runs into one database");

@@ -4,6 +4,7 @@
 #include <mutex>
 
 #include "scenario/generators.hpp"
+#include "scenario/perturbation.hpp"
 #include "sim/recorder.hpp"
 #include "sim/simulator.hpp"
 #include "storage/frame_codec.hpp"
@@ -39,7 +40,7 @@ std::shared_ptr<const Scenario> generated_case(const ScenarioEntry& entry, int i
   constexpr size_t kKept = 16;
   static std::mutex mutex;
   static std::deque<std::pair<std::string, std::shared_ptr<const Scenario>>> kept;
-  const std::string key = entry.family + '\n' + entry.options.dump() + '\n' + std::to_string(entry.seed) + '\n' +
+  const std::string key = entry.family + '\n' + entry.dir + '\n' + entry.options.dump() + '\n' + std::to_string(entry.seed) + '\n' +
                           std::to_string(index);
   {
     std::lock_guard lock(mutex);
@@ -47,7 +48,10 @@ std::shared_ptr<const Scenario> generated_case(const ScenarioEntry& entry, int i
       if (k == key) return scenario;
   }
   auto made = std::make_shared<const Scenario>(
-      parse_scenario(generate_scenario(entry.family, entry.options, entry.seed, index)));
+      entry.perturbs()
+          ? parse_scenario(perturb_scenario(entry.scenario->json, entry.dir, entry.name, entry.perturbation, entry.seed, index),
+                           entry.dir)
+          : parse_scenario(generate_scenario(entry.family, entry.options, entry.seed, index)));
   std::lock_guard lock(mutex);
   kept.emplace_back(key, made);
   if (kept.size() > kKept) kept.pop_front();

@@ -34,6 +34,15 @@ std::string bare_message(const ScenarioError& e) {
   return e.path().empty() ? what : what.substr(e.path().size() + 2);
 }
 
+// Each entry's count, an integer in [1, kMaxCount].
+int entry_count(JsonObject& object) {
+  const double count = object.number("count");
+  // the range first: casting a double beyond long is undefined behaviour
+  if (!(count >= 1 && count <= kMaxCount) || count != double(long(count)))
+    throw ScenarioError(object.child("count"), "must be an integer in [1, " + std::to_string(kMaxCount) + "]");
+  return int(count);
+}
+
 ScenarioEntry file_entry(const std::string& text, const std::string& path, const SpecDirs& dirs) {
   ScenarioEntry entry;
   entry.family = "file";
@@ -52,6 +61,7 @@ ScenarioEntry file_entry(const std::string& text, const std::string& path, const
   if (!std::filesystem::is_regular_file(file, ec))
     throw ScenarioError(path, is_path ? "no scenario file '" + file.string() + "'"
                                       : "no catalogue scenario '" + text + "' (" + file.string() + ")");
+  entry.dir = file.parent_path().string();
   try {
     entry.scenario = load_scenario_file(file.string());
   } catch (const ScenarioError& e) {
@@ -70,11 +80,7 @@ ScenarioEntry generator_entry(const nlohmann::json& value, const std::string& pa
     for (const std::string& f : families) known += (known.empty() ? "" : ", ") + f;
     throw ScenarioError(object.child("generator"), "unknown family \"" + entry.family + "\" (known: " + known + ")");
   }
-  const double count = object.number("count");
-  // the range first: casting a double beyond long is undefined behaviour
-  if (!(count >= 1 && count <= kMaxCount) || count != double(long(count)))
-    throw ScenarioError(object.child("count"), "must be an integer in [1, " + std::to_string(kMaxCount) + "]");
-  entry.count = int(count);
+  entry.count = entry_count(object);
   entry.seed = object.has("seed") ? non_negative_integer(object.raw("seed"), object.child("seed")) : 1;
   entry.name = entry.family;
   for (auto it = value.begin(); it != value.end(); ++it)
@@ -89,6 +95,20 @@ ScenarioEntry generator_entry(const nlohmann::json& value, const std::string& pa
     const std::string message = bare_message(e);
     throw ScenarioError(at.empty() ? path : path + "." + at, message);
   }
+  return entry;
+}
+
+// {"perturb": SCENARIO, "count", "seed", "obstacles", "speed", "q0_self_motion", "path"}
+ScenarioEntry perturb_entry(const nlohmann::json& value, const std::string& path, const SpecDirs& dirs) {
+  JsonObject object(value, path);
+  object.check_keys({"perturb", "count", "seed", "obstacles", "speed", "q0_self_motion", "path"});
+  ScenarioEntry entry = file_entry(object.string("perturb"), object.child("perturb"), dirs);
+  entry.family = "perturb:" + entry.name;
+  entry.count = entry_count(object);
+  entry.seed = object.has("seed") ? non_negative_integer(object.raw("seed"), object.child("seed")) : 1;
+  for (auto it = value.begin(); it != value.end(); ++it)
+    if (it.key() != "perturb" && it.key() != "count" && it.key() != "seed") entry.options[it.key()] = it.value();
+  entry.perturbation = parse_perturbation_options(value, path);
   return entry;
 }
 
@@ -119,6 +139,7 @@ void check_configs_on_files(const SweepSpec& spec) {
 
 std::string ScenarioEntry::case_key(int index) const {
   if (!generated()) return "file:" + name;
+  if (perturbs()) return family + ":" + std::to_string(seed) + ":" + std::to_string(index);
   return "gen:" + family + ":" + std::to_string(seed) + ":" + std::to_string(index);
 }
 
@@ -127,6 +148,14 @@ bool is_plain_name(const std::string& name) {
   for (char c : name)
     if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '.' || c == '-')) return false;
   return true;
+}
+
+ScenarioEntry parse_scenario_entry(const nlohmann::json& value, const std::string& path, const SpecDirs& dirs) {
+  if (value.is_string()) return file_entry(value.get<std::string>(), path, dirs);
+  if (value.is_object() && value.contains("perturb")) return perturb_entry(value, path, dirs);
+  if (value.is_object()) return generator_entry(value, path);
+  throw ScenarioError(path, "must be a path, a catalogue name, {\"generator\", ...} or {\"perturb\", ...}, got " +
+                                json_type_name(value));
 }
 
 SweepSpec parse_sweep_spec(const nlohmann::json& doc, const SpecDirs& dirs) {
@@ -143,12 +172,11 @@ SweepSpec parse_sweep_spec(const nlohmann::json& doc, const SpecDirs& dirs) {
   for (size_t i = 0; i < scenarios.size(); ++i) {
     const std::string path = index_path("scenarios", i);
     const nlohmann::json& value = scenarios[i];
-    if (value.is_string()) spec.scenarios.push_back(file_entry(value.get<std::string>(), path, dirs));
-    else if (value.is_object()) spec.scenarios.push_back(generator_entry(value, path));
-    else throw ScenarioError(path, "must be a path, a catalogue name or {\"generator\", ...}, got " + json_type_name(value));
+    spec.scenarios.push_back(parse_scenario_entry(value, path, dirs));
     const ScenarioEntry& entry = spec.scenarios.back();
-    const std::string identity = entry.generated() ? "gen:" + entry.family + ":" + std::to_string(entry.seed)
-                                                   : entry.case_key(0);
+    const std::string identity = entry.perturbs()    ? entry.family + ":" + std::to_string(entry.seed)
+                                 : entry.generated() ? "gen:" + entry.family + ":" + std::to_string(entry.seed)
+                                                     : entry.case_key(0);
     const auto [it, fresh] = seen.emplace(identity, i);
     if (!fresh)
       throw ScenarioError(path, "gives the same case keys (" + identity + ") as " + index_path("scenarios", it->second) +

@@ -2,7 +2,8 @@
 // what counts as success.
 //   {"name": "NAME",
 //    "scenarios": ["path/relative/to/spec.json" | "CATALOGUE_NAME" |
-//                  {"generator": FAMILY, "count": N, "seed": S, ...options}],
+//                  {"generator": FAMILY, "count": N, "seed": S, ...options} |
+//                  {"perturb": SCENARIO, "count": N, "seed": S, ...perturbations}],
 //    "methods": ["NAME" | {"name": "NAME", "params": {PARAM: value | [values]}}],
 //    "seeds": [S, ...],            optional: default each scenario's own seed
 //    "success": {...},             success_criteria.hpp
@@ -19,22 +20,28 @@
 #include <vector>
 
 #include "sweep/method_grid.hpp"
+#include "scenario/perturbation.hpp"
 #include "scenario/scenario.hpp"
 #include "sweep/success_criteria.hpp"
 
 namespace rrlab::sweep {
 
-// One entry of "scenarios": a scenario file (one case) or a generator (count cases).
+// One entry of "scenarios": a scenario file (one case), a generator (count
+// cases) or a perturbation family of a scenario file (count cases,
+// scenario/perturbation.hpp).
 struct ScenarioEntry {
-  std::string family;                // "file", or the generator family
-  std::string name;                  // file: catalogue name or file stem
-  std::optional<Scenario> scenario;  // file: parsed when the spec is read
-  nlohmann::json options = nlohmann::json::object();  // generator options
-  std::uint64_t seed = 0;            // generator seed
+  std::string family;                // "file", the generator family, or "perturb:NAME"
+  std::string name;                  // file, perturb: catalogue name or file stem
+  std::optional<Scenario> scenario;  // file, perturb: the file's, parsed when the spec is read
+  std::string dir;                   // file, perturb: the directory the file's URDF and meshes resolve in
+  nlohmann::json options = nlohmann::json::object();  // generator options; perturb: the entry's perturbation keys
+  PerturbationOptions perturbation;  // perturb
+  std::uint64_t seed = 0;            // generator and perturb seed
   int count = 1;                     // cases
 
   bool generated() const { return family != "file"; }
-  // file:NAME, or gen:FAMILY:SEED:INDEX
+  bool perturbs() const { return family.starts_with("perturb:"); }
+  // file:NAME, gen:FAMILY:SEED:INDEX, or perturb:NAME:SEED:INDEX
   std::string case_key(int index) const;
 };
 
@@ -54,6 +61,8 @@ struct SpecDirs {
 };
 
 SweepSpec parse_sweep_spec(const nlohmann::json& doc, const SpecDirs& dirs);
+// One entry of "scenarios" (`path` names it in errors).
+ScenarioEntry parse_scenario_entry(const nlohmann::json& value, const std::string& path, const SpecDirs& dirs);
 SweepSpec load_sweep_spec(const std::string& file, const std::filesystem::path& scenarios_dir);
 
 // A sweep or catalogue name: [A-Za-z0-9_.-]{1,64}.

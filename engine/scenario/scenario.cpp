@@ -539,7 +539,7 @@ std::string scenario_catalogue_dir() {
 Scenario parse_scenario(const json& doc, const std::string& dir) {
   JsonObject root(doc, "");
   root.check_keys({"name", "description", "source", "dt", "duration", "angle_unit", "seed", "robot",
-                   "obstacles", "task", "method", "witness"});
+                   "obstacles", "task", "method", "witness", "perturbation"});
   Scenario sc;
   sc.json = doc;
   sc.name = root.string("name", "unnamed");
@@ -568,6 +568,7 @@ Scenario parse_scenario(const json& doc, const std::string& dir) {
   if (root.has("obstacles")) parse_obstacles(root.raw("obstacles"), "obstacles", units, dir, sc);
   parse_task(root.object("task"), units, sc);
   if (root.has("witness")) parse_witness(root.object("witness"), units, sc);
+  if (root.has("perturbation")) root.object("perturbation");  // a record of how the case was drawn (perturbation.hpp)
   if (root.has("method")) {
     parse_method(root.object("method"), sc);
   } else {

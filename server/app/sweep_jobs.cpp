@@ -32,12 +32,14 @@ void refuse_paths(const json& spec) {
   if (!spec.is_object() || !spec.contains("scenarios") || !spec["scenarios"].is_array()) return;
   const json& list = spec["scenarios"];
   for (size_t i = 0; i < list.size(); ++i) {
-    if (!list[i].is_string()) continue;
-    const std::string name = list[i].get<std::string>();
+    // a scenario entry, or the scenario a perturbation family perturbs
+    const bool perturbs = list[i].is_object() && list[i].contains("perturb") && list[i]["perturb"].is_string();
+    if (!list[i].is_string() && !perturbs) continue;
+    const std::string name = perturbs ? list[i]["perturb"].get<std::string>() : list[i].get<std::string>();
     if (!sweep::is_plain_name(name) || name.ends_with(".json"))
       throw ApiError(422, "invalid",
                      "over REST a sweep names catalogue scenarios or generators, not files: '" + name + "'",
-                     "scenarios[" + std::to_string(i) + "]");
+                     "scenarios[" + std::to_string(i) + "]" + (perturbs ? ".perturb" : ""));
   }
 }
 

@@ -8,6 +8,8 @@
 
 #include "rrlab_command.hpp"
 #include "scenario/generators.hpp"
+#include "scenario/perturbation.hpp"
+#include "scenario/scenario.hpp"
 
 namespace {
 
@@ -34,6 +36,34 @@ TEST(CliGenerate, WritesTheSweepsCasesAndTheirWitnessesPlayBack) {
     EXPECT_LT(summary["max_tracking_error"].get<double>(), 5e-4);
     EXPECT_GE(summary["min_distance"].get<double>(), doc["witness"]["difficulty"]["clearance"].get<double>() - 1e-6);
   }
+  std::filesystem::remove_all(dir);
+}
+
+TEST(CliGenerate, WritesAPerturbationFamilysCasesAsTheSweepMakesThem) {
+  const auto dir = std::filesystem::temp_directory_path() / "rrlab_cli_perturb_test";
+  std::filesystem::remove_all(dir);
+  const rrlab::testing::CliRun made = rrlab::testing::run_cli(
+      "generate --perturb 22_kapoor_square_circle --seed 2 --count 2 --option obstacles.shift=0.03 "
+      "--option speed=[0.8,1.25] --option q0_self_motion=0.2 --option path.shift=0.02 --out " + dir.string());
+  ASSERT_EQ(made.code, 0) << made.err;
+  const std::string catalogue = std::string(RRLAB_SOURCE_DIR) + "/scenarios";
+  const json base = rrlab::read_json_file(catalogue + "/22_kapoor_square_circle.json", "scenario");
+  const rrlab::PerturbationOptions options = rrlab::parse_perturbation_options(
+      json::parse(R"({"obstacles": {"shift": 0.03}, "speed": [0.8, 1.25], "q0_self_motion": 0.2, "path": {"shift": 0.02}})"), "");
+  for (int index : {0, 1}) {
+    const json expected = rrlab::perturb_scenario(base, catalogue, "22_kapoor_square_circle", options, 2, index);
+    const auto file = dir / (expected["name"].get<std::string>() + ".json");
+    EXPECT_EQ(json::parse(std::ifstream(file)), expected);
+    const rrlab::testing::CliRun ran = rrlab::testing::run_cli("run " + file.string() + " --method dls");
+    EXPECT_EQ(ran.code, 0) << ran.err;
+  }
+  const rrlab::testing::CliRun neither = rrlab::testing::run_cli("generate --out " + dir.string());
+  EXPECT_EQ(neither.code, 2);
+  EXPECT_NE(neither.err.find("FAMILY or --perturb"), std::string::npos) << neither.err;
+  const rrlab::testing::CliRun bad = rrlab::testing::run_cli(
+      "generate --perturb 22_kapoor_square_circle --option obstacles.shift=-1 --out " + dir.string());
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find("obstacles.shift"), std::string::npos) << bad.err;
   std::filesystem::remove_all(dir);
 }
 

@@ -103,6 +103,13 @@ TEST_F(SweepRoutes, BadSpecsAreNamedByTheirPath) {
   r = send("POST", "/api/sweeps", file);
   EXPECT_EQ(r.status, 422);
   EXPECT_EQ(r.json()["error"]["path"], "scenarios[1]") << r.body;
+  // nor through a perturbation family: only a catalogue scenario is perturbed over REST
+  file["scenarios"][1] = json{{"perturb", "../scenarios/01_planar7_obstacles.json"}, {"count", 2}};
+  r = send("POST", "/api/sweeps", file);
+  EXPECT_EQ(r.status, 422);
+  EXPECT_EQ(r.json()["error"]["path"], "scenarios[1].perturb") << r.body;
+  file["scenarios"][1] = json{{"perturb", "/etc/hostname"}, {"count", 2}};
+  EXPECT_EQ(send("POST", "/api/sweeps", file).status, 422);
 
   json huge = spec("rest-huge", 1);
   huge["scenarios"][0]["count"] = 1000000;

@@ -61,6 +61,28 @@ TEST(SweepSpec, PathsAreRelativeToTheSpecFile) {
   EXPECT_EQ(spec.scenarios[0].case_key(0), "file:mine");
 }
 
+TEST(SweepSpec, APerturbEntryIsAFamilyOfItsScenario) {
+  json doc = small_spec();
+  doc["scenarios"] = json::parse(R"([{"perturb": "10_sezgin_ex1_lshape", "count": 3, "seed": 7,
+                                      "obstacles": {"shift": 0.03, "rotate_deg": 5}, "speed": [0.5, 2],
+                                      "q0_self_motion": 0.3, "path": {"shift": 0.02}}])");
+  const SweepSpec spec = parse_spec(doc);
+  ASSERT_EQ(spec.scenarios.size(), 1u);
+  const ScenarioEntry& entry = spec.scenarios[0];
+  EXPECT_TRUE(entry.perturbs());
+  EXPECT_EQ(entry.family, "perturb:10_sezgin_ex1_lshape");
+  EXPECT_EQ(entry.case_key(2), "perturb:10_sezgin_ex1_lshape:7:2");
+  EXPECT_EQ(entry.count, 3);
+  EXPECT_EQ(entry.perturbation.obstacle_shift, 0.03);
+  EXPECT_EQ(entry.perturbation.speed_max, 2.0);
+  EXPECT_EQ(entry.perturbation.path_shift, 0.02);
+  // the same base with another seed is another family of cases; with the same seed, a repeat
+  doc["scenarios"].push_back(doc["scenarios"][0]);
+  expect_error(doc, "scenarios[1]: gives the same case keys (perturb:10_sezgin_ex1_lshape:7)");
+  doc["scenarios"][1]["seed"] = 8;
+  EXPECT_EQ(parse_spec(doc).scenarios.size(), 2u);
+}
+
 TEST(SweepSpec, ErrorsNameTheJsonPath) {
   const auto with = [](const std::string& key, const json& value) {
     json doc = small_spec();
@@ -78,6 +100,12 @@ TEST(SweepSpec, ErrorsNameTheJsonPath) {
   expect_error(with("methods", json::array()), "methods: must list");
   expect_error(with("scenarios", json::parse(R"(["01_planar7_obstacles", "nope"])")), "scenarios[1]: no catalogue scenario 'nope'");
   expect_error(with("scenarios", json::parse(R"(["missing/file.json"])")), "scenarios[0]: no scenario file");
+  expect_error(with("scenarios", json::parse(R"([{"perturb": "nope", "count": 2}])")),
+               "scenarios[0].perturb: no catalogue scenario 'nope'");
+  expect_error(with("scenarios", json::parse(R"([{"perturb": "01_planar7_obstacles", "count": 2, "speed": [3, 1]}])")),
+               "scenarios[0].speed: must be [min, max]");
+  expect_error(with("scenarios", json::parse(R"([{"perturb": "01_planar7_obstacles", "count": 2, "shift": 1}])")),
+               "scenarios[0].shift: unknown key (allowed here: perturb, count, seed, obstacles, speed, q0_self_motion, path)");
   expect_error(with("scenarios", json::parse(R"(["01_planar7_obstacles", "01_planar7_obstacles"])")),
                "scenarios[1]: gives the same case keys (file:01_planar7_obstacles) as scenarios[0]");
   expect_error(with("scenarios", json::parse(R"(["01_planar7_obstacles", {"generator": "jungle", "count": 3}])")),
