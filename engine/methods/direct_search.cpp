@@ -40,6 +40,14 @@
 //    joint ranges and speeds is taken if it is nearer than the arm is, else
 //    the arm stays (feasible_options = 0 reports it). Without these a
 //    singular block or a block joint at its limit froze the arm for good.
+//  - recovery (rrlab's, not in the paper, whose scheme starts with the hand on
+//    the path): when no option is feasible, a damped least-squares step
+//    toward the target over all joints, δθ = Jᵀ(JJᵀ + λ²I)⁻¹δx with
+//    λ = `recovery_damping`, scaled uniformly into the joint velocity limits
+//    over the step and clamped to the joint ranges, is taken when it ends
+//    nearer the target than the nearest option and than staying. Without it
+//    a hand that starts (or is pushed) a few cm off the path never gets an
+//    option that meets eq 5 within the joint speeds, and the arm stays.
 //  - ψ4 uses the first-order change of each link's distance to its nearest
 //    obstacle, d + nᵀJ_p(θ − θ_curr), from the step's distance table
 //    (exact to O(Δ²); no collision query per option).
@@ -82,7 +90,8 @@ class DirectSearch final : public Method {
   const ParamSlot kDelta = slot("delta"), kMask = slot("perturb_mask"), kWJra = slot("w_jra"), kWJvm = slot("w_jvm"),
                   kWDm = slot("w_dm"), kWObstacle = slot("w_obstacle"), kDmFraction = slot("dm_rule_fraction"),
                   kDmReference = slot("dm_rule_reference"), kIterations = slot("newton_iterations"),
-                  kTolerance = slot("tolerance"), kDmLength = slot("dm_length"), kBlockSwitch = slot("block_switch");
+                  kTolerance = slot("tolerance"), kDmLength = slot("dm_length"), kBlockSwitch = slot("block_switch"),
+                  kRecovery = slot("recovery_damping");
 
  public:
   explicit DirectSearch(const MethodContext& ctx)
@@ -111,7 +120,10 @@ class DirectSearch final : public Method {
         distances_now_(std::max(1, ctx.model.link_count())),
         point_jacobian_(3, n_),
         square_block_(m_, m_),
-        lu_(m_) {
+        lu_(m_),
+        recovery_inverse_(m_, n_),
+        recovery_step_(n_),
+        recovery_q_(n_) {
     theta_previous_ = Eigen::VectorXd::Zero(n_);
     joint_range_weights(ctx.model.limits);
     choose_joints();
@@ -128,6 +140,7 @@ class DirectSearch final : public Method {
     residual_diag_ = declare_diagnostic("residual");
     block_sigma_diag_ = declare_diagnostic("block_sigma_min");
     switched_diag_ = declare_diagnostic("block_switched");
+    recovery_diag_ = declare_diagnostic("recovery");
   }
 
   void step(const StepInput& in, StepOutput& out) override {
@@ -182,6 +195,7 @@ class DirectSearch final : public Method {
 
     // 2. selection (eq 7–8)
     int chosen = -1;
+    bool recovered = false;
     if (feasible > 0) {
       double lo[kCriteria], hi[kCriteria];
       for (int c = 0; c < kCriteria; ++c) lo[c] = kInf, hi[c] = -kInf;
@@ -209,6 +223,8 @@ class DirectSearch final : public Method {
         if (residual_[j] < best && within_limits(in.model.limits, options_.col(j)) &&
             within_speed(in.model.limits, options_.col(j), q, in.dt))
           best = residual_[j], chosen = j;
+      // rrlab's recovery: a damped step toward the target, if it ends nearer still
+      if (p(kRecovery) > 0 && recovery_step(in) < best) recovered = true, chosen = -1;
     }
 
     if (chosen >= 0 && std::isnan(criteria_(chosen, kDm))) {
@@ -219,7 +235,9 @@ class DirectSearch final : public Method {
       criteria_(chosen, kDm) = dexterity(jacobian_);
     }
     out.integrated = true;
-    if (chosen >= 0)
+    if (recovered)
+      out.q_next = recovery_q_;
+    else if (chosen >= 0)
       out.q_next = options_.col(chosen);
     else
       out.q_next = q;
@@ -236,10 +254,31 @@ class DirectSearch final : public Method {
     out.diag.values[chosen_diag_index_] = chosen;
     out.diag.values[rule_diag_] = rule_active_;
     out.diag.values[iterations_diag_] = max_iterations_used_;
-    out.diag.values[residual_diag_] = chosen >= 0 ? residual_[chosen] : -1.0;
+    out.diag.values[residual_diag_] = recovered ? recovery_residual_ : chosen >= 0 ? residual_[chosen] : -1.0;
+    out.diag.values[recovery_diag_] = recovered;
   }
 
  private:
+  // rrlab's recovery step into recovery_q_: δθ = Jᵀ(JJᵀ + λ²I)⁻¹δx at the
+  // current configuration, scaled into the joint speeds over the step and
+  // clamped to the ranges. Returns its end-effector residual (max |δx|).
+  double recovery_step(const StepInput& in) {
+    const JointLimits& limits = in.model.limits;
+    recovery_inverse_.factor_dls(in.task_jacobian, p(kRecovery));
+    recovery_inverse_.apply(error0_, recovery_step_);
+    double scale = 1.0;
+    for (int i = 0; i < n_; ++i) {
+      const double reach = limits.velocity[i] * in.dt, move = std::abs(recovery_step_[i]);
+      if (std::isfinite(reach) && move > reach) scale = std::min(scale, reach / move);
+    }
+    recovery_q_ = in.state.q + scale * recovery_step_;
+    recovery_q_ = recovery_q_.cwiseMax(limits.lower).cwiseMin(limits.upper);
+    forward_kinematics(in.model, recovery_q_, probe_);
+    pose_error(probe_, error_);
+    recovery_residual_ = error_.cwiseAbs().maxCoeff();
+    return std::isfinite(recovery_residual_) ? recovery_residual_ : kInf;
+  }
+
   // Eq 1–6 for every option with the current joint set; returns the number
   // of feasible options. DM is computed for feasible options only with_dm.
   int generate_options(const StepInput& in, bool with_dm) {
@@ -502,6 +541,10 @@ class DirectSearch final : public Method {
   int block_[64] = {}, block_count_ = 0;
   bool rule_active_ = false, has_distances_ = false;
   int links_with_distance_ = 0;
+  RightInverse recovery_inverse_;
+  Eigen::VectorXd recovery_step_, recovery_q_;
+  double recovery_residual_ = 0;
+  int recovery_diag_ = 0;
   int chosen_diag_[kCriteria], weight_diag_[kCriteria];
   int feasible_diag_, options_diag_, chosen_diag_index_, rule_diag_, current_dm_diag_, iterations_diag_,
       residual_diag_, block_sigma_diag_, switched_diag_;
@@ -536,7 +579,12 @@ std::vector<ParamSpec> direct_search_params() {
           {"block_switch", "Block switch below σ", "",
            "when the block of the non-perturbed joints has σ_min below it, or no option is feasible, perturb "
            "instead the joints whose block has the largest determinant (§3.1) for that step; 0 = never",
-           0.02, 0.0, 10.0, 0.01, {}}};
+           0.02, 0.0, 10.0, 0.01, {}},
+          {"recovery_damping", "Recovery damping λ", "",
+           "rrlab's, not the paper's: when no option is feasible, a damped least-squares step toward the target "
+           "(λ), scaled into the joint speeds, is taken if it ends nearer than the nearest option and than staying "
+           "(a hand off the path comes back); 0 = off",
+           0.05, 0.0, 10.0, 0.01, {}}};
 }
 std::unique_ptr<Method> make_direct_search(const MethodContext& ctx) {
   return std::make_unique<DirectSearch>(ctx);

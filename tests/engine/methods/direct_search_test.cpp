@@ -227,17 +227,62 @@ TEST(DirectSearch, ParametersAreValidated) {
 TEST(DirectSearch, ASingularBlockNoLongerFreezesTheArm) {
   const Scenario scenario = load_scenario_file(std::string(RRLAB_SOURCE_DIR) +
                                                "/tests/engine/methods/fixtures/direct_search_singular_block.json");
-  auto run = [&](double block_switch) {
+  auto run = [&](double block_switch, double recovery) {
     Scenario s = scenario;
     s.method.name = "direct_search";
-    s.method.params = {{"block_switch", block_switch}};
+    s.method.params = {{"block_switch", block_switch}, {"recovery_damping", recovery}};
     Simulator sim(s);
     return run_sim(sim);
   };
-  const SearchRun fixed = run(0.0), switching = run(0.02);
+  const SearchRun fixed = run(0.0, 0.0), switching = run(0.02, 0.0), recovering = run(0.0, 0.05);
   EXPECT_GT(fixed.summary.max_tracking_error, 0.3);  // 0.61 m: frozen
   EXPECT_LT(switching.summary.max_tracking_error, 1e-5);  // 3.3e-7 m
   EXPECT_FALSE(switching.summary.joint_limit_violated);
+  // the recovery step alone also unfreezes it: damped steps leave the singular block
+  EXPECT_LT(recovering.summary.max_tracking_error, 2e-3);  // 6.1e-4 m
+  EXPECT_FALSE(recovering.summary.joint_limit_violated);
+}
+
+// Kapoor's scheme starts with the hand on the path; started 2-4 cm off it
+// (the path moved along x, y or z), with the scenario's velocity limits
+// (60°/s), the recovery step brings the hand within 5 mm in at most 3 steps
+// (0.05 s) and the run tracks from then on (checked over the first 4 s).
+// Without it (recovery_damping 0) no option is feasible and the hand stays
+// 2-4 cm off: over the whole 36 s run on 6 of these 9 starts, and the
+// other 3 (the path moved along y) come back only after about 19.7 s.
+TEST(DirectSearchPaper, AStartOffThePathComesBackWithinTwoSeconds) {
+  const Scenario paper = load_scenario_file(std::string(RRLAB_SOURCE_DIR) + "/scenarios/22_kapoor_square_circle.json");
+  int stuck_without = 0;
+  for (double offset : {0.02, 0.03, 0.04}) {
+    for (int axis = 0; axis < 3; ++axis) {
+      SCOPED_TRACE(std::to_string(offset) + " m along axis " + std::to_string(axis));
+      nlohmann::json doc = paper.json;
+      for (auto& point : doc["task"]["trajectory"]["points"]) point[axis] = point[axis].get<double>() + offset;
+      doc["method"]["params"]["recovery_damping"] = 0.05;
+      Scenario s = parse_scenario(doc);
+      Simulator sim(s);
+      sim.set_total_steps(std::lround(4.0 / s.dt));
+      double back_at = -1;  // the time from which the error stays below 5 mm
+      while (!sim.done()) {
+        sim.step();
+        const Frame& f = sim.frame();
+        if (f.task_error < 5e-3) {
+          if (back_at < 0) back_at = f.t;
+        } else {
+          back_at = -1;
+        }
+      }
+      EXPECT_GE(back_at, 0);
+      EXPECT_LE(back_at, 2.0);
+      doc["method"]["params"]["recovery_damping"] = 0.0;
+      s = parse_scenario(doc);
+      Simulator without(s);
+      without.set_total_steps(std::lround(4.0 / s.dt));
+      const Summary summary = run_to_end(without, nullptr);
+      stuck_without += summary.final_tracking_error > 0.01;
+    }
+  }
+  EXPECT_EQ(stuck_without, 9);
 }
 
 // The defaults on held-out planar_limits cases (seed 1001): joint limits held
