@@ -63,16 +63,21 @@
 // world, which is not a chain of joints. Chen's q0 of Simulations 2–3 gives
 // different arms under the two orders (Sim 3's hand at (2.13, 1.85, 3) here,
 // (−2.75, −0.64, 3) under the printed order).
-// Default weights: the paper's criteria are unweighted (all 1), and so are
-// rrlab's defaults. w_limits = 20 was tried on generated planar_limits cases
-// (seed 1001): with 1 the Γ3 push (ω·dΓ3/dΨ ≈ 0.15 rad/s near a limit) is
-// outweighed in the null-space projection by the other links' connection
-// terms (θ^C, at full rate γ2 ≈ 1) and 14 of 20 runs crossed a limit, with 20
-// 11 of 20 (pinv 20 of 20); but the weighted-up Γ3, active across its whole
-// influence zone, swamps the collision cone in the sum dΓ123 of eq. 29: Chen's
-// Simulation 2 collides from w_limits = 5 (min distance 0.041 → −0.217 m) and
-// Simulation 1's tracking error grows from 0.005 to 0.085 m at 20. So the
-// default stays 1.
+// Defaults (rrlab's, for cases nobody tuned): ω = 1 1/s and w_limits = 2.
+// The paper's criteria are unweighted and its ω is 0.1–0.2 per cycle; the
+// paper scenarios (16–18) set ω and w_limits = 1 themselves. With ω = 0.1 and
+// w_limits = 1 the Γ3 push (ω·dΓ3/dΨ ≈ 0.15 rad/s near a limit) is outweighed
+// in the null-space projection by the other links' connection terms, and on
+// generated planar_limits cases posture_generation crossed a limit farther
+// than minimum norm did (seed 77: 4 of 200 crossed, 2 deeper than pinv, one by
+// 49° where pinv crossed by 4°). Chosen on seeds 77, 5 and 1001 (200
+// planar_limits and 100 of each obstacle family per seed) over ω ∈ {0.1 … 2}
+// × w_limits ∈ {1 … 10}: at ω = 1, w_limits = 2 1 of 200 runs per seed crosses
+// a limit (deeper than pinv on 2 of 600), planar_limits succeeds 197–200 of
+// 200, narrow_passage 28 → 68–71 and moving_obstacles 45 → 58–66 of 100; a
+// larger w_limits (5–10) or ω = 2 lets Γ3 fight the task (planar_limits
+// success 38–158 of 200), and w_limits = 20 swamped the collision cone
+// in Chen's Simulation 2 (min distance 0.041 → −0.217 m from w_limits = 5).
 // Units: rates per second; the paper's "per cycle" numbers (ω, δ, 0.1 per
 // cycle) are per second of scenario time, with dt a fraction of a cycle.
 #include <Eigen/Cholesky>
@@ -335,7 +340,7 @@ std::vector<ParamSpec> posture_generation_params() {
   return {
       {"eta", "Safe distance η", "m", "desired link–obstacle distance; cone half-angle φ_i = atan(η/‖O_i‖)", 1.0,
        1e-6, 100.0, 0.05, {}},
-      {"omega", "Gain ω", "1/s", "step along the criteria gradient (eq. 29)", 0.1, 0.0, 100.0, 0.01, {}},
+      {"omega", "Gain ω", "1/s", "step along the criteria gradient (eq. 29; the paper's 0.1–0.2 per cycle)", 1.0, 0.0, 100.0, 0.01, {}},
       {"delta", "Connection scale δ", "m/s", "γ2 = 1 − exp(−‖ẋ_{i+1}‖/δ) (eq. 30)", 0.3, 1e-6, 100.0, 0.01, {}},
       {"limit_deg", "Joint limit θ^J", "deg", "virtual-obstacle limit ±θ^J on joints that have limits", 135.0,
        0.0, 360.0, 1.0, {}},
@@ -344,7 +349,7 @@ std::vector<ParamSpec> posture_generation_params() {
       {"lambda", "Damping λ", "", "damped least squares of eq. 8 and eq. 16", 0.01, 0.0, 10.0, 0.001, {}},
       {"w_collision", "Weight Γ1", "", "collision cone (eq. 18)", 1.0, 0.0, 100.0, 0.1, {}},
       {"w_adjacent", "Weight Γ2", "", "adjacent-link distance (eq. 21)", 1.0, 0.0, 100.0, 0.1, {}},
-      {"w_limits", "Weight Γ3", "", "joint limits as virtual obstacles (eq. 23)", 1.0, 0.0, 100.0, 0.1, {}},
+      {"w_limits", "Weight Γ3", "", "joint limits as virtual obstacles (eq. 23; the paper's criteria are unweighted, 1)", 2.0, 0.0, 100.0, 0.1, {}},
       {"w_connection", "Weight θ^C", "", "posture connection (eq. 26)", 1.0, 0.0, 100.0, 0.1, {}},
       {"w_elastic", "Weight Γ4", "", "elastic posture (eq. 28)", 1.0, 0.0, 100.0, 0.1, {}},
       {"elastic_first_link", "Γ4 on link 1", "", "the paper's simulations do not apply Γ4 to the first link", 0, 0,
