@@ -51,41 +51,57 @@ void perturb_shift_point(nlohmann::json& point, const Eigen::Vector3d& d) {
   for (size_t k = 0; k < point.size() && k < 3; ++k) point[k] = perturb_written(point[k].get<double>() + d[int(k)]);
 }
 
-// Obstacle `o` moved by d and turned by `turn` (file angle unit `scale` rad per unit) about the vertical.
-void perturb_obstacle(nlohmann::json& o, const Eigen::Vector3d& d, double turn, double scale) {
+// Where an obstacle is in x-y: a polygon's mean point, a box's, sphere's or
+// mesh's centre, a point's position, a wall's point.
+Eigen::Vector2d perturb_place(const nlohmann::json& o) {
   const std::string shape = o.value("shape", "");
-  const bool spatial_shift = d.z() != 0;
+  const char* key = shape == "point" ? "position" : shape == "wall" ? "point" : "center";
   if (shape == "polygon") {
     Eigen::Vector2d mean = Eigen::Vector2d::Zero();
     for (const auto& p : o["points"]) mean += Eigen::Vector2d(p[0].get<double>(), p[1].get<double>());
-    mean /= double(o["points"].size());
-    const double c = std::cos(turn), s = std::sin(turn);
+    return mean / double(o["points"].size());
+  }
+  if (!o.contains(key)) return Eigen::Vector2d::Zero();
+  return {o[key][0].get<double>(), o[key][1].get<double>()};
+}
+
+// Obstacle `o` turned by `turn` (rad; the file's angles are `scale` rad per
+// unit) about the vertical through `pivot`, then moved by d: its place goes
+// round the pivot and it turns by the same angle about its own vertical.
+void perturb_obstacle(nlohmann::json& o, const Eigen::Vector3d& d, double turn, const Eigen::Vector2d& pivot,
+                      double scale) {
+  const std::string shape = o.value("shape", "");
+  const double c = std::cos(turn), s = std::sin(turn);
+  const Eigen::Vector2d place = perturb_place(o), r = place - pivot;
+  const Eigen::Vector2d moved = pivot + Eigen::Vector2d(c * r.x() - s * r.y(), s * r.x() + c * r.y()) + d.head<2>();
+  const Eigen::Vector3d D(moved.x() - place.x(), moved.y() - place.y(), d.z());
+  if (shape == "polygon") {
     for (auto& p : o["points"]) {
-      const Eigen::Vector2d r = Eigen::Vector2d(p[0].get<double>(), p[1].get<double>()) - mean;
-      p[0] = perturb_written(mean.x() + c * r.x() - s * r.y() + d.x());
-      p[1] = perturb_written(mean.y() + s * r.x() + c * r.y() + d.y());
+      const Eigen::Vector2d q = Eigen::Vector2d(p[0].get<double>(), p[1].get<double>()) - place;
+      p[0] = perturb_written(place.x() + c * q.x() - s * q.y() + D.x());
+      p[1] = perturb_written(place.y() + s * q.x() + c * q.y() + D.y());
     }
-    if (spatial_shift) {
+    if (D.z() != 0) {
       nlohmann::json z = o.contains("z") ? o["z"] : nlohmann::json::array({-1.0, 1.0});
-      for (auto& v : z) v = perturb_written(v.get<double>() + d.z());
+      for (auto& v : z) v = perturb_written(v.get<double>() + D.z());
       o["z"] = z;
     }
   } else if (shape == "box" || shape == "mesh") {
     // R = Rz(y) Ry(p) Rx(r): adding to y turns the obstacle about the world's z through its centre
-    if (o.contains("center")) perturb_shift_point(o["center"], d);
+    if (o.contains("center")) perturb_shift_point(o["center"], D);
     if (turn != 0) {
       nlohmann::json rpy = o.contains("rpy") ? o["rpy"] : nlohmann::json::array({0.0, 0.0, 0.0});
       rpy[2] = rounded(rpy[2].get<double>() + turn / scale, 1e-9);
       o["rpy"] = rpy;
     }
   } else if (shape == "sphere") {
-    perturb_shift_point(o["center"], d);
+    perturb_shift_point(o["center"], D);
   } else if (shape == "point") {
-    perturb_shift_point(o["position"], d);
+    perturb_shift_point(o["position"], D);
   } else if (shape == "wall") {
-    perturb_shift_point(o["point"], d);
+    perturb_shift_point(o["point"], D);
     auto& n = o["normal"];
-    const double c = std::cos(turn), s = std::sin(turn), x = n[0].get<double>(), y = n[1].get<double>();
+    const double x = n[0].get<double>(), y = n[1].get<double>();
     n[0] = rounded(c * x - s * y, 1e-12);
     n[1] = rounded(s * x + c * y, 1e-12);
   }
@@ -194,7 +210,13 @@ PerturbationOptions parse_perturbation_options(const nlohmann::json& entry, cons
   JsonObject root(entry, path);
   if (root.has("obstacles")) {
     JsonObject obstacles = root.object("obstacles");
-    obstacles.check_keys({"shift", "rotate_deg"});
+    obstacles.check_keys({"shift", "rotate_deg", "together"});
+    if (obstacles.has("together")) {
+      const nlohmann::json& together = obstacles.raw("together");
+      if (!together.is_boolean())
+        throw ScenarioError(obstacles.child("together"), "must be true or false, got " + json_type_name(together));
+      out.obstacles_together = together.get<bool>();
+    }
     if (obstacles.has("shift")) out.obstacle_shift = perturb_number(obstacles, "shift", 0, kPerturbMaxShift);
     if (obstacles.has("rotate_deg")) out.obstacle_rotate_deg = perturb_number(obstacles, "rotate_deg", 0, 180);
   }
@@ -241,13 +263,22 @@ nlohmann::json perturb_scenario(const nlohmann::json& base, const std::string& d
     // every quantity is drawn whether or not it applies, in one order: a
     // case's draws do not depend on the scenario's obstacle shapes
     nlohmann::json moved = nlohmann::json::array();
-    if (doc.contains("obstacles")) {
-      for (auto& o : doc["obstacles"]) {
-        const Eigen::Vector3d unit = perturb_in_ball(rng, obstacle_dims);
-        const Eigen::Vector3d d = (options.obstacle_shift * unit).unaryExpr([](double v) { return rounded(v); });
-        const double u = rng.uniform(-1.0, 1.0);
-        const double turn_deg = rounded(options.obstacle_rotate_deg * u, 0.01);
-        perturb_obstacle(o, d, turn_deg * M_PI / 180.0, scale);
+    if (doc.contains("obstacles") && !doc["obstacles"].empty()) {
+      // together: one draw for the scene, turned about the mean of the obstacles' places
+      Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+      for (const auto& o : doc["obstacles"]) centre += perturb_place(o) / double(doc["obstacles"].size());
+      Eigen::Vector3d d = Eigen::Vector3d::Zero();
+      double turn_deg = 0;
+      for (size_t k = 0; k < doc["obstacles"].size(); ++k) {
+        nlohmann::json& o = doc["obstacles"][k];
+        if (k == 0 || !options.obstacles_together) {
+          const Eigen::Vector3d unit = perturb_in_ball(rng, obstacle_dims);
+          d = (options.obstacle_shift * unit).unaryExpr([](double v) { return rounded(v); });
+          const double u = rng.uniform(-1.0, 1.0);
+          turn_deg = rounded(options.obstacle_rotate_deg * u, 0.01);
+        }
+        const Eigen::Vector2d pivot = options.obstacles_together ? centre : perturb_place(o);
+        perturb_obstacle(o, d, turn_deg * M_PI / 180.0, pivot, scale);
         moved.push_back({{"id", o.value("id", "")}, {"shift", perturb_vector_json(d, obstacle_dims)}, {"rotate_deg", turn_deg}});
       }
     }

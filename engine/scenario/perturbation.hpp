@@ -7,7 +7,7 @@
 // its record alone. A draw whose start collides or leaves the joint limits
 // is redrawn. The options, as a sweep entry writes them:
 //   {"perturb": SCENARIO, "count": N, "seed": S,
-//    "obstacles": {"shift": m, "rotate_deg": deg}, "speed": [min, max] | s,
+//    "obstacles": {"shift": m, "rotate_deg": deg, "together": bool}, "speed": [min, max] | s,
 //    "q0_self_motion": rad, "path": {"shift": m}}
 // Meaning of each: docs/generators.md, "Perturbation families".
 #pragma once
@@ -21,6 +21,7 @@ namespace rrlab {
 struct PerturbationOptions {
   double obstacle_shift = 0;       // m: each obstacle moved by a vector uniform in the disc (planar robot) or ball of this radius
   double obstacle_rotate_deg = 0;  // each obstacle turned about the vertical through its centre, uniform in ±this
+  bool obstacles_together = false; // one shift and turn for the whole scene (about the mean of the obstacles' places)
   double speed_min = 1, speed_max = 1;  // the path's times divided by s, log-uniform in [min, max]
   double q0_self_motion = 0;       // rad: joint-space arc length along the self-motion manifold, uniform in [0, this]
   double path_shift = 0;           // m: the whole path moved by a vector uniform in the disc (xy task) or ball of this radius

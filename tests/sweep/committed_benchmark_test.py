@@ -2,7 +2,9 @@
 2 cases of every family of benchmarks/default.json, with every configuration,
 re-run by the rrlab binary, match their rows of the committed per-run CSV
 (benchmarks/default-runs.csv, which the README and docs/results.md quote) in
-every column but the run id and the step times (wall clock).
+every column but the run id and the step times (wall clock). Likewise every
+committed reproduction sweep (benchmarks/reproductions/NAME.json with its
+NAME-runs.csv) against its CSV.
 
 Runs against the Release build only (the Makefile's RELEASE_TESTS): that build
 wrote the committed file, and other compilers may round differently.
@@ -29,29 +31,45 @@ def deterministic_rows(path):
 
 
 class CommittedBenchmark(unittest.TestCase):
-    def test_a_slice_of_the_default_suite_matches_the_committed_runs(self):
-        with open(os.path.join(SOURCE_DIR, "benchmarks", "default.json"), encoding="utf-8") as f:
+    def check_slice(self, spec_path, committed_csv):
+        """Re-runs CASES_PER_FAMILY cases of every entry of the spec and compares their rows."""
+        with open(spec_path, encoding="utf-8") as f:
             spec = json.load(f)
         for entry in spec["scenarios"]:
-            entry["count"] = CASES_PER_FAMILY
+            if isinstance(entry, dict):
+                entry["count"] = min(entry.get("count", 1), CASES_PER_FAMILY)
         with tempfile.TemporaryDirectory() as tmp:
             spec_file = os.path.join(tmp, "slice.json")
             with open(spec_file, "w", encoding="utf-8") as f:
                 json.dump(spec, f)
             out = os.path.join(tmp, "slice.csv")
             done = subprocess.run([RRLAB, "sweep", spec_file, "--db", os.path.join(tmp, "slice.db"), "--jobs", "2",
-                                   "--out", out], capture_output=True, text=True, timeout=360)
+                                   "--out", out, "--scenarios", os.path.join(SOURCE_DIR, "scenarios")],
+                                  capture_output=True, text=True, timeout=360)
             self.assertEqual(done.returncode, 0, done.stderr)
             now = deterministic_rows(out)
-        committed = deterministic_rows(os.path.join(SOURCE_DIR, "benchmarks", "default-runs.csv"))
-        expected_runs = CASES_PER_FAMILY * len(spec["scenarios"]) * len(spec["methods"])
-        self.assertEqual(len(now), expected_runs)
+        committed = deterministic_rows(committed_csv)
+        cases = sum(e.get("count", 1) if isinstance(e, dict) else 1 for e in spec["scenarios"])
+        self.assertEqual(len(now), cases * len(spec["methods"]))
+        name = os.path.relpath(committed_csv, SOURCE_DIR)
         for key, row in now.items():
-            self.assertIn(key, committed, f"{key} is not in benchmarks/default-runs.csv")
+            self.assertIn(key, committed, f"{key} is not in {name}")
             for column, value in row.items():
                 self.assertEqual(committed[key][column], value,
-                                 f"{key} {column}: the committed benchmark no longer matches the code; "
-                                 "re-run it (docs/results.md, Benchmark)")
+                                 f"{key} {column}: {name} no longer matches the code; "
+                                 "re-run it (docs/results.md)")
+
+    def test_a_slice_of_the_default_suite_matches_the_committed_runs(self):
+        self.check_slice(os.path.join(SOURCE_DIR, "benchmarks", "default.json"),
+                         os.path.join(SOURCE_DIR, "benchmarks", "default-runs.csv"))
+
+    def test_a_slice_of_every_reproduction_sweep_matches_its_committed_runs(self):
+        folder = os.path.join(SOURCE_DIR, "benchmarks", "reproductions")
+        specs = sorted(f for f in os.listdir(folder) if f.endswith(".json"))
+        self.assertTrue(specs)
+        for spec in specs:
+            with self.subTest(spec=spec):
+                self.check_slice(os.path.join(folder, spec), os.path.join(folder, spec[:-5] + "-runs.csv"))
 
 
 if __name__ == "__main__":

@@ -5,6 +5,7 @@
 // for the same (scenario, options, seed, index).
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -116,6 +117,35 @@ TEST(Perturbation, ObstaclesMoveAsDrawnAndTheRestStays) {
   EXPECT_NE(perturb_scenario(base, dir, "01_planar7_obstacles", only_shift, 10, 3)["obstacles"], doc["obstacles"]);
 }
 
+TEST(Perturbation, ObstaclesTogetherMoveAndTurnAsOneScene) {
+  // Chen's window: four boxes whose gaps make the opening; moved together
+  // the opening keeps its shape (every distance between centres kept)
+  const std::string dir = std::string(RRLAB_SOURCE_DIR) + "/scenarios";
+  const std::string name = "17_chen_sim2_spatial16_window";
+  const json base = base_doc(name);
+  const PerturbationOptions together =
+      parse_perturbation_options(json::parse(R"({"obstacles": {"shift": 0.03, "rotate_deg": 10, "together": true}})"), "");
+  const Scenario before = parse_scenario(base, dir);
+  for (int index = 0; index < 5; ++index) {
+    const json doc = perturb_scenario(base, dir, name, together, 2, index);
+    const Scenario after = parse_scenario(doc, dir);
+    const json& record = doc["perturbation"]["obstacles"];
+    for (size_t k = 1; k < record.size(); ++k) {
+      EXPECT_EQ(record[k]["shift"], record[0]["shift"]);
+      EXPECT_EQ(record[k]["rotate_deg"], record[0]["rotate_deg"]);
+    }
+    const auto& b = before.scene.obstacles;
+    const auto& a = after.scene.obstacles;
+    for (size_t i = 0; i < a.size(); ++i)
+      for (size_t j = i + 1; j < a.size(); ++j)
+        EXPECT_NEAR((a[i].position0 - a[j].position0).norm(), (b[i].position0 - b[j].position0).norm(), 1e-5) << i << " " << j;
+    // turned by the drawn angle about z: the first box's rotation
+    const double turn = record[0]["rotate_deg"].get<double>() * M_PI / 180.0;
+    const Eigen::Matrix3d expected = Eigen::AngleAxisd(turn, Eigen::Vector3d::UnitZ()).toRotationMatrix() * b[0].rotation;
+    EXPECT_LT((a[0].rotation - expected).norm(), 1e-6);
+  }
+}
+
 TEST(Perturbation, BadOptionsAreNamed) {
   auto message = [](const char* text) {
     try {
@@ -127,6 +157,8 @@ TEST(Perturbation, BadOptionsAreNamed) {
   };
   EXPECT_NE(message(R"({"obstacles": {"shift": -1}})").find("scenarios[2].obstacles.shift: must be in [0, 10]"), std::string::npos);
   EXPECT_NE(message(R"({"obstacles": {"move": 1}})").find("scenarios[2].obstacles"), std::string::npos);
+  EXPECT_NE(message(R"({"obstacles": {"together": 1}})").find("scenarios[2].obstacles.together: must be true or false"),
+            std::string::npos);
   EXPECT_NE(message(R"({"speed": [2, 1]})").find("scenarios[2].speed: must be [min, max]"), std::string::npos);
   EXPECT_NE(message(R"({"speed": [0, 1]})").find("scenarios[2].speed[0]"), std::string::npos);
   EXPECT_NE(message(R"({"q0_self_motion": "a lot"})").find("scenarios[2].q0_self_motion"), std::string::npos);
