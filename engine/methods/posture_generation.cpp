@@ -65,7 +65,8 @@
 // (−2.75, −0.64, 3) under the printed order).
 // Defaults (rrlab's, for cases nobody tuned): ω = 1 1/s and w_limits = 2.
 // The paper's criteria are unweighted and its ω is 0.1–0.2 per cycle; the
-// paper scenarios (16–18) set ω and w_limits = 1 themselves. With ω = 0.1 and
+// paper scenarios (16–18) set ω, w_limits = 1 and max_null_step = 0 (no cap)
+// themselves. With ω = 0.1 and
 // w_limits = 1 the Γ3 push (ω·dΓ3/dΨ ≈ 0.15 rad/s near a limit) is outweighed
 // in the null-space projection by the other links' connection terms, and on
 // generated planar_limits cases posture_generation crossed a limit farther
@@ -99,6 +100,7 @@ class PostureGeneration final : public Method {
   const ParamSlot kEta = slot("eta"), kOmega = slot("omega"), kDelta = slot("delta"), kLimit = slot("limit_deg"),
                   kInfluence = slot("influence_deg"), kLambda = slot("lambda"), kWCollision = slot("w_collision"),
                   kWAdjacent = slot("w_adjacent"), kWLimits = slot("w_limits"), kWConnection = slot("w_connection"),
+                  kMaxNullStep = slot("max_null_step"),
                   kWElastic = slot("w_elastic"), kElasticFirst = slot("elastic_first_link");
 
  public:
@@ -157,6 +159,12 @@ class PostureGeneration final : public Method {
     rhs_.noalias() = jc_.transpose() * xc_;
     z_ = llt_.solve(rhs_);
     primary_.null_project(z_, projected_);  // (I − J_E* J_E) J_C* ẋ_C, eq. 9
+    // rrlab's: the null-space term moves no joint more than max_null_step per
+    // step (scaled as a whole, so its direction stays): a step along the
+    // self-motion leaks into the task to second order, ~|Δθ|², and at a
+    // coarse dt the leak outgrows the task's feedback
+    const double peak = projected_.cwiseAbs().maxCoeff() * in.dt;
+    if (p(kMaxNullStep) > 0 && peak > p(kMaxNullStep)) projected_ *= p(kMaxNullStep) / peak;
     out.qdot += projected_;
     report(out);
   }
@@ -354,6 +362,9 @@ std::vector<ParamSpec> posture_generation_params() {
       {"w_elastic", "Weight Γ4", "", "elastic posture (eq. 28)", 1.0, 0.0, 100.0, 0.1, {}},
       {"elastic_first_link", "Γ4 on link 1", "", "the paper's simulations do not apply Γ4 to the first link", 0, 0,
        1, 1, {"off", "on"}},
+      {"max_null_step", "Largest null-space step", "rad",
+       "rrlab's: the null-space term of eq. 9 moves no joint more than this per step (scaled as a whole; its leak "
+       "into the task grows with the square of the step); 0 = no cap", 0.02, 0.0, 1.0, 0.001, {}},
   };
 }
 std::unique_ptr<Method> make_posture_generation(const MethodContext& ctx) {
