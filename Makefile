@@ -16,9 +16,10 @@ SANITIZE_FLAGS = -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEB
 # Dockerfile, docs and Slurm checks (they test no C++ of rrlab's), and the
 # long paper reproductions (suites named ...Paper: the same code runs under
 # the sanitizers in the methods' unit tests, in a fraction of the time) and
-# the witness checks of thousands of generated cases (...AtScale: the same
-# checks run on ten cases per family under the sanitizers), and the re-run of
-# a slice of the committed benchmark (its rows are the Release build's).
+# the checks over many generated cases (...AtScale: the witnesses of
+# thousands, a method's defaults on tens; the same checks run on a few cases
+# per family under the sanitizers), and the re-run of a slice of the committed
+# benchmark and reproduction sweeps (their rows are the Release build's).
 # Every other test (unit, HTTP, command line, Python client) runs against the
 # ASan + UBSan build.
 RELEASE_TESTS = ^(Web|Docker|Docs|Slurm|Soak|Benchmark|[A-Za-z]+Paper|[A-Za-z]+AtScale)\.

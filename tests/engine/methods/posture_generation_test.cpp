@@ -151,7 +151,7 @@ TEST(PostureGenerationDefaults, HoldLimitsWherePinvDoesNot) {
 // for tuning). With the paper's ω 0.1 and w_limits 1 the method crossed
 // farther than pinv on generated cases (seed 77: 2 of 200, one by 49° where
 // pinv crossed by 4°); with the defaults it is never deeper here.
-TEST(PostureGenerationDefaults, NeverCrossesFartherThanPinvWhereItCrossesByTenToTwentyDegrees) {
+TEST(PostureGenerationAtScale, NeverCrossesFartherThanPinvWhereItCrossesByTenToTwentyDegrees) {
   int in_band = 0, deeper = 0, crossed = 0;
   for (int index = 0; index < 60; ++index) {
     const nlohmann::json doc = generate_scenario("planar_limits", nlohmann::json::object(), 2001, index);
