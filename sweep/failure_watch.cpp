@@ -12,9 +12,9 @@ namespace rrlab::sweep {
 namespace {
 
 // In the order equal times are settled.
-enum Kind { kNonfinite, kCollision, kJointLimit, kTrackingLost, kStalled, kKinds };
-constexpr std::array<const char*, kKinds> kNames = {"nonfinite", "collision", "joint_limit", "tracking_lost",
-                                                    "stalled"};
+enum Kind { kNonfinite, kCollision, kJointLimit, kJointSpeed, kTrackingLost, kStalled, kKinds };
+constexpr std::array<const char*, kKinds> kNames = {"nonfinite",   "collision",     "joint_limit",
+                                                    "joint_speed", "tracking_lost", "stalled"};
 // The path time the hand is at: searched this far back from the present.
 constexpr double kProgressSearch = 2.0;  // s
 // Of the path's points within this of the nearest, the latest is the hand's place.
@@ -30,6 +30,7 @@ void FailureWatch::begin(const Simulator& sim) {
   dt_ = sim.scenario().dt;
   nonfinite_seen_ = sim.nonfinite_steps();
   std::fill(first_.begin(), first_.end(), std::nullopt);
+  settled_error_over_ = false;
   reference_.clear();
   progress_.clear();
   reference_.reserve(size_t(sim.total_steps()));
@@ -50,7 +51,19 @@ void FailureWatch::frame(const Frame& f) {
   if (!criteria_.collision && f.collided) note(kCollision, f.t);
   if (criteria_.min_distance && !(f.min_distance >= *criteria_.min_distance)) note(kCollision, f.t);
   if (criteria_.joint_limits && f.joint_limit_margin < 0) note(kJointLimit, f.t);
-  if (criteria_.max_tracking_error && !(f.task_error <= *criteria_.max_tracking_error)) note(kTrackingLost, f.t);
+  if (criteria_.joint_speeds) {
+    const Eigen::VectorXd& limit = sim_->scenario().model.limits.velocity;
+    for (Eigen::Index i = 0; i < f.qdot.size() && i < limit.size(); ++i)
+      if (std::isfinite(limit[i]) && !(std::abs(f.qdot[i]) <= limit[i] * (1 + kJointSpeedTolerance))) {
+        note(kJointSpeed, f.t);
+        break;
+      }
+  }
+  if (criteria_.max_tracking_error && f.t >= criteria_.settle_time - 1e-9 &&
+      !(f.task_error <= *criteria_.max_tracking_error)) {
+    note(kTrackingLost, f.t);
+    settled_error_over_ = true;
+  }
   watch_progress(f);
   if (next_) next_->frame(f);
 }
@@ -90,6 +103,8 @@ void FailureWatch::end(const Summary& summary) {
     note(kTrackingLost, end_t_);
   if (next_) next_->end(summary);
 }
+
+bool FailureWatch::tracking_held() const { return criteria_.settle_time == 0 || !settled_error_over_; }
 
 std::optional<FirstFailure> FailureWatch::first(bool passed) const {
   if (passed) return std::nullopt;

@@ -5,8 +5,11 @@
 // - collision: a link touches an obstacle (or comes nearer than the
 //   criteria's min_distance), unless the criteria allow collisions;
 // - joint_limit: a joint past its limit, when the criteria hold limits;
+// - joint_speed: a joint faster than its velocity limit, when the criteria
+//   hold speeds;
 // - tracking_lost: the position error past the criteria's max_tracking_error
-//   (or, at the end, the final error past max_final_tracking_error);
+//   from its settle_time on (or, at the end, the final error past
+//   max_final_tracking_error);
 // - stalled: no progress along the path for 1 s of path time (the hand stays
 //   at the same place of the path while the reference moves on), dated from
 //   when the progress stopped;
@@ -26,7 +29,7 @@
 namespace rrlab::sweep {
 
 struct FirstFailure {
-  std::string mode;  // collision, joint_limit, tracking_lost, stalled, nonfinite
+  std::string mode;  // collision, joint_limit, joint_speed, tracking_lost, stalled, nonfinite
   double t = 0;      // s
 };
 
@@ -50,6 +53,10 @@ class FailureWatch final : public Recorder {
   // for one they pass. Call after end().
   std::optional<FirstFailure> first(bool passed) const;
 
+  // The part of the verdict the summary cannot give: the tracking bound from
+  // the settle time on. True without a settle time.
+  bool tracking_held() const;
+
  private:
   void note(int kind, double t);
   void watch_progress(const Frame& frame);
@@ -58,6 +65,7 @@ class FailureWatch final : public Recorder {
   Recorder* next_;
   const Simulator* sim_ = nullptr;
   double dt_ = 0, end_t_ = 0;
+  bool settled_error_over_ = false;
   long nonfinite_seen_ = 0;
   std::vector<std::optional<double>> first_;  // per kind
   // path progress: the reference at every step, and the step of the path the hand is at

@@ -91,7 +91,7 @@ CaseResult run_case(const SweepSpec& spec, const SweepCase& c, bool with_frames,
   result.run.run = storage::new_run_of(scenario, sim, "batch");
   result.run.summary_json = summary_to_json(result.summary).dump();
 
-  const bool success = judge_success(spec.success, result.summary);
+  const bool success = judge_success(spec.success, result.summary) && watch.tracking_held();
   result.row = {spec.name, c.key, c.scenario_key, c.config_key, c.family, success, std::nullopt, std::nullopt};
   if (const std::optional<FirstFailure> failure = watch.first(success)) {
     result.row.failure_mode = failure->mode;

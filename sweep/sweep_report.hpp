@@ -12,7 +12,7 @@
 //  - a ranking of each sweep's configurations by success rate, then median
 //    max tracking error;
 //  - per group also the failed runs' first failure modes (collision,
-//    joint_limit, tracking_lost, stalled, nonfinite; "unrecorded" for runs
+//    joint_limit, joint_speed, tracking_lost, stalled, nonfinite; "unrecorded" for runs
 //    stored before modes were) and the step time as a ratio to pinv's on the
 //    same family (shifted geometric means of the runs' step_us.p50, shift 1 µs);
 //  - per sweep × family, each configuration paired with pinv and with the

@@ -4,7 +4,8 @@ re-run by the rrlab binary, match their rows of the committed per-run CSV
 (benchmarks/default-runs.csv, which the README and docs/results.md quote) in
 every column but the run id and the step times (wall clock). Likewise the first case of
 every committed reproduction sweep (benchmarks/reproductions/NAME.json with its
-NAME-runs.csv) against its CSV.
+NAME-runs.csv) against its CSV, and the marks table of docs/results.md against
+scripts/reproduction-table.
 
 Runs against the Release build only (the Makefile's RELEASE_TESTS): that build
 wrote the committed file, and other compilers may round differently.
@@ -51,7 +52,8 @@ class CommittedBenchmark(unittest.TestCase):
             now = deterministic_rows(out)
         committed = deterministic_rows(committed_csv)
         cases = sum(e.get("count", 1) if isinstance(e, dict) else 1 for e in spec["scenarios"])
-        self.assertEqual(len(now), cases * len(spec["methods"]))
+        configs = len({row["config"] for row in committed.values()})  # value lists expanded
+        self.assertEqual(len(now), cases * configs)
         name = os.path.relpath(committed_csv, SOURCE_DIR)
         for key, row in now.items():
             self.assertIn(key, committed, f"{key} is not in {name}")
@@ -66,12 +68,19 @@ class CommittedBenchmark(unittest.TestCase):
 
     def test_a_slice_of_every_reproduction_sweep_matches_its_committed_runs(self):
         folder = os.path.join(SOURCE_DIR, "benchmarks", "reproductions")
-        specs = sorted(f for f in os.listdir(folder) if f.endswith(".json"))
+        specs = sorted(f for f in os.listdir(folder)
+                       if f.endswith(".json") and os.path.exists(os.path.join(folder, f[:-5] + "-runs.csv")))
         self.assertTrue(specs)
         for spec in specs:
             with self.subTest(spec=spec):
                 self.check_slice(os.path.join(folder, spec), os.path.join(folder, spec[:-5] + "-runs.csv"),
                                  CASES_PER_REPRODUCTION)
+
+    def test_the_marks_table_in_the_docs_is_what_the_committed_sweeps_give(self):
+        """docs/results.md holds scripts/reproduction-table's output as printed (rates and marks by the rule)."""
+        done = subprocess.run([sys.executable, os.path.join(SOURCE_DIR, "scripts", "reproduction-table"), "--check",
+                               os.path.join(SOURCE_DIR, "docs", "results.md")], capture_output=True, text=True)
+        self.assertEqual(done.returncode, 0, done.stderr + " (re-run scripts/reproduction-table into docs/results.md)")
 
 
 if __name__ == "__main__":

@@ -3,7 +3,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <nlohmann/json.hpp>
+#include <tuple>
+#include <utility>
 
 #include "scenario/scenario.hpp"
 #include "sim/simulator.hpp"
@@ -120,6 +123,78 @@ TEST(FailureWatch, RestingWithTheReferenceIsNoStall) {
   }
   watch.end(Summary{});
   EXPECT_EQ(watch.first(false)->mode, "other");  // a failed verdict nothing here explains
+}
+
+// A hand that starts 0.3 m off its path and reaches it within 1 s: lost
+// without a settle time, held with one; a joint past its velocity limit is a
+// joint_speed failure when the criteria hold speeds.
+TEST(FailureWatch, ASettleTimeForgivesTheApproachAndJointSpeedsAreWatched) {
+  nlohmann::json doc = {{"dt", 0.01},
+                        {"duration", 3.0},
+                        {"robot",
+                         {{"kind", "planar"},
+                          {"links", {{{"length", 1.0}}, {{"length", 1.0}}, {{"length", 1.0}}}},
+                          {"q0", {0.3, -0.6, 0.6}},
+                          {"limits", {{"velocity", {0.5, 0.5, 0.5}}}}}},
+                        {"task", {{"trajectory", {{"type", "circle"}, {"center", {2.3663, 0.29552}}, {"radius", 0.3}}}}}};
+  const Scenario sc = parse_scenario(doc);
+  const auto run = [&](const SuccessCriteria& criteria, Frame (*edit)(Frame)) {
+    Simulator sim(sc);
+    FailureWatch watch(criteria);
+    watch.begin(sim);
+    Frame f = sim.frame();
+    double qdot_ratio = 0;  // as the summary has it
+    for (long k = 0; k < 300; ++k) {
+      f.step = k;
+      f.t = 0.01 * double(k);
+      f.task_error = f.t < 1.0 ? 0.3 * (1.0 - f.t) : 0.001;
+      f.min_distance = std::numeric_limits<double>::infinity();
+      f.collided = false;
+      f.joint_limit_margin = std::numeric_limits<double>::infinity();
+      f.target = f.ee_position = Eigen::Vector3d(0.01 * f.t, 0, 0);
+      f.qdot = Eigen::Vector3d(0.1, 0.2, 0.3);
+      const Frame edited = edit(f);
+      qdot_ratio = std::max(qdot_ratio, edited.qdot.cwiseAbs().maxCoeff() / 0.5);
+      watch.frame(edited);
+    }
+    Summary summary;
+    summary.max_tracking_error = 0.3;
+    summary.max_qdot_ratio = qdot_ratio;
+    watch.end(summary);
+    const bool passed = judge_success(criteria, summary) && watch.tracking_held();
+    return std::make_pair(passed, watch.first(passed));
+  };
+  const auto as_is = [](Frame f) { return f; };
+  SuccessCriteria criteria;
+  criteria.max_tracking_error = 0.01;
+  auto [passed, failure] = run(criteria, as_is);
+  EXPECT_FALSE(passed);
+  ASSERT_TRUE(failure);
+  EXPECT_EQ(failure->mode, "tracking_lost");
+  EXPECT_EQ(failure->t, 0.0);
+  criteria.settle_time = 1.5;
+  std::tie(passed, failure) = run(criteria, as_is);
+  EXPECT_TRUE(passed);
+  EXPECT_FALSE(failure);
+  // lost again at 2 s, after the settle time
+  std::tie(passed, failure) = run(criteria, [](Frame f) {
+    if (f.t >= 2.0) f.task_error = 0.05;
+    return f;
+  });
+  EXPECT_FALSE(passed);
+  ASSERT_TRUE(failure);
+  EXPECT_EQ(failure->mode, "tracking_lost");
+  EXPECT_NEAR(failure->t, 2.0, 1e-9);
+  // a joint at 0.6 rad/s against 0.5 from 2.5 s
+  criteria.joint_speeds = true;
+  std::tie(passed, failure) = run(criteria, [](Frame f) {
+    if (f.t >= 2.5) f.qdot[1] = 0.6;
+    return f;
+  });
+  EXPECT_FALSE(passed);
+  ASSERT_TRUE(failure);
+  EXPECT_EQ(failure->mode, "joint_speed");
+  EXPECT_NEAR(failure->t, 2.5, 1e-9);
 }
 
 }  // namespace

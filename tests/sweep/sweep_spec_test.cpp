@@ -176,5 +176,32 @@ TEST(SuccessCriteria, JudgesASummary) {
   EXPECT_FALSE(judge_success(c, s));
 }
 
+TEST(SuccessCriteria, JointSpeedsAndASettleTime) {
+  SuccessCriteria c = parse_success_criteria(
+      json::parse(R"({"max_tracking_error": 0.01, "settle_time": 2, "joint_speeds": true})"), "success");
+  EXPECT_EQ(c.settle_time, 2.0);
+  Summary s;
+  s.max_tracking_error = 0.5;  // the start off the path: the watch judges the error after 2 s
+  EXPECT_TRUE(judge_success(c, s));
+  s.max_qdot_ratio = 1.0 + 1e-9;  // riding the bound
+  EXPECT_TRUE(judge_success(c, s));
+  s.max_qdot_ratio = 1.01;
+  EXPECT_FALSE(judge_success(c, s));
+  s.max_qdot_ratio.reset();  // no velocity limits: nothing to exceed
+  EXPECT_TRUE(judge_success(c, s));
+  const auto error_of = [](const char* text) {
+    try {
+      parse_success_criteria(json::parse(text), "success");
+    } catch (const ScenarioError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(error_of(R"({"settle_time": 1})"),
+            "success.settle_time: needs max_tracking_error: it says when that bound starts");
+  EXPECT_EQ(error_of(R"({"max_tracking_error": 0.01, "settle_time": -1})"), "success.settle_time: must be >= 0 s");
+  EXPECT_EQ(error_of(R"({"joint_speeds": 1})"), "success.joint_speeds: must be true or false, got a number");
+}
+
 }  // namespace
 }  // namespace rrlab::sweep

@@ -346,6 +346,36 @@ TEST(MultiPreviewPaper, SinglePreviewAtTheMultiPreviewMeanHorizonAvoidsToo) {
             << control.result.summary.min_distance << " m\n";
 }
 
+// Scenario 35: the one surface of scripts/zhang-geometry-search's 429 where
+// pinv collides, three previews avoid and one preview (at 10 s and at the
+// 8.75 s mean horizon) collides: the paper's contrast, found by search.
+TEST(MultiPreviewPaper, OnTheSearchedSurfaceThreePreviewsAvoidWhereOnePreviewAndPinvCollide) {
+  const Scenario surface = load_scenario_file(test::source_path("scenarios/35_zhang_searched_surface.json"));
+  const auto previews = [&](double count, double horizon) {  // scenario 31's parameters otherwise
+    Scenario changed = surface;
+    for (auto& [name, value] : changed.method.params) {
+      if (name == "previews") value = count;
+      if (name == "preview_time") value = horizon;
+    }
+    Simulator sim(changed);
+    return run_to_end(sim, nullptr);
+  };
+  const Summary three = previews(3, 5.0);
+  const Summary one = previews(1, 10.0);
+  const Summary same_horizon = previews(1, 8.75);
+  Simulator plain(surface, "pinv");
+  const Summary pinv = run_to_end(plain, nullptr);
+  EXPECT_FALSE(three.collided);
+  EXPECT_GT(three.min_distance, 0.002);  // 0.0043 m: thin
+  EXPECT_LT(three.max_tracking_error, 0.03);
+  EXPECT_TRUE(one.collided);             // −0.0223 m
+  EXPECT_TRUE(same_horizon.collided);    // −0.0127 m
+  EXPECT_LT(pinv.min_distance, -0.05);   // −0.106 m
+  std::cout << "[ paper ] searched surface: three previews " << three.min_distance << " m, one preview "
+            << one.min_distance << " m (8.75 s: " << same_horizon.min_distance << " m), pinv " << pinv.min_distance
+            << " m\n";
+}
+
 TEST(MultiPreviewPaper, PathPlanningTracksWithoutCollisionAndTheMostAmsip) {
   const PaperRun plan = run_paper("32_zhang_path_planning.json");
   const PaperRun multi = run_paper("31_zhang_multi_preview.json");
