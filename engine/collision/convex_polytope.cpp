@@ -18,6 +18,8 @@ using Eigen::Vector3d;
 
 namespace {
 
+constexpr double kEdgeSkipMargin = 1e-9;  // m: far above the rounding of closest_points_segments
+
 void add_edge_axis(ConvexPolytope& poly, const Vector3d& direction) {
   for (const Vector3d& axis : poly.edge_axes)
     if (axis.cross(direction).norm() <= 1e-9) return;
@@ -80,11 +82,22 @@ double separated_features(const ConvexPolytope& poly, const Vector3d& a, const V
     }
   }
   Vector3d c1, c2;
+  const Vector3d low = a.cwiseMin(b), high = a.cwiseMax(b);
+  double best = std::sqrt(best_sq);
   for (const Edge& edge : poly.edges) {
-    closest_points_segments(a, b, poly.vertices[edge.from], poly.vertices[edge.to], c1, c2);
+    // the boxes around segment and edge are apart by at least their gap on
+    // every axis: an edge whose gap exceeds the best distance by more than
+    // rounding could come out below it cannot win (the result is unchanged;
+    // a prism's top and bottom edges are skipped for a planar arm)
+    const Vector3d& p = poly.vertices[edge.from];
+    const Vector3d& q = poly.vertices[edge.to];
+    const Vector3d gap = (p.cwiseMin(q) - high).cwiseMax(low - p.cwiseMax(q)).cwiseMax(0.0);
+    if (gap.norm() > best + kEdgeSkipMargin) continue;
+    closest_points_segments(a, b, p, q, c1, c2);
     const double dist_sq = (c1 - c2).squaredNorm();
     if (dist_sq >= best_sq) continue;
     best_sq = dist_sq;
+    best = std::sqrt(best_sq);
     on_link = c1;
     on_obstacle = c2;
   }

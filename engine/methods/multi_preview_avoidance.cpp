@@ -22,9 +22,10 @@ int link_point_rows(const Model& model) { return model.kind == ModelKind::planar
 constexpr double kRankTolerance = 1e-6;
 }  // namespace
 
-AvoidanceManipulability::AvoidanceManipulability(const Model& model, TaskSpace space)
+AvoidanceManipulability::AvoidanceManipulability(const Model& model, TaskSpace space, bool directions)
     : n_(model.dof()),
       rows_(link_point_rows(model)),
+      directions_(directions),
       hand_inverse_(task_rows(space), model.dof()),
       null_projector_(model.dof(), model.dof()),
       jacobian3_(3, model.dof()),
@@ -88,14 +89,16 @@ void AvoidanceManipulability::decompose(int i) {
   // padded to 3 x 3 for planar models: the padding adds a zero)
   Eigen::Matrix3d mmt = Eigen::Matrix3d::Zero();
   mmt.topLeftCorner(rows_, rows_).noalias() = matrices_[i] * matrices_[i].transpose();
-  eig_.compute(mmt);
+  // eigenvalues only where no direction is wanted: the QR iterations on the
+  // tridiagonal form are the same either way, so are the eigenvalues
+  eig_.compute(mmt, directions_ ? Eigen::ComputeEigenvectors : Eigen::EigenvaluesOnly);
   AvoidanceEllipsoid& e = ellipsoids_[i];
   const double scale = std::sqrt(std::max(eig_.eigenvalues()[2], 0.0));
   e.rank = 0;
   for (int k = 0; k < 3; ++k) {
     const int from = 2 - k;  // eigenvalues ascend
     e.sigma[k] = std::sqrt(std::max(eig_.eigenvalues()[from], 0.0));
-    e.directions.col(k) = eig_.eigenvectors().col(from);
+    if (directions_) e.directions.col(k) = eig_.eigenvectors().col(from);
     if (k < rows_ && e.sigma[k] > kRankTolerance * scale && e.sigma[k] > 1e-300) ++e.rank;
   }
   // Zhang eq. 18, 20: ¹V_i = c · σ_1 ⋯ σ_r over the generic rank r_i (before

@@ -25,7 +25,7 @@ double unit_ball_volume(int r);
 struct AvoidanceEllipsoid {
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();      // the link point (world)
   Eigen::Vector3d sigma = Eigen::Vector3d::Zero();       // singular values of ¹M_i, descending (0-padded)
-  Eigen::Matrix3d directions = Eigen::Matrix3d::Zero();  // columns u_k (world, unit) for sigma[k]
+  Eigen::Matrix3d directions = Eigen::Matrix3d::Zero();  // columns u_k (world, unit) for sigma[k]; zero without directions
   int rank = 0;        // numerical rank: < m is a partial ellipsoid (eq. 11)
   int volume_rank = 0;  // generic rank r_i of the point: the dimension V_i is measured in
   double volume = 0;   // ¹V_i = c_r · σ_1 ⋯ σ_r (eq. 18, 20)
@@ -35,7 +35,10 @@ class AvoidanceManipulability {
  public:
   // Link points are the tips of every link but the last (the paper's
   // intermediate links i = 1..n−1); m = 2 rows for planar models, else 3.
-  AvoidanceManipulability(const Model& model, TaskSpace space);
+  // Without `directions` the ellipsoids keep their semi-axis lengths but not
+  // their directions (the GA's imaginary manipulators score AMSI only): the
+  // same eigenvalues, bit for bit, for less work.
+  AvoidanceManipulability(const Model& model, TaskSpace space, bool directions = true);
 
   // Avoidance matrices and ellipsoids at a configuration whose kinematics and
   // task (hand) Jacobian J_n are given; returns AMSI ¹E (eq. 21).
@@ -53,6 +56,7 @@ class AvoidanceManipulability {
   void decompose(int i);
 
   int n_, rows_;
+  bool directions_;
   RightInverse hand_inverse_;
   Eigen::MatrixXd null_projector_, jacobian3_;
   Eigen::VectorXd unit_, column_;

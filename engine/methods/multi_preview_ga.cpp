@@ -49,7 +49,7 @@ ImaginaryManipulator::ImaginaryManipulator(const Model& model, TaskSpace space)
       error_(task_rows(space)),
       step_(model.dof()),
       q_(model.dof()),
-      avoidance_(model, space) {}
+      avoidance_(model, space, false) {}  // fitness needs AMSI, not the ellipsoids' directions
 
 ImaginaryManipulator::~ImaginaryManipulator() = default;
 
