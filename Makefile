@@ -10,7 +10,7 @@ TSAN_BUILD ?= build-tsan
 FUZZ_SECONDS ?= 60
 FUZZ_IDLE ?= 20
 SANITIZE_FLAGS = -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" \
-                 -DRRLAB_WEB_TESTS=OFF -DRRLAB_BUILD_BENCH=OFF
+                 -DRRLAB_WEB_TESTS=OFF -DRRLAB_BUILD_BENCH=OFF -DRRLAB_PYTHON=OFF
 # `make test` runs each test once, where it tells the most. These run against
 # the Release build: the browser tests and the soak (they need its speed), the
 # Dockerfile, docs and Slurm checks (they test no C++ of rrlab's), and the
@@ -19,12 +19,13 @@ SANITIZE_FLAGS = -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEB
 # the checks over many generated cases (...AtScale: the witnesses of
 # thousands, a method's defaults on tens; the same checks run on a few cases
 # per family under the sanitizers), and the re-run of a slice of the committed
-# benchmark and reproduction sweeps (their rows are the Release build's).
+# benchmark and reproduction sweeps (their rows are the Release build's), and
+# the Python package (PythonPackage: its module is built in Release only).
 # Every other test (unit, HTTP, command line, Python client) runs against the
 # ASan + UBSan build.
-RELEASE_TESTS = ^(Web|Docker|Docs|Slurm|Soak|Benchmark|[A-Za-z]+Paper|[A-Za-z]+AtScale)\.
+RELEASE_TESTS = ^(Web|Docker|Docs|Slurm|Soak|Benchmark|PythonPackage|[A-Za-z]+Paper|[A-Za-z]+AtScale)\.
 # What those need of the Release build (the benchmarks are built so they keep compiling).
-RELEASE_TARGETS = rrlab rrlab_engine_tests rrlab_soak rrlab_bench rrlab_server_load
+RELEASE_TARGETS = rrlab rrlab_engine_tests rrlab_soak rrlab_bench rrlab_server_load rrlab_python
 TIMED = ./scripts/timed
 
 .PHONY: deps deps-serve configure configure-sanitize build serve demo test test-release-part test-sanitize \

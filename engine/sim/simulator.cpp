@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "methods/registry.hpp"
 
@@ -32,6 +33,9 @@ Simulator::Simulator(const Scenario& scenario) : Simulator(scenario, scenario.me
 }
 
 Simulator::Simulator(const Scenario& scenario, const std::string& method_name)
+    : Simulator(scenario, method_name, nullptr) {}
+
+Simulator::Simulator(const Scenario& scenario, const std::string& method_name, MethodFactory factory)
     : scenario_(scenario),
       scene_(scenario.scene),
       kin_(scenario.model),
@@ -41,6 +45,7 @@ Simulator::Simulator(const Scenario& scenario, const std::string& method_name)
       ref_(scenario.task.space),
       total_steps_(scenario.steps()) {
   distances_.resize(scenario_.model.link_count(), int(scene_.obstacles.size()));
+  if (factory) external_name_ = method_name, external_ = std::move(factory);
   install_method(method_name);
   reset_state();
 }
@@ -48,10 +53,15 @@ Simulator::Simulator(const Scenario& scenario, const std::string& method_name)
 Simulator::~Simulator() = default;
 
 void Simulator::install_method(const std::string& name) {
-  const MethodInfo* info = find_method(name);
-  if (!info) throw ParamError("method", "unknown method \"" + name + "\" (known: " + method_names() + ")");
-  method_ = info->make(
-      {scenario_.model, scenario_.task.space, int(scene_.obstacles.size()), scenario_.seed, scenario_.witness});
+  const MethodContext context{scenario_.model, scenario_.task.space, int(scene_.obstacles.size()), scenario_.seed,
+                              scenario_.witness};
+  if (external_ && name == external_name_) {
+    method_ = external_(context);
+  } else {
+    const MethodInfo* info = find_method(name);
+    if (!info) throw ParamError("method", "unknown method \"" + name + "\" (known: " + method_names() + ")");
+    method_ = info->make(context);
+  }
   method_name_ = name;
   const int n = scenario_.model.dof();
   out_.qdot = Eigen::VectorXd::Zero(n);

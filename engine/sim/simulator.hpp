@@ -4,6 +4,7 @@
 #pragma once
 
 #include <atomic>
+#include <functional>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -19,11 +20,17 @@
 
 namespace rrlab {
 
+// Builds a method that is not in the registry (one written in Python).
+using MethodFactory = std::function<std::unique_ptr<Method>(const MethodContext&)>;
+
 class Simulator {
  public:
   // Uses the scenario's method and parameters (throws ParamError / ScenarioError).
   explicit Simulator(const Scenario& scenario);
   Simulator(const Scenario& scenario, const std::string& method_name);
+  // A method from outside the registry, called `method_name`: `factory` builds
+  // it again whenever the run starts over (reset, obstacles added).
+  Simulator(const Scenario& scenario, const std::string& method_name, MethodFactory factory);
   ~Simulator();
 
   // Advance one step; the frame of the step just taken is frame().
@@ -73,6 +80,8 @@ class Simulator {
   std::unique_ptr<Task> task_;
   std::unique_ptr<Method> method_;
   std::string method_name_;
+  std::string external_name_;  // the method `external_` builds, if any
+  MethodFactory external_;
   KinematicsData kin_;
   Eigen::MatrixXd jacobian_;
   JacobianConditioning conditioning_;

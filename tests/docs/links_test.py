@@ -53,7 +53,7 @@ class Links(unittest.TestCase):
         with open(os.path.join(SOURCE_DIR, "README.md"), encoding="utf-8") as f:
             targets = set(INLINE.findall(f.read()))
         for doc in ("docs/architecture.md", "docs/scenario-format.md", "docs/scenario.schema.json",
-                    "clients/python/rrlab_client.py"):
+                    "docs/python.md", "python/rrlab/client.py"):
             self.assertIn(doc, targets)
 
 

@@ -40,6 +40,29 @@ TEST(Simulator, SameInputsGiveBitIdenticalFrames) {
   }
 }
 
+// A method from outside the registry (the Python package's): built by its
+// factory at the start and whenever the run starts over, run like any other.
+TEST(Simulator, AnExternalMethodIsBuiltByItsFactoryAndRebuiltOnReset) {
+  int built = 0;
+  const MethodFactory factory = [&built](const MethodContext& ctx) {
+    ++built;
+    return find_method("pinv")->make(ctx);
+  };
+  const Scenario scenario = parse_scenario(moving_obstacle_scenario());
+  Simulator external(scenario, "my_pinv", factory);
+  Simulator builtin(scenario, "pinv");
+  EXPECT_EQ(built, 1);
+  EXPECT_EQ(external.method_name(), "my_pinv");
+  for (int i = 0; i < 50; ++i) external.step(), builtin.step();
+  EXPECT_TRUE(same_bits(external.state().q, builtin.state().q));
+  EXPECT_EQ(external.summary().method, "my_pinv");
+  external.reset();
+  EXPECT_EQ(built, 2);
+  external.switch_method("dls");  // a registry method by name, as before
+  EXPECT_EQ(external.method_name(), "dls");
+  EXPECT_EQ(built, 2);
+}
+
 TEST(Simulator, RecordsOneFramePerStepWithTimeFromTheStepIndex) {
   const auto r = test::run_scenario(moving_obstacle_scenario(), "pinv");
   ASSERT_EQ(r.frames.size(), 200u);

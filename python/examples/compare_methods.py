@@ -3,7 +3,7 @@
 plot of tracking error and obstacle clearance over time saved to PNG when
 matplotlib is installed (Debian: python3-matplotlib).
 
-    python3 clients/python/examples/compare_methods.py --url http://127.0.0.1:8080 \\
+    python3 python/examples/compare_methods.py --url http://127.0.0.1:8080 \\
         --scenario 01_planar7_obstacles --methods pinv dls closest_point --out compare.png
 """
 
@@ -11,8 +11,8 @@ import argparse
 import os
 import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from rrlab_client import Client, RrlabError  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))  # python/: rrlab.client uninstalled
+from rrlab.client import Client, RrlabError  # noqa: E402
 
 
 def number(value, digits=4):

@@ -4,7 +4,7 @@ end-effector around a square with joystick commands while printing the
 streamed frames, moves an obstacle half-way, then stops the run and prints
 its summary.
 
-    python3 clients/python/examples/joystick.py --url http://127.0.0.1:8080 --seconds 8
+    python3 python/examples/joystick.py --url http://127.0.0.1:8080 --seconds 8
 
 With --keys, commands come from standard input instead, one per line:
 w/a/s/d (up/left/down/right at --speed), x (halt), q (quit).
@@ -16,8 +16,8 @@ import sys
 import threading
 import time
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from rrlab_client import Client  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))  # python/: rrlab.client uninstalled
+from rrlab.client import Client  # noqa: E402
 
 KEYS = {"w": (0, 1), "a": (-1, 0), "s": (0, -1), "d": (1, 0), "x": (0, 0)}
 

@@ -1,9 +1,9 @@
-"""clients/python/rrlab_client.py against a real `rrlab serve` (ctest
+"""python/rrlab/client.py against a real `rrlab serve` (ctest
 Python.rrlab_client): batch run and frames, a live run steered while it
 streams, compare, a small sweep, errors, the two examples, and the Python
 block of docs/api.md as written (the README's Python lines are lines of it).
 
-Usage: rrlab_client_test.py RRLAB_BINARY. websockets (Debian
+Usage: client_test.py RRLAB_BINARY. websockets (Debian
 python3-websockets) is required: its absence fails the test."""
 
 import importlib.util
@@ -15,12 +15,13 @@ import tempfile
 import unittest
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-SOURCE_DIR = os.path.dirname(os.path.dirname(os.path.dirname(HERE)))
-sys.path.insert(0, os.path.join(SOURCE_DIR, "clients", "python"))
+SOURCE_DIR = os.path.dirname(os.path.dirname(HERE))
+# python/ from the source tree: rrlab.client needs no engine module (this test runs in the sanitized part)
+sys.path.insert(0, os.path.join(SOURCE_DIR, "python"))
 sys.path.insert(0, os.path.join(SOURCE_DIR, "tests", "support"))
 
 import rrlab_serve  # noqa: E402
-from rrlab_client import Client, RrlabError  # noqa: E402
+from rrlab.client import Client, RrlabError  # noqa: E402
 
 BINARY = None
 HAVE_NUMPY = importlib.util.find_spec("numpy") is not None
@@ -178,7 +179,7 @@ class ClientTest(unittest.TestCase):
         self.assertEqual(positions, sorted(positions), "README.md: the Python lines are not in docs/api.md's order")
 
     def run_example(self, name, *args, env=None):
-        command = [sys.executable, os.path.join(SOURCE_DIR, "clients", "python", "examples", name),
+        command = [sys.executable, os.path.join(SOURCE_DIR, "python", "examples", name),
                    "--url", self.server.url, *args]
         done = subprocess.run(command, capture_output=True, text=True, timeout=300, env=env)
         self.assertEqual(done.returncode, 0, done.stdout + done.stderr)
@@ -220,6 +221,6 @@ class ClientTest(unittest.TestCase):
 
 if __name__ == "__main__":
     if len(sys.argv) < 2:
-        sys.exit("usage: rrlab_client_test.py RRLAB_BINARY")
+        sys.exit("usage: client_test.py RRLAB_BINARY")
     BINARY = sys.argv.pop(1)
     unittest.main(verbosity=2)

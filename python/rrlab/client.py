@@ -1,11 +1,11 @@
-"""rrlab_client: a Python client for the REST and WebSocket API of `rrlab serve`.
+"""rrlab.client: a Python client for the REST and WebSocket API of `rrlab serve`.
 
 REST uses the standard library only (urllib); streaming frames uses the
 `websockets` package (Debian: python3-websockets), imported only when
 `Client.stream` is called. `Client.frames` returns numpy arrays when numpy is
 installed, lists otherwise.
 
-    from rrlab_client import Client
+    from rrlab.client import Client
     c = Client("http://127.0.0.1:8080")
     result = c.run("01_planar7_obstacles", "dls", {"lambda": 0.02})   # batch: waits, returns the summary
     frames = c.frames(result["id"])                                    # frames["t"], frames["q"], ...

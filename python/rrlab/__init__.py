@@ -1,0 +1,28 @@
+"""rrlab: redundancy-resolution lab, in Python.
+
+    import rrlab
+    sc = rrlab.load_scenario("scenarios/01_planar7_obstacles.json")
+    res = rrlab.run(sc, method="dls", params={"lambda": 0.05})
+    res["min_distance"], res["frames"]["q"]
+
+The engine runs in this process (the GIL is released while it steps); a
+method may be written in Python (rrlab.Method); rrlab.client talks to a
+running `rrlab serve`. docs/python.md has the rest.
+"""
+from . import errors
+from .errors import InputStateError, MethodError, ParamError, ScenarioError
+from .method import Method, Param
+
+try:
+    from ._rrlab import Scenario, Simulator, StepState, __version__, load_scenario, methods, run
+except ImportError as _missing:  # a source tree whose engine module is not built: rrlab.client still works
+    _engine_error = _missing
+
+    def __getattr__(name):
+        raise ImportError(f"rrlab.{name} needs rrlab's engine module, which did not load ({_engine_error}); "
+                          "install the package as docs/python.md says") from _engine_error
+
+__all__ = [
+    "InputStateError", "Method", "MethodError", "Param", "ParamError", "Scenario", "ScenarioError",
+    "Simulator", "StepState", "__version__", "errors", "load_scenario", "methods", "run",
+]

@@ -1,0 +1,290 @@
+// rrlab._rrlab: the engine in-process. Scenarios load as `rrlab run` loads
+// them, runs give `rrlab run`'s summary plus its frames as numpy arrays (the
+// same numbers bit for bit), a Simulator steps a run and takes the live
+// inputs the server takes, and a method may be a Python object
+// (python_method.hpp). The GIL is released while the engine steps.
+#include <pybind11/eigen.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cstring>
+#include <memory>
+
+#include "frame_columns.hpp"
+#include "methods/registry.hpp"
+#include "methods/registry_json.hpp"
+#include "python_method.hpp"
+#include "scenario/scenario.hpp"
+#include "sim/frame.hpp"
+#include "sim/run_inputs.hpp"
+#include "sim/simulator.hpp"
+
+namespace py = pybind11;
+
+namespace rrlab::python {
+
+namespace {
+
+// nlohmann::json <-> Python through the json module: exact for numbers
+// (shortest round-trip text), and rare enough not to matter for speed.
+py::object to_python(const nlohmann::json& value) {
+  return py::module_::import("json").attr("loads")(value.dump());
+}
+
+nlohmann::json from_python(const py::handle& value, const std::string& what) {
+  try {
+    // numpy arrays and scalars through their tolist()
+    const py::object text = py::module_::import("json").attr("dumps")(
+        value, py::arg("default") = py::module_::import("rrlab.errors").attr("jsonable"));
+    return nlohmann::json::parse(std::string(py::str(text)));
+  } catch (const nlohmann::json::exception&) {
+    throw ScenarioError(what, "not representable as JSON");
+  } catch (const py::error_already_set& e) {
+    throw ScenarioError(what, std::string("not representable as JSON: ") + e.what());
+  }
+}
+
+// A scenario from a Scenario, a dict, a JSON text or a file path.
+Scenario scenario_of(const py::object& source) {
+  if (py::isinstance<Scenario>(source)) return source.cast<Scenario>();
+  if (py::isinstance<py::dict>(source)) return parse_scenario(from_python(source, "scenario"), ".");
+  const std::string text = py::str(py::module_::import("os").attr("fspath")(source));
+  const size_t first = text.find_first_not_of(" \t\r\n");
+  if (first != std::string::npos && text[first] == '{') return parse_scenario_text(text);
+  return load_scenario_file(text);
+}
+
+// A simulator of `scenario` with `method` (None: the scenario's; a name; or a
+// Python method) and `params` (a dict, numbers or enumeration labels).
+// A parameter of the simulator's method: a number or label for a built-in
+// method (resolved as the scenario file's), a number for a Python one (whose
+// name no built-in method has).
+void set_method_param(Simulator& sim, const std::string& name, const py::handle& value) {
+  if (find_method(sim.method_name())) {
+    const auto [resolved, number] =
+        resolve_method_param(sim.method_name(), name, from_python(value, "params." + name), "params." + name);
+    sim.set_param(resolved, number);
+    return;
+  }
+  if (!py::isinstance<py::float_>(value) && !py::isinstance<py::int_>(value))
+    throw ScenarioError("params." + name, "expected a number");
+  sim.set_param(name, value.cast<double>());
+}
+
+std::unique_ptr<Simulator> make_simulator(const Scenario& scenario, const py::object& method, const py::object& params) {
+  std::unique_ptr<Simulator> sim;
+  if (method.is_none()) {
+    sim = std::make_unique<Simulator>(scenario);
+  } else if (py::isinstance<py::str>(method)) {
+    const std::string name = method.cast<std::string>();
+    require_method(name, "method");
+    // the scenario's parameters belong to its own method (as `rrlab run --method`)
+    sim = name == scenario.method.name ? std::make_unique<Simulator>(scenario) : std::make_unique<Simulator>(scenario, name);
+  } else {
+    sim = std::make_unique<Simulator>(scenario, python_method_name(method), python_method_factory(method));
+  }
+  if (!params.is_none()) {
+    if (!py::isinstance<py::dict>(params)) throw ScenarioError("params", "expected a dict of parameter values");
+    for (const auto& [key, value] : params.cast<py::dict>()) set_method_param(*sim, py::str(key), value);
+  }
+  return sim;
+}
+
+py::array column_array(const FrameColumn& column, long frames) {
+  std::vector<py::ssize_t> shape{frames};
+  if (column.width > 1) shape.push_back(column.width);
+  const size_t count = column.values.size();
+  if (column.type == FrameColumn::real) {
+    py::array_t<double> out(shape);
+    if (count) std::memcpy(out.mutable_data(), column.values.data(), count * sizeof(double));
+    return out;
+  }
+  if (column.type == FrameColumn::flag) {
+    py::array_t<bool> out(shape);
+    bool* data = out.mutable_data();
+    for (size_t i = 0; i < count; ++i) data[i] = column.values[i] != 0.0;
+    return out;
+  }
+  py::array_t<std::int64_t> out(shape);
+  std::int64_t* data = out.mutable_data();
+  for (size_t i = 0; i < count; ++i) data[i] = std::int64_t(column.values[i]);
+  return out;
+}
+
+py::dict frames_dict(const FrameColumns& columns) {
+  py::dict frames, diagnostics;
+  for (const FrameColumn& column : columns.columns())
+    (column.diagnostic ? diagnostics : frames)[py::str(column.name)] = column_array(column, columns.frames());
+  frames["diagnostics"] = diagnostics;
+  return frames;
+}
+
+long checked_steps(const py::object& steps, long otherwise) {
+  if (steps.is_none()) return otherwise;
+  const long n = steps.cast<long>();
+  if (n < 1 || n > ScenarioLimits::max_steps)
+    throw ScenarioError("steps", "must be in [1, " + std::to_string(ScenarioLimits::max_steps) + "]");
+  return n;
+}
+
+// The Python Simulator: a run stepped from Python, with the server's live inputs.
+struct PySimulator {
+  std::unique_ptr<Simulator> sim;
+
+  void apply(const std::string& kind, const py::object& payload) {
+    apply_input(*sim, kind, payload.is_none() ? nlohmann::json::object() : from_python(payload, kind));
+  }
+
+  py::dict frame() const {
+    FrameColumns one;
+    one.begin(*sim);
+    one.frame(sim->frame());
+    py::dict out = frames_dict(one);
+    py::dict row;
+    for (const auto& [key, value] : out) {
+      if (std::string(py::str(key)) == "diagnostics") {
+        py::dict diag;
+        for (const auto& [name, column] : value.cast<py::dict>()) diag[name] = column.cast<py::array>()[py::int_(0)];
+        row[key] = diag;
+      } else {
+        row[key] = value.cast<py::array>()[py::int_(0)];
+      }
+    }
+    return row;
+  }
+};
+
+void translate_errors() {
+  py::register_exception_translator([](std::exception_ptr error) {
+    if (!error) return;
+    const py::module_ errors = py::module_::import("rrlab.errors");
+    auto raise = [&](const char* type, py::object instance) {
+      PyErr_SetObject(errors.attr(type).ptr(), instance.ptr());
+    };
+    try {
+      std::rethrow_exception(error);
+    } catch (const ScenarioError& e) {
+      raise("ScenarioError", errors.attr("ScenarioError")(e.what(), e.path()));
+    } catch (const ParamError& e) {
+      raise("ParamError", errors.attr("ParamError")(std::string(e.param()) + ": " + e.what(), e.param()));
+    } catch (const MethodError& e) {
+      raise("MethodError", errors.attr("MethodError")(e.what()));
+    } catch (const InputStateError& e) {
+      raise("InputStateError", errors.attr("InputStateError")(e.what()));
+    }
+  });
+}
+
+}  // namespace
+
+}  // namespace rrlab::python
+
+PYBIND11_MODULE(_rrlab, m) {
+  using namespace rrlab;
+  using namespace rrlab::python;
+  m.doc() = "rrlab's engine (the rrlab package wraps it: import rrlab)";
+  m.attr("__version__") = RRLAB_VERSION;
+  translate_errors();
+  register_step_state(m);
+
+  py::class_<Scenario>(m, "Scenario", "A loaded, validated scenario (rrlab.load_scenario)")
+      .def_property_readonly("name", [](const Scenario& s) { return s.name; })
+      .def_property_readonly("dof", [](const Scenario& s) { return s.model.dof(); })
+      .def_property_readonly("dt", [](const Scenario& s) { return s.dt; })
+      .def_property_readonly("duration", [](const Scenario& s) { return s.duration; })
+      .def_property_readonly("steps", [](const Scenario& s) { return s.steps(); })
+      .def_property_readonly("task_space", [](const Scenario& s) { return std::string(to_string(s.task.space)); })
+      .def_property_readonly("method", [](const Scenario& s) { return s.method.name; })
+      .def_property_readonly("params", [](const Scenario& s) {
+        py::dict out;
+        for (const auto& [name, value] : s.method.params) out[py::str(name)] = value;
+        return out;
+      })
+      .def_property_readonly("q0", [](const Scenario& s) { return Eigen::VectorXd(s.q0); })
+      .def("__repr__", [](const Scenario& s) {
+        return "<rrlab.Scenario " + s.name + ": " + std::to_string(s.model.dof()) + " joints, " +
+               to_string(s.task.space) + " task, " + std::to_string(s.steps()) + " steps, method " + s.method.name + ">";
+      });
+
+  m.def("load_scenario", &scenario_of, py::arg("source"),
+        "A scenario from a file path, a dict or a JSON string; bad input raises rrlab.ScenarioError naming the JSON "
+        "path");
+  m.def("methods", [] { return to_python(methods_json()); }, "The built-in methods with their parameter specs");
+  m.def(
+      "run",
+      [](const py::object& scenario, const py::object& method, const py::object& params, const py::object& steps) {
+        std::unique_ptr<Simulator> sim = make_simulator(scenario_of(scenario), method, params);
+        sim->set_total_steps(checked_steps(steps, sim->total_steps()));
+        FrameColumns columns;
+        Summary summary;
+        {
+          py::gil_scoped_release release;  // a Python method takes it back for its step()
+          summary = run_to_end(*sim, &columns);
+        }
+        py::dict out = to_python(summary_to_json(summary));
+        out["frames"] = frames_dict(columns);
+        return out;
+      },
+      py::arg("scenario"), py::arg("method") = py::none(), py::arg("params") = py::none(),
+      py::arg("steps") = py::none(),
+      "Runs to the end: rrlab run's summary keys plus 'frames', every column of its CSV as numpy arrays");
+
+  py::class_<PySimulator>(m, "Simulator", "A run stepped from Python")
+      .def(py::init([](const py::object& scenario, const py::object& method, const py::object& params) {
+             return PySimulator{make_simulator(scenario_of(scenario), method, params)};
+           }),
+           py::arg("scenario"), py::arg("method") = py::none(), py::arg("params") = py::none())
+      .def(
+          "step",
+          [](PySimulator& s, long count) {
+            if (count < 0) throw ScenarioError("count", "must be at least 0");
+            py::gil_scoped_release release;
+            for (long i = 0; i < count && !s.sim->done(); ++i) timed_step(*s.sim);
+          },
+          py::arg("count") = 1, "Advances `count` steps (fewer at the end of the run)")
+      .def_property_readonly("done", [](const PySimulator& s) { return s.sim->done(); })
+      .def_property_readonly("method", [](const PySimulator& s) { return s.sim->method_name(); })
+      .def_property_readonly("params", [](const PySimulator& s) { return to_python(param_values_json(s.sim->method())); })
+      .def_property_readonly("state",
+                             [](const PySimulator& s) {
+                               py::dict out;
+                               out["t"] = s.sim->state().t;
+                               out["step"] = s.sim->state().step;
+                               out["q"] = Eigen::VectorXd(s.sim->state().q);
+                               out["qdot"] = Eigen::VectorXd(s.sim->state().qdot);
+                               return out;
+                             },
+                             "the state the next step starts from: t, step, q, qdot")
+      .def_property_readonly("frame", &PySimulator::frame, "the last step's frame (the CSV's columns)")
+      .def("summary", [](const PySimulator& s) { return to_python(summary_to_json(s.sim->summary())); })
+      .def("apply", &PySimulator::apply, py::arg("kind"), py::arg("payload") = py::none(),
+           "A live input as the server takes it: params, obstacle, obstacle_add, obstacle_remove, joystick, method, "
+           "reset (docs/api.md)")
+      .def(
+          "set_param",
+          [](PySimulator& s, const std::string& name, const py::object& value) {
+            set_method_param(*s.sim, name, value);
+          },
+          py::arg("name"), py::arg("value"))
+      .def(
+          "move_obstacle",
+          [](PySimulator& s, const std::string& id, const py::object& position, const py::object& velocity) {
+            py::dict payload;
+            payload["id"] = id;
+            if (!position.is_none()) payload["position"] = position;
+            if (!velocity.is_none()) payload["velocity"] = velocity;
+            s.apply("obstacle", payload);
+          },
+          py::arg("id"), py::arg("position") = py::none(), py::arg("velocity") = py::none())
+      .def(
+          "joystick",
+          [](PySimulator& s, const py::object& linear, const py::object& angular) {
+            py::dict payload;
+            payload["linear"] = linear;
+            if (!angular.is_none()) payload["angular"] = angular;
+            s.apply("joystick", payload);
+          },
+          py::arg("linear"), py::arg("angular") = py::none())
+      .def("reset", [](PySimulator& s) { s.apply("reset", py::none()); });
+}

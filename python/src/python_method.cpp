@@ -1,0 +1,254 @@
+#include "python_method.hpp"
+
+#include <pybind11/eigen.h>
+#include <pybind11/numpy.h>
+
+#include <cmath>
+#include <memory>
+#include <sstream>
+
+#include "methods/registry.hpp"
+
+namespace py = pybind11;
+
+namespace rrlab::python {
+
+namespace {
+
+// What a Python method sees at one step, read through properties that copy
+// into new numpy arrays (a method pays only for what it reads). Valid during
+// its step() only: the engine's buffers move on with the next step.
+class StepState {
+ public:
+  const StepInput& in() const {
+    if (!in_) throw std::runtime_error("this state belongs to a step that has ended (keep copies, not the state)");
+    return *in_;
+  }
+  void bind(const StepInput* in) { in_ = in; }
+
+  // Per link, its nearest obstacle pair (-1: no obstacle).
+  int nearest(int link) const { return in().distances.nearest_obstacle(link); }
+  int links() const { return in().model.link_count(); }
+
+  Eigen::MatrixXd link_rows(Eigen::Vector3d LinkObstacleDistance::*member) const {
+    Eigen::MatrixXd rows = Eigen::MatrixXd::Constant(links(), 3, std::nan(""));
+    for (int l = 0; l < links(); ++l)
+      if (const int o = nearest(l); o >= 0) rows.row(l) = (in().distances.at(l, o).*member).transpose();
+    return rows;
+  }
+
+ private:
+  const StepInput* in_ = nullptr;
+};
+
+// Releases a Python object with the GIL held, whoever drops the last reference.
+std::shared_ptr<py::object> held(py::object object) {
+  return std::shared_ptr<py::object>(new py::object(std::move(object)), [](py::object* o) {
+    py::gil_scoped_acquire gil;
+    delete o;
+  });
+}
+
+std::vector<ParamSpec> python_specs(const py::object& method, const std::string& name) {
+  std::vector<ParamSpec> specs;
+  if (!py::hasattr(method, "params")) return specs;
+  for (const py::handle p : method.attr("params")) {
+    ParamSpec spec;
+    spec.name = py::str(p.attr("name"));
+    spec.def = p.attr("default").cast<double>();
+    spec.min = p.attr("min").cast<double>();
+    spec.max = p.attr("max").cast<double>();
+    spec.step = p.attr("step").cast<double>();
+    spec.label = py::str(p.attr("label"));
+    spec.unit = py::str(p.attr("unit"));
+    spec.help = py::str(p.attr("help"));
+    if (spec.name.empty()) throw std::invalid_argument(name + ".params: a parameter without a name");
+    if (find_param(specs, spec.name) >= 0)
+      throw std::invalid_argument(name + ".params." + spec.name + ": listed twice");
+    if (!(spec.min <= spec.max)) throw std::invalid_argument(name + ".params." + spec.name + ": min above max");
+    if (const std::string problem = param_problem(spec, spec.def); !problem.empty())
+      throw std::invalid_argument(name + ".params." + spec.name + ": default " + problem);
+    specs.push_back(std::move(spec));
+  }
+  return specs;
+}
+
+class PythonMethod final : public Method {
+ public:
+  PythonMethod(std::shared_ptr<py::object> object, std::string name, std::vector<ParamSpec> specs,
+               const MethodContext& ctx)
+      : Method(std::move(specs)),
+        object_(std::move(object)),
+        name_(std::move(name)),
+        dof_(ctx.model.dof()),
+        state_(std::make_shared<StepState>()) {
+    py::gil_scoped_acquire gil;
+    state_object_ = held(py::cast(state_));
+    step_ = held(object_->attr("step"));
+    publish_params();
+    if (py::hasattr(*object_, "start")) {
+      py::dict context;
+      context["dof"] = ctx.model.dof();
+      context["task_rows"] = task_rows(ctx.space);
+      context["obstacles"] = ctx.obstacle_count;
+      context["seed"] = ctx.seed;
+      call("start", [&] { object_->attr("start")(context); });
+    }
+  }
+
+  void step(const StepInput& in, StepOutput& out) override {
+    py::gil_scoped_acquire gil;
+    std::ostringstream where;
+    where << name_ << " at step " << in.state.step << " (t = " << in.state.t << " s)";
+    state_->bind(&in);
+    py::object result;
+    call(where.str(), [&] { result = (*step_)(*state_object_); });
+    state_->bind(nullptr);
+    const auto qdot = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(result);
+    if (!qdot)
+      throw MethodError(where.str() + ": step() returned " + std::string(py::str(py::type::of(result).attr("__name__"))) +
+                        ", not an array of " + std::to_string(dof_) + " joint velocities");
+    if (qdot.ndim() != 1 || qdot.shape(0) != dof_) {
+      std::string shape = "(";
+      for (py::ssize_t d = 0; d < qdot.ndim(); ++d) shape += (d ? ", " : "") + std::to_string(qdot.shape(d));
+      throw MethodError(where.str() + ": step() returned shape " + shape + (qdot.ndim() == 1 ? ",)" : ")") +
+                        ", expected (" + std::to_string(dof_) + ",)");
+    }
+    for (int i = 0; i < dof_; ++i) {
+      if (!std::isfinite(qdot.at(i)))
+        throw MethodError(where.str() + ": step() returned " + (std::isnan(qdot.at(i)) ? "NaN" : "an infinite value") +
+                          " for joint " + std::to_string(i + 1));
+      out.qdot[i] = qdot.at(i);
+    }
+  }
+
+ private:
+  void on_param_changed(ParamSlot) override {
+    py::gil_scoped_acquire gil;
+    publish_params();
+  }
+
+  // The current values as the object's `param_values` dict (rrlab.Method.param reads it).
+  void publish_params() {
+    py::dict values;
+    for (size_t i = 0; i < specs().size(); ++i) values[py::str(specs()[i].name)] = param_values()[Eigen::Index(i)];
+    object_->attr("param_values") = values;
+  }
+
+  // Runs a call into Python; an exception it raises becomes a MethodError saying where.
+  template <typename Call>
+  void call(const std::string& where, Call&& body) {
+    try {
+      body();
+    } catch (py::error_already_set& e) {
+      state_->bind(nullptr);
+      throw MethodError(where + ": " + e.what());
+    }
+  }
+
+  std::shared_ptr<py::object> object_, step_, state_object_;
+  std::string name_;
+  int dof_;
+  std::shared_ptr<StepState> state_;
+};
+
+}  // namespace
+
+std::string python_method_name(const py::object& method) {
+  if (!py::hasattr(method, "step") || !PyCallable_Check(method.attr("step").ptr()))
+    throw std::invalid_argument("method: expected a method name or an rrlab.Method with a step(state) method");
+  std::string name = py::hasattr(method, "name") && !method.attr("name").is_none()
+                         ? std::string(py::str(method.attr("name")))
+                         : std::string(py::str(py::type::of(method).attr("__name__")));
+  if (name.empty()) throw std::invalid_argument("method.name: empty");
+  if (find_method(name))
+    throw std::invalid_argument("method.name: \"" + name + "\" is a built-in method's name; choose another");
+  return name;
+}
+
+MethodFactory python_method_factory(py::object method) {
+  const std::string name = python_method_name(method);
+  std::vector<ParamSpec> specs = python_specs(method, name);
+  std::shared_ptr<py::object> object = held(std::move(method));
+  return [object, name, specs](const MethodContext& ctx) -> std::unique_ptr<Method> {
+    return std::make_unique<PythonMethod>(object, name, specs, ctx);
+  };
+}
+
+void register_step_state(py::module_& m) {
+  using S = StepState;
+  py::class_<S, std::shared_ptr<S>>(m, "StepState",
+                                    "What a Python method's step() sees (valid during that call; arrays are copies)")
+      .def_property_readonly("t", [](const S& s) { return s.in().state.t; }, "time at the start of the step (s)")
+      .def_property_readonly("step", [](const S& s) { return s.in().state.step; }, "step index")
+      .def_property_readonly("dt", [](const S& s) { return s.in().dt; }, "step length (s)")
+      .def_property_readonly("q", [](const S& s) { return Eigen::VectorXd(s.in().state.q); }, "joint positions (n,)")
+      .def_property_readonly("qdot", [](const S& s) { return Eigen::VectorXd(s.in().state.qdot); },
+                             "joint velocities applied over the previous step (n,)")
+      .def_property_readonly("J", [](const S& s) { return Eigen::MatrixXd(s.in().task_jacobian); },
+                             "task Jacobian (m, n): the rows of the task space (xy 2, xyz 3, pose 6)")
+      .def_property_readonly("xdot", [](const S& s) { return Eigen::VectorXd(s.in().ref.xdot); },
+                             "task velocity command (m,): feed-forward plus gain times error, as built-in methods get")
+      .def_property_readonly("xdot_ff", [](const S& s) { return Eigen::VectorXd(s.in().ref.xdot_ff); },
+                             "feed-forward task velocity (m,)")
+      .def_property_readonly("error", [](const S& s) { return Eigen::VectorXd(s.in().ref.error); },
+                             "task error, desired minus actual (m,); orientation rows as a rotation vector")
+      .def_property_readonly("target", [](const S& s) { return Eigen::Vector3d(s.in().ref.position); },
+                             "desired end-effector position at t (3,)")
+      .def_property_readonly("ee", [](const S& s) { return Eigen::Vector3d(s.in().kin.end_effector().translation()); },
+                             "end-effector position (3,)")
+      .def_property_readonly("ee_rotation",
+                             [](const S& s) { return Eigen::Matrix3d(s.in().kin.end_effector().linear()); },
+                             "end-effector orientation (3, 3)")
+      .def_property_readonly("q_lower", [](const S& s) { return Eigen::VectorXd(s.in().model.limits.lower); },
+                             "joint position lower limits (n,), -inf where unbounded")
+      .def_property_readonly("q_upper", [](const S& s) { return Eigen::VectorXd(s.in().model.limits.upper); },
+                             "joint position upper limits (n,), inf where unbounded")
+      .def_property_readonly("qdot_max", [](const S& s) { return Eigen::VectorXd(s.in().model.limits.velocity); },
+                             "joint speed limits (n,), inf where unbounded")
+      .def_property_readonly("qddot_max",
+                             [](const S& s) { return Eigen::VectorXd(s.in().model.limits.acceleration); },
+                             "joint acceleration limits (n,), inf where unbounded")
+      .def_property_readonly(
+          "distances",
+          [](const S& s) {
+            Eigen::VectorXd d = Eigen::VectorXd::Constant(s.links(), std::numeric_limits<double>::infinity());
+            for (int l = 0; l < s.links(); ++l)
+              if (const int o = s.nearest(l); o >= 0) d[l] = s.in().distances.at(l, o).distance;
+            return d;
+          },
+          "per link, the signed distance to its nearest obstacle (links,), inf without obstacles")
+      .def_property_readonly("link_points", [](const S& s) { return s.link_rows(&LinkObstacleDistance::on_link); },
+                             "per link, its point nearest that obstacle (links, 3), NaN without one")
+      .def_property_readonly("obstacle_points",
+                             [](const S& s) { return s.link_rows(&LinkObstacleDistance::on_obstacle); },
+                             "per link, the obstacle's nearest point (links, 3)")
+      .def_property_readonly("normals", [](const S& s) { return s.link_rows(&LinkObstacleDistance::normal); },
+                             "per link, the unit direction from the obstacle to the link (links, 3)")
+      .def_property_readonly(
+          "distance_jacobians",
+          [](const S& s) {
+            const StepInput& in = s.in();
+            const int n = in.model.dof();
+            py::array_t<double> out({s.links(), 3, n});
+            auto view = out.mutable_unchecked<3>();
+            Eigen::MatrixXd jac(3, n);
+            for (int l = 0; l < s.links(); ++l) {
+              const int o = s.nearest(l);
+              if (o >= 0) point_jacobian_linear(in.model, in.kin, l, in.distances.at(l, o).on_link, jac);
+              for (int r = 0; r < 3; ++r)
+                for (int c = 0; c < n; ++c) view(l, r, c) = o >= 0 ? jac(r, c) : std::nan("");
+            }
+            return out;
+          },
+          "per link, the linear Jacobian of its nearest point (links, 3, n): normals[l] @ it is the distance's gradient")
+      .def_property_readonly(
+          "manipulability",
+          [](const S& s) {
+            const Eigen::MatrixXd& j = s.in().task_jacobian;
+            return std::sqrt(std::max(0.0, (j * j.transpose()).determinant()));
+          },
+          "Yoshikawa's sqrt(det(J J^T))");
+}
+
+}  // namespace rrlab::python
