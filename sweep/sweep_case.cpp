@@ -3,6 +3,7 @@
 #include <deque>
 #include <mutex>
 
+#include "methods/registry.hpp"
 #include "scenario/generators.hpp"
 #include "scenario/perturbation.hpp"
 #include "sim/recorder.hpp"
@@ -70,6 +71,8 @@ Scenario scenario_of_case(const SweepSpec& spec, const SweepCase& c) {
     params[p.name] = p.value;
   }
   scenario.json["method"] = {{"name", config.method}, {"params", params}};
+  if (const MethodInfo* info = find_method(config.method); info && info->python)
+    scenario.json["method"]["origin"] = "python";  // its stored runs say where the method lives
   if (c.seed) {
     scenario.seed = *c.seed;
     scenario.json["seed"] = *c.seed;

@@ -1,5 +1,9 @@
 #include "methods/registry.hpp"
 
+#include <algorithm>
+#include <mutex>
+#include <stdexcept>
+
 #include "methods/factories.hpp"
 #include "methods/witness_playback.hpp"
 
@@ -36,16 +40,49 @@ const std::vector<MethodInfo>& method_registry() {
   return table;
 }
 
-const MethodInfo* find_method(std::string_view name) {
+namespace {
+// Registered external methods, newest last; none is ever freed.
+struct ExternalMethods {
+  std::mutex mutex;
+  std::vector<std::unique_ptr<const MethodInfo>> entries;
+};
+ExternalMethods& external_methods() {
+  static ExternalMethods table;
+  return table;
+}
+const MethodInfo* find_builtin(std::string_view name) {
   for (const MethodInfo& info : method_registry())
     if (info.name == name) return &info;
   if (name == kWitnessMethod) return &witness_method_info();
   return nullptr;
 }
+}  // namespace
+
+const MethodInfo* find_method(std::string_view name) {
+  if (const MethodInfo* builtin = find_builtin(name)) return builtin;
+  ExternalMethods& external = external_methods();
+  std::lock_guard lock(external.mutex);
+  for (auto it = external.entries.rbegin(); it != external.entries.rend(); ++it)
+    if ((*it)->name == name) return it->get();
+  return nullptr;
+}
+
+void register_external_method(MethodInfo info) {
+  if (find_builtin(info.name)) throw std::invalid_argument("\"" + info.name + "\" is a built-in method's name");
+  ExternalMethods& external = external_methods();
+  std::lock_guard lock(external.mutex);
+  external.entries.push_back(std::make_unique<const MethodInfo>(std::move(info)));
+}
 
 std::string method_names() {
   std::string names;
   for (const MethodInfo& info : method_registry()) names += (names.empty() ? "" : ", ") + info.name;
+  ExternalMethods& external = external_methods();
+  std::lock_guard lock(external.mutex);
+  std::vector<std::string> listed;
+  for (const auto& info : external.entries)
+    if (std::find(listed.begin(), listed.end(), info->name) == listed.end()) listed.push_back(info->name);
+  for (const std::string& name : listed) names += ", " + name + " (Python)";
   return names;
 }
 

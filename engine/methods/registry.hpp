@@ -2,6 +2,7 @@
 // and a factory. CLI, REST and scenarios look methods up here by name.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -14,13 +15,22 @@ namespace rrlab {
 struct MethodInfo {
   std::string name, description;
   std::vector<ParamSpec> params;
-  std::unique_ptr<Method> (*make)(const MethodContext&);
+  std::function<std::unique_ptr<Method>(const MethodContext&)> make;
+  bool python = false;  // registered by the Python package (a method written in Python)
 };
 
+// The built-in methods.
 const std::vector<MethodInfo>& method_registry();
 // nullptr when unknown; also finds "witness" (methods/witness_playback.hpp),
-// which the registry does not list
+// which the registry does not list, and registered external methods
 const MethodInfo* find_method(std::string_view name);
 std::string method_names();  // "pinv, dls, ..." for error messages
+
+// A method defined outside rrlab's code (one written in Python), found by
+// name like a built-in one from now on in this process (scenarios, sweeps).
+// Registering a name again replaces its factory for the runs that start
+// later; an entry is never freed (a run may be building from it). Throws
+// std::invalid_argument for a built-in method's name. Thread-safe.
+void register_external_method(MethodInfo info);
 
 }  // namespace rrlab

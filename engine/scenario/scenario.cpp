@@ -443,8 +443,18 @@ void parse_witness(JsonObject w, const Units& units, Scenario& sc) {
 // ---- method ----
 
 void parse_method(JsonObject method, Scenario& sc) {
-  method.check_keys({"name", "params"});
+  method.check_keys({"name", "params", "origin"});
   sc.method.name = method.string("name");
+  // "origin": "python" marks a method written in Python (a run stored by the
+  // Python package): only a Python process that registered it can run it
+  if (method.has("origin")) {
+    const std::string origin = method.string("origin");
+    if (origin != "python") throw ScenarioError(method.child("origin"), "must be \"python\" (or absent: built in)");
+    if (!find_method(sc.method.name))
+      throw ScenarioError(method.child("name"), "\"" + sc.method.name +
+                                                    "\" is a method written in Python: run it from Python with its "
+                                                    "class registered (rrlab.register_method), not from this process");
+  }
   require_method(sc.method.name, method.child("name"));
   if (method.has("params"))
     sc.method.params = resolve_method_params(sc.method.name, method.raw("params"), method.child("params"));

@@ -11,10 +11,12 @@ running `rrlab serve`. docs/python.md has the rest.
 """
 from . import errors
 from .errors import InputStateError, MethodError, ParamError, ScenarioError
+from ._sweep import sweep
 from .method import Method, Param
 
 try:
-    from ._rrlab import Scenario, Simulator, StepState, __version__, load_scenario, methods, run
+    from ._rrlab import (Scenario, Simulator, StepState, __version__, generate, load_scenario, methods,
+                         register_method, replay, run)
 except ImportError as _missing:  # a source tree whose engine module is not built: rrlab.client still works
     _engine_error = _missing
 
@@ -24,5 +26,6 @@ except ImportError as _missing:  # a source tree whose engine module is not buil
 
 __all__ = [
     "InputStateError", "Method", "MethodError", "Param", "ParamError", "Scenario", "ScenarioError",
-    "Simulator", "StepState", "__version__", "errors", "load_scenario", "methods", "run",
+    "Simulator", "StepState", "__version__", "errors", "generate", "load_scenario", "methods", "register_method",
+    "replay", "run", "sweep",
 ]

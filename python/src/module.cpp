@@ -19,6 +19,7 @@
 #include "sim/frame.hpp"
 #include "sim/run_inputs.hpp"
 #include "sim/simulator.hpp"
+#include "sweeps.hpp"
 
 namespace py = pybind11;
 
@@ -187,6 +188,7 @@ PYBIND11_MODULE(_rrlab, m) {
   m.attr("__version__") = RRLAB_VERSION;
   translate_errors();
   register_step_state(m);
+  register_sweeps(m);
 
   py::class_<Scenario>(m, "Scenario", "A loaded, validated scenario (rrlab.load_scenario)")
       .def_property_readonly("name", [](const Scenario& s) { return s.name; })

@@ -41,15 +41,22 @@ class StepState {
   const StepInput* in_ = nullptr;
 };
 
-// Releases a Python object with the GIL held, whoever drops the last reference.
+// Releases a Python object with the GIL held, whoever drops the last
+// reference; after the interpreter has ended (a registered method's factory
+// lives in a static table) there is nothing left to release.
 std::shared_ptr<py::object> held(py::object object) {
   return std::shared_ptr<py::object>(new py::object(std::move(object)), [](py::object* o) {
+    if (!Py_IsInitialized()) {
+      o->release();  // the interpreter is gone: drop the handle without touching it
+      delete o;
+      return;
+    }
     py::gil_scoped_acquire gil;
     delete o;
   });
 }
 
-std::vector<ParamSpec> python_specs(const py::object& method, const std::string& name) {
+std::vector<ParamSpec> specs_of(const py::object& method, const std::string& name) {
   std::vector<ParamSpec> specs;
   if (!py::hasattr(method, "params")) return specs;
   for (const py::handle p : method.attr("params")) {
@@ -161,17 +168,30 @@ std::string python_method_name(const py::object& method) {
                          ? std::string(py::str(method.attr("name")))
                          : std::string(py::str(py::type::of(method).attr("__name__")));
   if (name.empty()) throw std::invalid_argument("method.name: empty");
-  if (find_method(name))
+  if (const MethodInfo* known = find_method(name); known && !known->python)
     throw std::invalid_argument("method.name: \"" + name + "\" is a built-in method's name; choose another");
   return name;
 }
 
-MethodFactory python_method_factory(py::object method) {
+std::vector<ParamSpec> python_method_specs(const py::object& method) {
+  return specs_of(method, python_method_name(method));
+}
+
+MethodFactory python_method_factory(py::object method, bool copy_per_run) {
   const std::string name = python_method_name(method);
-  std::vector<ParamSpec> specs = python_specs(method, name);
+  std::vector<ParamSpec> specs = specs_of(method, name);
   std::shared_ptr<py::object> object = held(std::move(method));
-  return [object, name, specs](const MethodContext& ctx) -> std::unique_ptr<Method> {
-    return std::make_unique<PythonMethod>(object, name, specs, ctx);
+  return [object, name, specs, copy_per_run](const MethodContext& ctx) -> std::unique_ptr<Method> {
+    if (!copy_per_run) return std::make_unique<PythonMethod>(object, name, specs, ctx);
+    py::gil_scoped_acquire gil;  // a sweep's worker thread
+    std::shared_ptr<py::object> copy;
+    try {
+      copy = held(py::module_::import("copy").attr("deepcopy")(*object));
+    } catch (py::error_already_set& e) {
+      throw MethodError(name + ": a sweep runs a copy of the method object per run, and copy.deepcopy failed: " +
+                        e.what());
+    }
+    return std::make_unique<PythonMethod>(copy, name, specs, ctx);
   };
 }
 

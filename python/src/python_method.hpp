@@ -10,6 +10,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "sim/simulator.hpp"
 
@@ -24,8 +25,15 @@ class MethodError : public std::runtime_error {
 // be a name no built-in method has.
 std::string python_method_name(const pybind11::object& method);
 
-// Builds the engine's adapter for `method` on every (re)start of a run.
-MethodFactory python_method_factory(pybind11::object method);
+// Its parameters (the `params` list of rrlab.Param) as the engine's specs;
+// std::invalid_argument for a bad one.
+std::vector<ParamSpec> python_method_specs(const pybind11::object& method);
+
+// Builds the engine's adapter for `method` on every (re)start of a run: on
+// `method` itself (a run from Python: the caller's object sees its run), or,
+// copy_per_run, on a deep copy per run (a sweep: runs on several threads
+// keep their parameters and state apart).
+MethodFactory python_method_factory(pybind11::object method, bool copy_per_run = false);
 
 // The state class Python methods receive (registered on the module).
 void register_step_state(pybind11::module_& m);

@@ -1,0 +1,123 @@
+#include "sweeps.hpp"
+
+#include <pybind11/stl.h>
+
+#include <filesystem>
+#include <sstream>
+
+#include "methods/registry.hpp"
+#include "python_method.hpp"
+#include "scenario/generators.hpp"
+#include "scenario/scenario.hpp"
+#include "storage/resimulation.hpp"
+#include "storage/run_store.hpp"
+#include "sweep/summaries_csv.hpp"
+#include "sweep/sweep_report.hpp"
+#include "sweep/sweep_report_json.hpp"
+#include "sweep/sweep_runner.hpp"
+#include "sweep/sweep_spec.hpp"
+#include "util/nesting_depth.hpp"
+
+namespace py = pybind11;
+
+namespace rrlab::python {
+
+namespace {
+
+// A Python method found by name from now on (sweep specs, scenarios).
+std::string register_method(const py::object& method) {
+  const std::string name = python_method_name(method);
+  MethodInfo info;
+  info.name = name;
+  const py::object doc = py::getattr(method, "__doc__", py::none());
+  if (!doc.is_none()) {
+    const std::string text = py::str(doc);
+    info.description = text.substr(0, text.find("\n\n"));
+  }
+  info.make = python_method_factory(method, true);
+  info.params = python_method_specs(method);
+  info.python = true;
+  register_external_method(std::move(info));
+  return name;
+}
+
+// Runs the spec (JSON text) into the database; returns the report, the
+// per-run CSV and what the runner did.
+py::tuple run_sweep_spec(const std::string& spec_text, const std::string& spec_dir, const std::string& scenarios_dir,
+                         int jobs, const std::string& db, bool frames) {
+  using namespace rrlab::sweep;
+  const SweepSpec spec = parse_sweep_spec(parse_json(spec_text), SpecDirs{spec_dir, scenarios_dir});
+  if (jobs < 1 || jobs > 256) throw ScenarioError("jobs", "must be in [1, 256]");
+  const std::vector<SweepCase> cases = expand_sweep(spec);
+  storage::RunStore store(db);
+  RunnerOptions options;
+  options.jobs = jobs;
+  options.frames = frames;
+  RunnerOutcome outcome;
+  std::ostringstream csv;
+  std::string report;
+  {
+    py::gil_scoped_release release;  // Python methods take it back for their steps
+    outcome = run_sweep(spec, cases, store, options);
+    write_summaries_csv(csv, cases, store.sweep_runs(spec.name));
+    report = report_json(build_report(store.sweep_runs(spec.name))).dump();
+  }
+  py::dict done;
+  done["sweep"] = spec.name;
+  done["runs"] = outcome.cases;
+  done["already_stored"] = outcome.already_stored;
+  done["stored"] = outcome.stored;
+  done["failures"] = outcome.failures;
+  return py::make_tuple(report, csv.str(), done);
+}
+
+// A stored run re-simulated from its recorded inputs and compared with its
+// stored frames, as `rrlab replay` does; a run of a Python method needs that
+// method registered first.
+py::object replay_run(const py::object& db_path, std::int64_t id) {
+  const std::string db = py::str(py::module_::import("os").attr("fspath")(db_path));
+  if (!std::filesystem::exists(db)) throw ScenarioError("db", "no database '" + db + "'");
+  storage::RunStore store(db);
+  const auto run = store.run(id);
+  if (!run) throw ScenarioError("run", "no run " + std::to_string(id) + " in " + db);
+  storage::ResimulationResult result;
+  {
+    py::gil_scoped_release release;
+    result = storage::resimulate(store, *run, {});
+  }
+  nlohmann::json out = {{"run", run->id}, {"frames_stored", run->frames}};
+  out.update(storage::verification_json(result));
+  out["summary"] = summary_to_json(result.summary);
+  return py::module_::import("json").attr("loads")(out.dump());
+}
+
+}  // namespace
+
+void register_sweeps(py::module_& m) {
+  m.def("replay", &replay_run, py::arg("db"), py::arg("run"),
+        "Re-simulates a stored run and compares it with its stored frames (rrlab replay): {identical, "
+        "frames_compared, first_mismatch, summary, ...}");
+  m.def("register_method", &register_method, py::arg("method"),
+        "Makes a Python method known by its name to scenarios and sweep specs in this process; returns the name");
+  m.def("_run_sweep", &run_sweep_spec, py::arg("spec"), py::arg("spec_dir"), py::arg("scenarios_dir"),
+        py::arg("jobs"), py::arg("db"), py::arg("frames"));
+  m.def(
+      "generate",
+      [](const std::string& family, std::uint64_t seed, int count, int first, const py::object& options) {
+        if (count < 1 || count > 100000) throw ScenarioError("count", "must be in [1, 100000]");
+        if (first < 0) throw ScenarioError("first", "must be at least 0");
+        const nlohmann::json parsed =
+            options.is_none() ? nlohmann::json::object()
+                              : parse_json(std::string(py::str(py::module_::import("json").attr("dumps")(options))));
+        py::list cases;
+        const py::object loads = py::module_::import("json").attr("loads");
+        for (int i = 0; i < count; ++i) cases.append(loads(generate_scenario(family, parsed, seed, first + i).dump()));
+        return cases;
+      },
+      py::arg("family"), py::arg("seed") = 1, py::arg("count") = 1, py::arg("first") = 0,
+      py::arg("options") = py::none(),
+      "Cases of a generated family as scenario documents (dicts, witness included): the cases a sweep entry "
+      "{\"generator\": family, \"seed\": seed, \"count\": count, ...options} runs");
+}
+
+}  // namespace rrlab::python
