@@ -8,6 +8,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <atomic>
 #include <cstring>
 #include <memory>
 
@@ -129,15 +130,52 @@ long checked_steps(const py::object& steps, long otherwise) {
   return n;
 }
 
-// The Python Simulator: a run stepped from Python, with the server's live inputs.
+// Steps with the GIL released (a Python method takes it back for its step),
+// taking it back every few hundred steps so that Ctrl-C (KeyboardInterrupt)
+// stops a long run.
+void step_without_gil(Simulator& sim, long count, Recorder* recorder) {
+  constexpr long kStepsBetweenSignalChecks = 256;
+  long done = 0;
+  while (done < count && !sim.done()) {
+    {
+      py::gil_scoped_release release;
+      for (long i = 0; i < kStepsBetweenSignalChecks && done < count && !sim.done(); ++i, ++done) {
+        timed_step(sim);
+        if (recorder) recorder->frame(sim.frame());
+      }
+    }
+    if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+  }
+}
+
+// The Python Simulator: a run stepped from Python, with the server's live
+// inputs. One thread at a time: a call while another thread is inside it
+// (stepping without the GIL) raises instead of racing.
 struct PySimulator {
   std::unique_ptr<Simulator> sim;
+  std::atomic<bool> busy{false};
+
+  class Use {
+   public:
+    explicit Use(const PySimulator& s) : flag_(const_cast<std::atomic<bool>&>(s.busy)) {
+      if (flag_.exchange(true)) throw std::runtime_error("this Simulator is busy stepping (in another thread, or this call comes from its method's step)");
+    }
+    ~Use() { flag_.store(false); }
+    Use(const Use&) = delete;
+    Use& operator=(const Use&) = delete;
+
+   private:
+    std::atomic<bool>& flag_;
+  };
 
   void apply(const std::string& kind, const py::object& payload) {
-    apply_input(*sim, kind, payload.is_none() ? nlohmann::json::object() : from_python(payload, kind));
+    const nlohmann::json input = payload.is_none() ? nlohmann::json::object() : from_python(payload, kind);
+    const Use use(*this);
+    apply_input(*sim, kind, input);
   }
 
   py::dict frame() const {
+    const Use use(*this);
     FrameColumns one;
     one.begin(*sim);
     one.frame(sim->frame());
@@ -219,12 +257,9 @@ PYBIND11_MODULE(_rrlab, m) {
         std::unique_ptr<Simulator> sim = make_simulator(scenario_of(scenario), method, params);
         sim->set_total_steps(checked_steps(steps, sim->total_steps()));
         FrameColumns columns;
-        Summary summary;
-        {
-          py::gil_scoped_release release;  // a Python method takes it back for its step()
-          summary = run_to_end(*sim, &columns);
-        }
-        py::dict out = to_python(summary_to_json(summary));
+        columns.begin(*sim);
+        step_without_gil(*sim, sim->total_steps(), &columns);
+        py::dict out = to_python(summary_to_json(sim->summary()));
         out["frames"] = frames_dict(columns);
         return out;
       },
@@ -234,22 +269,37 @@ PYBIND11_MODULE(_rrlab, m) {
 
   py::class_<PySimulator>(m, "Simulator", "A run stepped from Python")
       .def(py::init([](const py::object& scenario, const py::object& method, const py::object& params) {
-             return PySimulator{make_simulator(scenario_of(scenario), method, params)};
+             auto s = std::make_unique<PySimulator>();
+             s->sim = make_simulator(scenario_of(scenario), method, params);
+             return s;
            }),
            py::arg("scenario"), py::arg("method") = py::none(), py::arg("params") = py::none())
       .def(
           "step",
           [](PySimulator& s, long count) {
             if (count < 0) throw ScenarioError("count", "must be at least 0");
-            py::gil_scoped_release release;
-            for (long i = 0; i < count && !s.sim->done(); ++i) timed_step(*s.sim);
+            const PySimulator::Use use(s);
+            step_without_gil(*s.sim, count, nullptr);
           },
           py::arg("count") = 1, "Advances `count` steps (fewer at the end of the run)")
-      .def_property_readonly("done", [](const PySimulator& s) { return s.sim->done(); })
-      .def_property_readonly("method", [](const PySimulator& s) { return s.sim->method_name(); })
-      .def_property_readonly("params", [](const PySimulator& s) { return to_python(param_values_json(s.sim->method())); })
+      .def_property_readonly("done",
+                             [](const PySimulator& s) {
+                               const PySimulator::Use use(s);
+                               return s.sim->done();
+                             })
+      .def_property_readonly("method",
+                             [](const PySimulator& s) {
+                               const PySimulator::Use use(s);
+                               return s.sim->method_name();
+                             })
+      .def_property_readonly("params",
+                             [](const PySimulator& s) {
+                               const PySimulator::Use use(s);
+                               return to_python(param_values_json(s.sim->method()));
+                             })
       .def_property_readonly("state",
                              [](const PySimulator& s) {
+                               const PySimulator::Use use(s);
                                py::dict out;
                                out["t"] = s.sim->state().t;
                                out["step"] = s.sim->state().step;
@@ -259,13 +309,18 @@ PYBIND11_MODULE(_rrlab, m) {
                              },
                              "the state the next step starts from: t, step, q, qdot")
       .def_property_readonly("frame", &PySimulator::frame, "the last step's frame (the CSV's columns)")
-      .def("summary", [](const PySimulator& s) { return to_python(summary_to_json(s.sim->summary())); })
+      .def("summary",
+           [](const PySimulator& s) {
+             const PySimulator::Use use(s);
+             return to_python(summary_to_json(s.sim->summary()));
+           })
       .def("apply", &PySimulator::apply, py::arg("kind"), py::arg("payload") = py::none(),
            "A live input as the server takes it: params, obstacle, obstacle_add, obstacle_remove, joystick, method, "
            "reset (docs/api.md)")
       .def(
           "set_param",
           [](PySimulator& s, const std::string& name, const py::object& value) {
+            const PySimulator::Use use(s);
             set_method_param(*s.sim, name, value);
           },
           py::arg("name"), py::arg("value"))

@@ -142,3 +142,17 @@ def test_a_joystick_run_follows_the_command():
     sim.joystick([0.1, 0.0])
     sim.step(50)
     assert sim.frame["ee"][0] > start[0] + 0.02
+
+
+def test_a_simulator_in_use_refuses_other_calls_instead_of_racing():
+    holder = {}
+
+    class Peeker(rrlab.Method):
+        def step(self, s):
+            holder["sim"].state  # the simulator is stepping: refused, not read half-way
+            return np.zeros(len(s.q))
+
+    holder["sim"] = rrlab.Simulator(scenario_path("01_planar7_obstacles.json"), method=Peeker())
+    with pytest.raises(rrlab.MethodError, match="busy stepping"):
+        holder["sim"].step()
+    assert holder["sim"].state["step"] == 0  # usable again afterwards
