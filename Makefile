@@ -29,7 +29,7 @@ RELEASE_TARGETS = rrlab rrlab_engine_tests rrlab_soak rrlab_bench rrlab_server_l
 TIMED = ./scripts/timed
 
 .PHONY: deps deps-serve configure configure-sanitize build serve demo test test-release-part test-sanitize \
-        test-sanitize-part test-release test-web bench clean fuzz test-tsan
+        test-sanitize-part test-release test-web bench clean fuzz test-tsan python
 
 deps:
 	./scripts/install-deps
@@ -101,6 +101,13 @@ test-tsan: deps
 	CC=clang CXX=clang++ cmake -S . -B $(TSAN_BUILD) -G Ninja $(SANITIZE_FLAGS) -DRRLAB_SANITIZE=thread
 	$(TIMED) "tsan build" cmake --build $(TSAN_BUILD) --parallel $(JOBS) --target rrlab rrlab_server_tests rrlab_storage_tests
 	$(TIMED) "tsan tests" ./.ci/sanitized-ctest $(TSAN_BUILD) -E 'NOT_BUILT|$(RELEASE_TESTS)'
+
+# The rrlab Python package assembled in $(BUILD)/python (PYTHONPATH=$(BUILD)/python
+# imports it); docs/python.md installs it with pip.
+python: deps
+	$(MAKE) configure
+	cmake --build $(BUILD) --parallel $(JOBS) --target rrlab_python
+	@echo "rrlab Python package in $(BUILD)/python: PYTHONPATH=$(BUILD)/python python3, or pip install --no-build-isolation ./python"
 
 bench: deps
 	$(MAKE) build
