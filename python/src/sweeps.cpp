@@ -2,7 +2,10 @@
 
 #include <pybind11/stl.h>
 
+#include <atomic>
+#include <chrono>
 #include <filesystem>
+#include <future>
 #include <sstream>
 
 #include "methods/registry.hpp"
@@ -41,6 +44,33 @@ std::string register_method(const py::object& method) {
   return name;
 }
 
+// The runner on a thread of its own while the caller's thread waits without
+// the GIL, taking it back every 100 ms to run Python's signal handlers: Ctrl-C
+// stops the workers within a step of their runs (those are not stored; the
+// same call resumes) and raises KeyboardInterrupt here.
+sweep::RunnerOutcome run_interruptibly(const sweep::SweepSpec& spec, const std::vector<sweep::SweepCase>& cases,
+                                       storage::RunStore& store, sweep::RunnerOptions options) {
+  std::atomic<bool> stop{false};
+  options.stop = &stop;
+  std::future<sweep::RunnerOutcome> running =
+      std::async(std::launch::async, [&] { return sweep::run_sweep(spec, cases, store, options); });
+  while (true) {
+    {
+      py::gil_scoped_release release;  // Python methods take it for their steps
+      if (running.wait_for(std::chrono::milliseconds(100)) == std::future_status::ready) break;
+    }
+    if (PyErr_CheckSignals() != 0) {  // a handler raised (KeyboardInterrupt)
+      stop.store(true);
+      {
+        py::gil_scoped_release release;
+        running.wait();
+      }
+      throw py::error_already_set();
+    }
+  }
+  return running.get();
+}
+
 // Runs the spec (JSON text) into the database; returns the report, the
 // per-run CSV and what the runner did.
 py::tuple run_sweep_spec(const std::string& spec_text, const std::string& spec_dir, const std::string& scenarios_dir,
@@ -53,12 +83,11 @@ py::tuple run_sweep_spec(const std::string& spec_text, const std::string& spec_d
   RunnerOptions options;
   options.jobs = jobs;
   options.frames = frames;
-  RunnerOutcome outcome;
+  const RunnerOutcome outcome = run_interruptibly(spec, cases, store, options);
   std::ostringstream csv;
   std::string report;
   {
-    py::gil_scoped_release release;  // Python methods take it back for their steps
-    outcome = run_sweep(spec, cases, store, options);
+    py::gil_scoped_release release;
     write_summaries_csv(csv, cases, store.sweep_runs(spec.name));
     report = report_json(build_report(store.sweep_runs(spec.name))).dump();
   }

@@ -97,3 +97,34 @@ def test_registered_names_and_bad_specs():
     with pytest.raises(rrlab.ScenarioError, match="jobs"):
         rrlab.sweep(SPEC, methods=["pinv"], jobs=0)
     assert os.path.basename(rrlab.__file__) == "__init__.py"
+
+
+def test_ctrl_c_stops_a_sweep_and_a_second_call_resumes(tmp_path):
+    import signal
+    import threading
+
+    handled = threading.Event()
+
+    def on_sigint(signum, frame):
+        handled.set()
+        raise KeyboardInterrupt
+
+    class Interrupting(rrlab.Method):
+        """Presses Ctrl-C at its first step, then waits until Python has handled it."""
+        name = "interrupting"
+
+        def step(self, s):
+            if s.step == 0 and not handled.is_set():
+                signal.raise_signal(signal.SIGINT)
+                assert handled.wait(timeout=120)
+            return np.zeros(len(s.q))
+
+    previous = signal.signal(signal.SIGINT, on_sigint)
+    db = tmp_path / "stopped.db"
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            rrlab.sweep(SPEC, methods=[Interrupting()], jobs=1, db=db)
+    finally:
+        signal.signal(signal.SIGINT, previous)
+    resumed = rrlab.sweep(SPEC, methods=[Interrupting()], jobs=1, db=db)
+    assert resumed["already_stored"] + resumed["stored"] == 3 and resumed["stored"] >= 1
