@@ -57,25 +57,35 @@ Scenario scenario_of(const py::object& source) {
   return load_scenario_file(text);
 }
 
-// A simulator of `scenario` with `method` (None: the scenario's; a name; or a
-// Python method) and `params` (a dict, numbers or enumeration labels).
-// A parameter of the simulator's method: a number or label for a built-in
-// method (resolved as the scenario file's), a number for a Python one (whose
-// name no built-in method has).
-void set_method_param(Simulator& sim, const std::string& name, const py::handle& value) {
-  if (find_method(sim.method_name())) {
-    const auto [resolved, number] =
-        resolve_method_param(sim.method_name(), name, from_python(value, "params." + name), "params." + name);
+// A parameter of the simulator's method: for a Python method object the run
+// was given (`python_method`, its name; empty when none), a number checked
+// against that object's specs; else a number or an enumeration label resolved
+// as a scenario file's (built-in and registered methods).
+void set_method_param(Simulator& sim, const std::string& python_method, const std::string& name,
+                      const py::handle& value) {
+  const std::string path = "params." + name;
+  if (python_method.empty() || sim.method_name() != python_method) {
+    const auto [resolved, number] = resolve_method_param(sim.method_name(), name, from_python(value, path), path);
     sim.set_param(resolved, number);
     return;
   }
-  if (!py::isinstance<py::float_>(value) && !py::isinstance<py::int_>(value))
-    throw ScenarioError("params." + name, "expected a number");
-  sim.set_param(name, value.cast<double>());
+  if (py::isinstance<py::str>(value) || py::isinstance<py::bool_>(value)) throw ScenarioError(path, "expected a number");
+  double number = 0;
+  try {
+    number = py::float_(py::reinterpret_borrow<py::object>(value));
+  } catch (py::error_already_set&) {
+    throw ScenarioError(path, "expected a number");
+  }
+  sim.set_param(name, number);
 }
 
-std::unique_ptr<Simulator> make_simulator(const Scenario& scenario, const py::object& method, const py::object& params) {
+// A simulator of `scenario` with `method` (None: the scenario's; a name; or a
+// Python method object, whose name goes to `python_method`) and `params` (a
+// dict: numbers, or enumeration labels of built-in methods).
+std::unique_ptr<Simulator> make_simulator(const Scenario& scenario, const py::object& method, const py::object& params,
+                                          std::string& python_method) {
   std::unique_ptr<Simulator> sim;
+  python_method.clear();
   if (method.is_none()) {
     sim = std::make_unique<Simulator>(scenario);
   } else if (py::isinstance<py::str>(method)) {
@@ -84,11 +94,13 @@ std::unique_ptr<Simulator> make_simulator(const Scenario& scenario, const py::ob
     // the scenario's parameters belong to its own method (as `rrlab run --method`)
     sim = name == scenario.method.name ? std::make_unique<Simulator>(scenario) : std::make_unique<Simulator>(scenario, name);
   } else {
-    sim = std::make_unique<Simulator>(scenario, python_method_name(method), python_method_factory(method));
+    python_method = python_method_name(method);
+    sim = std::make_unique<Simulator>(scenario, python_method, python_method_factory(method));
   }
   if (!params.is_none()) {
     if (!py::isinstance<py::dict>(params)) throw ScenarioError("params", "expected a dict of parameter values");
-    for (const auto& [key, value] : params.cast<py::dict>()) set_method_param(*sim, py::str(key), value);
+    for (const auto& [key, value] : params.cast<py::dict>())
+      set_method_param(*sim, python_method, py::str(key), value);
   }
   return sim;
 }
@@ -124,10 +136,31 @@ py::dict frames_dict(const FrameColumns& columns) {
 
 long checked_steps(const py::object& steps, long otherwise) {
   if (steps.is_none()) return otherwise;
-  const long n = steps.cast<long>();
-  if (n < 1 || n > ScenarioLimits::max_steps)
-    throw ScenarioError("steps", "must be in [1, " + std::to_string(ScenarioLimits::max_steps) + "]");
-  return n;
+  const std::string range = "must be a whole number in [1, " + std::to_string(ScenarioLimits::max_steps) + "]";
+  if (py::isinstance<py::bool_>(steps) || !PyIndex_Check(steps.ptr())) throw ScenarioError("steps", range);
+  const py::object index = py::reinterpret_steal<py::object>(PyNumber_Index(steps.ptr()));
+  int overflow = 0;
+  const long long n = index ? PyLong_AsLongLongAndOverflow(index.ptr(), &overflow) : 0;
+  if (!index || overflow || n < 1 || n > ScenarioLimits::max_steps) {
+    PyErr_Clear();
+    throw ScenarioError("steps", range);
+  }
+  return long(n);
+}
+
+// Every frame of a run is kept for its arrays: a run whose frames would
+// outgrow this is refused before it starts (Simulator.step has no such bound).
+constexpr double kMaxFrameBytes = 1 << 30;
+
+void check_frame_memory(const FrameColumns& columns, long steps) {
+  long per_frame = 0;
+  for (const FrameColumn& column : columns.columns()) per_frame += column.width;
+  const double bytes = double(steps) * double(per_frame) * sizeof(double);
+  if (bytes > kMaxFrameBytes)
+    throw ScenarioError("steps", std::to_string(steps) + " steps of " + std::to_string(per_frame) +
+                                     " numbers per frame exceed the 1 GiB the frames may take (at most " +
+                                     std::to_string(long(kMaxFrameBytes / (double(per_frame) * sizeof(double)))) +
+                                     " steps; Simulator.step runs longer without keeping frames)");
 }
 
 // Steps with the GIL released (a Python method takes it back for its step),
@@ -153,6 +186,7 @@ void step_without_gil(Simulator& sim, long count, Recorder* recorder) {
 // (stepping without the GIL) raises instead of racing.
 struct PySimulator {
   std::unique_ptr<Simulator> sim;
+  std::string python_method;  // the Python method object's name, if it was given one
   std::atomic<bool> busy{false};
 
   class Use {
@@ -169,6 +203,28 @@ struct PySimulator {
   };
 
   void apply(const std::string& kind, const py::object& payload) {
+    // a Python method object is not in the registry: its parameters and a
+    // switch back to it are applied here, the other inputs as the server does
+    if (!python_method.empty() && kind == "params" && py::isinstance<py::dict>(payload)) {
+      const Use use(*this);
+      for (const auto& [key, value] : payload.cast<py::dict>()) set_method_param(*sim, python_method, py::str(key), value);
+      return;
+    }
+    if (!python_method.empty() && kind == "method" && py::isinstance<py::dict>(payload) &&
+        payload.cast<py::dict>().contains("name") && py::str(payload["name"]).cast<std::string>() == python_method) {
+      const py::dict input = payload.cast<py::dict>();
+      for (const auto& [key, value] : input)
+        if (py::str(key).cast<std::string>() != "name" && py::str(key).cast<std::string>() != "params")
+          throw ScenarioError(py::str(key).cast<std::string>(), "unknown key (known: name, params)");
+      const Use use(*this);
+      sim->switch_method(python_method);
+      if (input.contains("params")) {
+        if (!py::isinstance<py::dict>(input["params"])) throw ScenarioError("params", "expected a dict");
+        for (const auto& [key, value] : input["params"].cast<py::dict>())
+          set_method_param(*sim, python_method, py::str(key), value);
+      }
+      return;
+    }
     const nlohmann::json input = payload.is_none() ? nlohmann::json::object() : from_python(payload, kind);
     const Use use(*this);
     apply_input(*sim, kind, input);
@@ -206,7 +262,7 @@ void translate_errors() {
     } catch (const ScenarioError& e) {
       raise("ScenarioError", errors.attr("ScenarioError")(e.what(), e.path()));
     } catch (const ParamError& e) {
-      raise("ParamError", errors.attr("ParamError")(std::string(e.param()) + ": " + e.what(), e.param()));
+      raise("ParamError", errors.attr("ParamError")(e.what(), e.param()));  // the message names the parameter
     } catch (const MethodError& e) {
       raise("MethodError", errors.attr("MethodError")(e.what()));
     } catch (const InputStateError& e) {
@@ -254,10 +310,12 @@ PYBIND11_MODULE(_rrlab, m) {
   m.def(
       "run",
       [](const py::object& scenario, const py::object& method, const py::object& params, const py::object& steps) {
-        std::unique_ptr<Simulator> sim = make_simulator(scenario_of(scenario), method, params);
+        std::string python_method;
+        std::unique_ptr<Simulator> sim = make_simulator(scenario_of(scenario), method, params, python_method);
         sim->set_total_steps(checked_steps(steps, sim->total_steps()));
         FrameColumns columns;
         columns.begin(*sim);
+        check_frame_memory(columns, sim->total_steps());
         step_without_gil(*sim, sim->total_steps(), &columns);
         py::dict out = to_python(summary_to_json(sim->summary()));
         out["frames"] = frames_dict(columns);
@@ -270,7 +328,7 @@ PYBIND11_MODULE(_rrlab, m) {
   py::class_<PySimulator>(m, "Simulator", "A run stepped from Python")
       .def(py::init([](const py::object& scenario, const py::object& method, const py::object& params) {
              auto s = std::make_unique<PySimulator>();
-             s->sim = make_simulator(scenario_of(scenario), method, params);
+             s->sim = make_simulator(scenario_of(scenario), method, params, s->python_method);
              return s;
            }),
            py::arg("scenario"), py::arg("method") = py::none(), py::arg("params") = py::none())
@@ -321,7 +379,7 @@ PYBIND11_MODULE(_rrlab, m) {
           "set_param",
           [](PySimulator& s, const std::string& name, const py::object& value) {
             const PySimulator::Use use(s);
-            set_method_param(*s.sim, name, value);
+            set_method_param(*s.sim, s.python_method, name, value);
           },
           py::arg("name"), py::arg("value"))
       .def(

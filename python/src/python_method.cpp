@@ -56,25 +56,39 @@ std::shared_ptr<py::object> held(py::object object) {
   });
 }
 
+// A number attribute of a Param, or an error naming it.
+double param_number(const py::handle& param, const char* key, const std::string& path) {
+  try {
+    return py::float_(param.attr(key));
+  } catch (py::error_already_set&) {
+    throw std::invalid_argument(path + "." + key + ": must be a number");
+  }
+}
+
 std::vector<ParamSpec> specs_of(const py::object& method, const std::string& name) {
   std::vector<ParamSpec> specs;
   if (!py::hasattr(method, "params")) return specs;
-  for (const py::handle p : method.attr("params")) {
+  const py::object params = method.attr("params");
+  if (!py::isinstance<py::list>(params) && !py::isinstance<py::tuple>(params))
+    throw std::invalid_argument(name + ".params: must be a list of rrlab.Param");
+  for (const py::handle p : params) {
+    if (!py::hasattr(p, "name") || !py::isinstance<py::str>(p.attr("name")))
+      throw std::invalid_argument(name + ".params: each entry must be an rrlab.Param with a name");
     ParamSpec spec;
     spec.name = py::str(p.attr("name"));
-    spec.def = p.attr("default").cast<double>();
-    spec.min = p.attr("min").cast<double>();
-    spec.max = p.attr("max").cast<double>();
-    spec.step = p.attr("step").cast<double>();
-    spec.label = py::str(p.attr("label"));
-    spec.unit = py::str(p.attr("unit"));
-    spec.help = py::str(p.attr("help"));
+    const std::string path = name + ".params." + spec.name;
+    spec.def = param_number(p, "default", path);
+    spec.min = param_number(p, "min", path);
+    spec.max = param_number(p, "max", path);
+    spec.step = param_number(p, "step", path);
+    spec.label = py::str(py::getattr(p, "label", py::str("")));
+    spec.unit = py::str(py::getattr(p, "unit", py::str("")));
+    spec.help = py::str(py::getattr(p, "help", py::str("")));
     if (spec.name.empty()) throw std::invalid_argument(name + ".params: a parameter without a name");
-    if (find_param(specs, spec.name) >= 0)
-      throw std::invalid_argument(name + ".params." + spec.name + ": listed twice");
-    if (!(spec.min <= spec.max)) throw std::invalid_argument(name + ".params." + spec.name + ": min above max");
+    if (find_param(specs, spec.name) >= 0) throw std::invalid_argument(path + ": listed twice");
+    if (!(spec.min <= spec.max)) throw std::invalid_argument(path + ": min above max");
     if (const std::string problem = param_problem(spec, spec.def); !problem.empty())
-      throw std::invalid_argument(name + ".params." + spec.name + ": default " + problem);
+      throw std::invalid_argument(path + ": default " + problem);
     specs.push_back(std::move(spec));
   }
   return specs;
@@ -88,29 +102,37 @@ class PythonMethod final : public Method {
         object_(std::move(object)),
         name_(std::move(name)),
         dof_(ctx.model.dof()),
-        state_(std::make_shared<StepState>()) {
+        context_{ctx.model.dof(), task_rows(ctx.space), ctx.obstacle_count, ctx.seed} {
     py::gil_scoped_acquire gil;
-    state_object_ = held(py::cast(state_));
     step_ = held(object_->attr("step"));
+    values_ = held(py::dict());
     publish_params();
-    if (py::hasattr(*object_, "start")) {
-      py::dict context;
-      context["dof"] = ctx.model.dof();
-      context["task_rows"] = task_rows(ctx.space);
-      context["obstacles"] = ctx.obstacle_count;
-      context["seed"] = ctx.seed;
-      call("start", [&] { object_->attr("start")(context); });
-    }
   }
 
   void step(const StepInput& in, StepOutput& out) override {
     py::gil_scoped_acquire gil;
     std::ostringstream where;
     where << name_ << " at step " << in.state.step << " (t = " << in.state.t << " s)";
-    state_->bind(&in);
+    // this run's parameter values, whoever else shares the object (two Simulators of one method object)
+    if (py::getattr(*object_, "param_values", py::none()).ptr() != values_->ptr())
+      object_->attr("param_values") = *values_;
+    if (!started_) {  // start() after the run's parameters are set, before its first step
+      started_ = true;
+      if (py::hasattr(*object_, "start")) {
+        py::dict context;
+        context["dof"] = context_.dof;
+        context["task_rows"] = context_.task_rows;
+        context["obstacles"] = context_.obstacles;
+        context["seed"] = context_.seed;
+        call(name_ + " in start()", nullptr, [&] { object_->attr("start")(context); });
+      }
+    }
+    // a state of its own each step: one kept from an earlier step raises instead of showing this one
+    const auto state = std::make_shared<StepState>();
+    state->bind(&in);
     py::object result;
-    call(where.str(), [&] { result = (*step_)(*state_object_); });
-    state_->bind(nullptr);
+    call(where.str(), state.get(), [&] { result = (*step_)(py::cast(state)); });
+    state->bind(nullptr);
     const auto qdot = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(result);
     if (!qdot)
       throw MethodError(where.str() + ": step() returned " + std::string(py::str(py::type::of(result).attr("__name__"))) +
@@ -139,34 +161,47 @@ class PythonMethod final : public Method {
   void publish_params() {
     py::dict values;
     for (size_t i = 0; i < specs().size(); ++i) values[py::str(specs()[i].name)] = param_values()[Eigen::Index(i)];
+    *values_ = values;
     object_->attr("param_values") = values;
   }
 
-  // Runs a call into Python; an exception it raises becomes a MethodError saying where.
+  // Runs a call into Python; an exception it raises becomes a MethodError
+  // saying where, but Ctrl-C (KeyboardInterrupt) stays what it is.
   template <typename Call>
-  void call(const std::string& where, Call&& body) {
+  void call(const std::string& where, StepState* state, Call&& body) {
     try {
       body();
     } catch (py::error_already_set& e) {
-      state_->bind(nullptr);
+      if (state) state->bind(nullptr);
+      if (e.matches(PyExc_KeyboardInterrupt)) throw;
       throw MethodError(where + ": " + e.what());
     }
   }
 
-  std::shared_ptr<py::object> object_, step_, state_object_;
+  struct Context {
+    int dof, task_rows, obstacles;
+    std::uint64_t seed;
+  };
+
+  std::shared_ptr<py::object> object_, step_, values_;
   std::string name_;
   int dof_;
-  std::shared_ptr<StepState> state_;
+  Context context_;
+  bool started_ = false;
 };
 
 }  // namespace
 
 std::string python_method_name(const py::object& method) {
+  if (py::isinstance<py::type>(method))
+    throw std::invalid_argument("method: an instance is needed (" +
+                                std::string(py::str(method.attr("__name__"))) + "(), not the class)");
   if (!py::hasattr(method, "step") || !PyCallable_Check(method.attr("step").ptr()))
     throw std::invalid_argument("method: expected a method name or an rrlab.Method with a step(state) method");
-  std::string name = py::hasattr(method, "name") && !method.attr("name").is_none()
-                         ? std::string(py::str(method.attr("name")))
-                         : std::string(py::str(py::type::of(method).attr("__name__")));
+  const py::object named = py::getattr(method, "name", py::none());
+  if (!named.is_none() && !py::isinstance<py::str>(named)) throw std::invalid_argument("method.name: must be a string");
+  const std::string name = named.is_none() ? std::string(py::str(py::type::of(method).attr("__name__")))
+                                           : std::string(py::str(named));
   if (name.empty()) throw std::invalid_argument("method.name: empty");
   if (const MethodInfo* known = find_method(name); known && !known->python)
     throw std::invalid_argument("method.name: \"" + name + "\" is a built-in method's name; choose another");

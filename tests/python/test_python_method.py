@@ -128,3 +128,109 @@ def test_a_builtin_name_is_refused_and_the_state_does_not_outlive_its_step():
     rrlab.run(scenario_path("01_planar7_obstacles.json"), method=keeper, steps=1)
     with pytest.raises(RuntimeError, match="step that has ended"):
         keeper.kept.q
+
+
+def test_a_state_kept_from_an_earlier_step_raises_instead_of_showing_the_current_one():
+    class Keeper(rrlab.Method):
+        def step(self, s):
+            if s.step == 0:
+                self.first = s
+            else:
+                with pytest.raises(RuntimeError, match="step that has ended"):
+                    self.first.q
+                self.checked = True
+            return np.zeros(len(s.q))
+
+    keeper = Keeper()
+    rrlab.run(scenario_path("01_planar7_obstacles.json"), method=keeper, steps=2)
+    assert keeper.checked
+
+
+def test_start_sees_the_runs_parameters_and_simulators_of_one_object_keep_theirs():
+    class Gains(rrlab.Method):
+        params = [rrlab.Param("k", default=1.0, min=0.0, max=10.0)]
+
+        def start(self, context):
+            self.started_with = self.param("k")
+
+        def step(self, s):
+            self.seen = self.param("k")
+            return np.zeros(len(s.q))
+
+    method = Gains()
+    rrlab.run(scenario_path("01_planar7_obstacles.json"), method=method, params={"k": 5}, steps=1)
+    assert method.started_with == 5.0
+    a = rrlab.Simulator(scenario_path("01_planar7_obstacles.json"), method=method, params={"k": 2})
+    b = rrlab.Simulator(scenario_path("01_planar7_obstacles.json"), method=method, params={"k": np.int64(7)})
+    a.step()
+    assert method.seen == 2.0
+    b.step()
+    assert method.seen == 7.0
+    a.step()
+    assert method.seen == 2.0 and a.params == {"k": 2.0}
+
+
+def test_live_inputs_reach_a_python_method_and_a_switch_comes_back_to_it():
+    class Scaled(rrlab.Method):
+        name = "scaled_zero"
+        params = [rrlab.Param("k", default=1.0, min=0.0, max=10.0)]
+
+        def step(self, s):
+            return np.zeros(len(s.q))
+
+    sim = rrlab.Simulator(scenario_path("01_planar7_obstacles.json"), method=Scaled())
+    sim.apply("params", {"k": 3.0})
+    assert sim.params == {"k": 3.0}
+    sim.apply("method", {"name": "dls", "params": {"lambda": 0.1}})
+    sim.step()
+    assert sim.method == "dls"
+    sim.apply("method", {"name": "scaled_zero", "params": {"k": 4.0}})
+    sim.step()
+    assert sim.method == "scaled_zero" and sim.params == {"k": 4.0}
+    with pytest.raises(rrlab.ParamError, match="k"):
+        sim.apply("params", {"k": 11.0})
+
+
+def test_an_object_named_like_a_registered_method_keeps_its_own_parameters():
+    class First(rrlab.Method):
+        name = "same_name"
+        params = [rrlab.Param("a", default=1.0, min=0.0, max=2.0)]
+
+        def step(self, s):
+            return np.zeros(len(s.q))
+
+    class Second(First):
+        params = [rrlab.Param("b", default=1.0, min=0.0, max=2.0)]
+
+    rrlab.register_method(First())
+    res = rrlab.run(scenario_path("01_planar7_obstacles.json"), method=Second(), params={"b": 0.5}, steps=1)
+    assert res["method"] == "same_name"
+
+
+@pytest.mark.parametrize("make, error, message", [
+    (lambda: type("P", (rrlab.Method,), {"params": [rrlab.Param("k", default="x")],
+                                          "step": lambda self, s: np.zeros(7)})(), ValueError, "params.k.default"),
+    (lambda: type("N", (rrlab.Method,), {"name": 5, "step": lambda self, s: np.zeros(7)})(), ValueError,
+     "must be a string"),
+    (lambda: type("L", (rrlab.Method,), {"params": {"k": 1}, "step": lambda self, s: np.zeros(7)})(), ValueError,
+     "list of rrlab.Param"),
+    (lambda: PythonPinv, ValueError, r"PythonPinv\(\), not the class"),
+])
+def test_a_badly_made_method_is_refused_with_what_is_wrong(make, error, message):
+    with pytest.raises(error, match=message):
+        rrlab.run(scenario_path("01_planar7_obstacles.json"), method=make(), steps=1)
+
+
+@pytest.mark.parametrize("steps", [1.5, 10**30, True, "10"])
+def test_steps_must_be_a_whole_number_in_range(steps):
+    with pytest.raises(rrlab.ScenarioError, match="whole number"):
+        rrlab.run(scenario_path("01_planar7_obstacles.json"), steps=steps)
+
+
+def test_ctrl_c_in_a_python_methods_step_stays_a_keyboard_interrupt():
+    class Interrupted(rrlab.Method):
+        def step(self, s):
+            raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        rrlab.run(scenario_path("01_planar7_obstacles.json"), method=Interrupted())

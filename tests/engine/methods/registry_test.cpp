@@ -54,6 +54,7 @@ TEST(MethodRegistry, AStoredPythonMethodThisProcessLacksIsNamedAsSuch) {
     EXPECT_NE(std::string(e.what()).find("is a method written in Python"), std::string::npos) << e.what();
   }
   EXPECT_THROW(parse_scenario(registry_test_scenario({{"name", "pinv"}, {"origin", "fortran"}})), ScenarioError);
+  EXPECT_THROW(parse_scenario(registry_test_scenario({{"name", "pinv"}, {"origin", "python"}})), ScenarioError);
   EXPECT_NO_THROW(parse_scenario(registry_test_scenario({{"name", "pinv"}})));
 }
 
