@@ -107,7 +107,7 @@ test-tsan: deps
 python: deps
 	$(MAKE) configure
 	cmake --build $(BUILD) --parallel $(JOBS) --target rrlab_python
-	@echo "rrlab Python package in $(BUILD)/python: PYTHONPATH=$(BUILD)/python python3, or pip install --no-build-isolation ./python"
+	@echo "rrlab Python package in $(BUILD)/python: PYTHONPATH=$(BUILD)/python /usr/bin/python3, or pip install --no-build-isolation ./python"
 
 bench: deps
 	$(MAKE) build

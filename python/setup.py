@@ -5,11 +5,13 @@ python/rrlab. numpy comes from Debian (python3-numpy); nothing is downloaded.
 
     pip install --no-build-isolation ./python
 """
+import importlib.util
 import os
 import re
 import shutil
 import subprocess
 import sys
+import sysconfig
 
 from setuptools import Distribution, setup
 from setuptools.command.build_py import build_py
@@ -24,6 +26,14 @@ def project_version():
         return re.search(r"project\(rrlab VERSION ([0-9.]+)", f.read()).group(1)
 
 
+# before anything else (pip runs this file first to read the metadata): the
+# engine's arrays need numpy, which Debian installs for /usr/bin/python3 only
+if importlib.util.find_spec("numpy") is None:
+    sys.exit(f"rrlab: {sys.executable} has no numpy. Debian's python3-numpy (scripts/install-deps) serves "
+             "/usr/bin/python3: install with it, or in a venv made by "
+             "/usr/bin/python3 -m venv --system-site-packages (docs/python.md)")
+
+
 class BuildWithEngine(build_py):
     """build_py, plus the engine module built by CMake for this interpreter."""
 
@@ -35,11 +45,14 @@ class BuildWithEngine(build_py):
         subprocess.check_call(["cmake", "--build", build, "--target", "rrlab_python"])
         super().run()
         built = os.path.join(build, "python", "rrlab")
-        modules = [name for name in os.listdir(built) if name.startswith("_rrlab") and name.endswith(".so")]
-        if not modules:
-            sys.exit(f"rrlab: no engine module in {built}: is pybind11-dev installed (scripts/install-deps)?")
-        for name in modules:
-            shutil.copy2(os.path.join(built, name), os.path.join(self.build_lib, "rrlab", name))
+        module = "_rrlab" + sysconfig.get_config_var("EXT_SUFFIX")  # the name this Python imports
+        if not os.path.exists(os.path.join(built, module)):
+            found = [name for name in os.listdir(built) if name.startswith("_rrlab")] if os.path.isdir(built) else []
+            sys.exit(f"rrlab: no {module} in {built} (found: {', '.join(found) or 'none'}). "
+                     + ("That build is for another Python: install with the Python it was configured for, "
+                        "or set RRLAB_BUILD_DIR to a new directory." if found else
+                        "Is pybind11-dev installed (scripts/install-deps)?"))
+        shutil.copy2(os.path.join(built, module), os.path.join(self.build_lib, "rrlab", module))
 
 
 class EngineDistribution(Distribution):

@@ -8,9 +8,9 @@ It runs the method on Chen et al.'s joint-limit example, then benchmarks it
 against built-in methods on two generated families (a sweep: success with its
 interval per family) and plots both to a PNG when matplotlib is installed.
 
-    python3 python/examples/my_method.py --cases 20 --out my_method.png
+    ~/rrlab-venv/bin/python python/examples/my_method.py --cases 20 --out my_method.png
 
-with the package installed (docs/python.md), or PYTHONPATH=build/python.
+with the package installed (docs/python.md), or PYTHONPATH=build/python /usr/bin/python3 ...
 """
 import argparse
 import os

@@ -15,9 +15,11 @@ from ._sweep import sweep
 from .method import Method, Param
 
 try:
+    import numpy as _numpy  # noqa: F401  the engine's arrays (Debian: python3-numpy, for /usr/bin/python3)
+
     from ._rrlab import (Scenario, Simulator, StepState, __version__, generate, load_scenario, methods,
                          register_method, replay, run)
-except ImportError as _missing:  # a source tree whose engine module is not built: rrlab.client still works
+except ImportError as _missing:  # no engine module (a source tree) or no numpy: rrlab.client still works
     _engine_error = _missing
 
     def __getattr__(name):
