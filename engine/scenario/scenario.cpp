@@ -450,9 +450,10 @@ void parse_method(JsonObject method, Scenario& sc) {
   if (method.has("origin")) {
     const std::string origin = method.string("origin");
     if (origin != "python") throw ScenarioError(method.child("origin"), "must be \"python\" (or absent: built in)");
-    if (const MethodInfo* known = find_method(sc.method.name); known && !known->python)
+    const MethodInfo* known = find_method(sc.method.name);
+    if (known && !known->python)
       throw ScenarioError(method.child("origin"), "\"python\", but \"" + sc.method.name + "\" is a built-in method");
-    if (!find_method(sc.method.name))
+    if (!known)
       throw ScenarioError(method.child("name"), "\"" + sc.method.name +
                                                     "\" is a method written in Python: run it from Python with its "
                                                     "class registered (rrlab.register_method), not from this process");

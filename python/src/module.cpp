@@ -187,11 +187,11 @@ void step_without_gil(Simulator& sim, long count, Recorder* recorder) {
 struct PySimulator {
   std::unique_ptr<Simulator> sim;
   std::string python_method;  // the Python method object's name, if it was given one
-  std::atomic<bool> busy{false};
+  mutable std::atomic<bool> busy{false};  // read-only calls mark it too
 
   class Use {
    public:
-    explicit Use(const PySimulator& s) : flag_(const_cast<std::atomic<bool>&>(s.busy)) {
+    explicit Use(const PySimulator& s) : flag_(s.busy) {
       if (flag_.exchange(true)) throw std::runtime_error("this Simulator is busy stepping (in another thread, or this call comes from its method's step)");
     }
     ~Use() { flag_.store(false); }
