@@ -38,8 +38,13 @@ RunManager::RunManager(storage::RunStore& store, storage::FrameWriter& writer, c
     try {
       const Scenario scenario = parse_scenario_text(text.str());  // only valid files are served
       const std::string stem = entry.path().stem().string();
-      catalogue_[stem] = scenario.json;
-      catalogue_.emplace(scenario.name, scenario.json);
+      // one name everywhere: a catalogue scenario is named by its file, in
+      // the list, in its document and so in the runs stored from it; its
+      // inner name still finds it
+      nlohmann::json doc = scenario.json;
+      doc["name"] = stem;
+      catalogue_[stem] = doc;
+      catalogue_.emplace(scenario.name, std::move(doc));
       catalogue_names_.push_back(stem);
     } catch (const std::exception&) {
     }

@@ -1,5 +1,7 @@
 // Scenario validation without saving (the dashboard's editor) and names that
 // exist already: a scenario is never replaced.
+#include <algorithm>
+
 #include "server_fixture.hpp"
 
 namespace rrlab::testing {
@@ -78,6 +80,25 @@ TEST_F(ScenarioRoutes, ExistingNamesAreNeverReplaced) {
   EXPECT_EQ(conflict.status, 409);
   EXPECT_EQ(get("/api/scenarios/added_once").json()["duration"], 2.0);
   EXPECT_EQ(send("POST", "/api/scenarios/validate", changed).json()["exists"], true);
+}
+
+TEST_F(ScenarioRoutes, ACatalogueScenarioHasOneNameInTheListItsDocumentAndItsRuns) {
+  const json listed = get("/api/scenarios?limit=1000").json()["scenarios"];
+  const bool in_list = std::any_of(listed.begin(), listed.end(), [](const json& s) { return s["name"] == "01_planar7_obstacles"; });
+  EXPECT_TRUE(in_list);
+  EXPECT_EQ(get("/api/scenarios/01_planar7_obstacles").json()["name"], "01_planar7_obstacles");
+  // the name inside the file still finds it, under the file's name
+  EXPECT_EQ(get("/api/scenarios/planar7_obstacles").json()["name"], "01_planar7_obstacles");
+
+  for (const char* asked : {"01_planar7_obstacles", "planar7_obstacles"}) {
+    const HttpResult run = send("POST", "/api/runs", {{"scenario", asked}, {"mode", "batch"}, {"steps", 5}});
+    ASSERT_EQ(run.status, 200) << run.body;  // a batch run answers when it has ended
+    const json record = get("/api/runs/" + std::to_string(run.json()["id"].get<int>())).json();
+    EXPECT_EQ(record["scenario"], "01_planar7_obstacles") << "asked for " << asked;
+  }
+  const json found = get("/api/runs?scenario=01_planar7_obstacles").json();
+  EXPECT_EQ(found.size(), 2u);
+  EXPECT_EQ(get("/api/runs?scenario=planar7_obstacles").json().size(), 0u);
 }
 
 }  // namespace

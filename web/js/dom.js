@@ -12,8 +12,16 @@ export function element(tag, attributes = {}, children = []) {
 }
 
 // Keys typed into a field, or pressed inside a dialog, are not page shortcuts.
-export const isTyping = (target) => target instanceof HTMLElement &&
-  (target.isContentEditable || ['INPUT', 'TEXTAREA', 'SELECT'].includes(target.tagName) || target.closest('dialog') !== null);
+// A slider, a tick box or a button takes only the keys it acts on itself (a
+// slider: arrows, Home, End, Page keys): after a click on the replay
+// scrubber, space , and . still work.
+const SLIDER_KEYS = new Set(['ArrowLeft', 'ArrowRight', 'ArrowUp', 'ArrowDown', 'Home', 'End', 'PageUp', 'PageDown']);
+export const isTyping = (target, key = '') => {
+  if (!(target instanceof HTMLElement)) return false;
+  if (target.closest('dialog') !== null || target.isContentEditable) return true;
+  if (target.tagName === 'INPUT' && ['range', 'checkbox', 'radio', 'button'].includes(target.type)) return target.type === 'range' && SLIDER_KEYS.has(key);
+  return ['INPUT', 'TEXTAREA', 'SELECT'].includes(target.tagName);
+};
 
 // Text made safe for innerHTML (names and descriptions come from users' scenarios).
 export function escapeHtml(text) {

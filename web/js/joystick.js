@@ -239,7 +239,7 @@ export class Joystick {
       if (this.keys.delete(event.code)) this.update();
       return;
     }
-    if (!this.enabled || isTyping(event.target) || event.ctrlKey || event.altKey || event.metaKey) return;
+    if (!this.enabled || isTyping(event.target, event.key) || event.ctrlKey || event.altKey || event.metaKey) return;
     if (axis[0] === 2 && this.space === 'xy') return;  // no z in the plane
     event.preventDefault();  // arrows and PageUp/Down would scroll the page
     this.shift = event.shiftKey;

@@ -45,7 +45,14 @@ const runList = new RunList({
   deleted: (id) => { if (session && session.runIds.includes(id)) closeSession(`run #${id} was deleted`); },
 });
 const compareSetup = new CompareSetup({ start: (body, layout) => startCompare(body, layout) });
-const replayBar = new ReplayBar();
+// The replay's current frame, shown everywhere it is named (the bar's readout is its own).
+const replayBar = new ReplayBar({
+  onPresent: (seq, frame) => {
+    const lane = session && session.lanes[0];
+    if (lane && lane.snapshot) plots.setCursor(seq * lane.snapshot.dt);
+    $('status').textContent = frame ? `t = ${frame.t.toFixed(2)} s · step ${frame.step} · frame ${frame.seq}` : `frame ${seq}`;
+  },
+});
 const sceneTools = new SceneTools(() => session);
 const plots = new Plots($('plots'));
 plots.onSeek = (t) => replayBar.seekTime(t);
@@ -111,6 +118,7 @@ async function show(next, startFrame) {
   sceneTools.reset();
   $('compare-summary').hidden = true;
   $('controls').hidden = next.kind !== 'live';
+  $('ended-note').hidden = true;
   showControl('none');
   for (const el of document.querySelectorAll('#controls button:not(#delete-obstacle), #controls select')) el.disabled = false;
   // a session on screen: its controls come first, the pickers fold away
@@ -149,8 +157,11 @@ async function loadWholeRuns(s) {
     const { dt } = await lane.ready;
     const stride = Math.max(1, Math.ceil(frames / 20000));
     const data = await api('GET', `/api/runs/${lane.runId}/frames?from=0&to=${frames - 1}&stride=${stride}`);
+    lane.stored = data.frames.map((f) => ({ seq: f.seq, ee: f.ee }));  // the trace up to any frame, after a seek
     for (const f of data.frames) f.t = f.seq * dt;
-    if (session === s) plots.setRun(lane.index, data);
+    if (session !== s) return;
+    plots.setRun(lane.index, data);
+    if (lane.shownSeq !== null && lane.shownSeq !== undefined && lane.view) replayBar.rebuildTrace(lane, lane.shownSeq);
   }));
 }
 
@@ -181,6 +192,39 @@ async function startCompare(body, layout) {
   await openRuns(group.runs.map((r) => r.id), layout);
 }
 
+// An obstacle of a snapshot in the scenario format: a mesh goes back to its
+// file, a moved polygon's translation into its points.
+function asScenarioObstacle({ mesh, ...o }) {
+  if (o.shape === 'polygon' && Array.isArray(o.position)) {
+    const [dx, dy] = o.position;
+    o.points = o.points.map(([x, y]) => [x + dx, y + dy]);
+    delete o.position;
+  }
+  return o;
+}
+
+// A new live run of the ended run's scenario and method (parameters as they
+// stood at the end), with the obstacles where the run left them.
+async function restartWithScene() {
+  const s = session;
+  if (!s || s.kind !== 'live' || !s.ended) return;
+  const lane = s.lanes[0];
+  const record = await api('GET', `/api/runs/${lane.runId}/record`);
+  const scenario = structuredClone(record.scenario);
+  if (lane.snapshot && Array.isArray(lane.snapshot.obstacles)) {
+    scenario.obstacles = lane.snapshot.obstacles.map(asScenarioObstacle);
+  }
+  const body = { scenario, mode: 'live', rate: Number($('rate').value) };
+  if (lane.snapshot) { body.method = lane.snapshot.method; body.params = lane.snapshot.params; }
+  if (s.compare) {
+    const group = await api('POST', '/api/compare', { scenario, methods: s.lanes.map((l) => (l.snapshot ? { name: l.snapshot.method, params: l.snapshot.params } : l.label)), mode: 'live', rate: body.rate });
+    await openRuns(group.runs.map((r) => r.id), s.layout);
+    return;
+  }
+  const run = await api('POST', '/api/runs', body);
+  await openRuns([run.id]);
+}
+$('restart-scene').onclick = () => restartWithScene().catch(report);
 $('start-live').onclick = () => startLive().catch(report);
 $('start-batch').onclick = () => startBatch().catch(report);
 for (const button of document.querySelectorAll('[data-action]')) {
@@ -213,7 +257,7 @@ function controlAction(action, done) {
 }
 $('take-control').onclick = () => controlAction('take', () => app.info('You control this run now.'));
 $('release-control').onclick = () => controlAction('release', () => app.info('You let go of this run; another client may steer it.'));
-app.signals.control.add((controller) => { if (session && session.kind === 'live') showControl(controller); });
+app.signals.control.add((controller) => { if (session && session.kind === 'live' && !session.ended) showControl(controller); });
 app.signals.controlTaken.add((text) => { showControl('other'); app.error(text); });
 
 // ---- stream events -------------------------------------------------------
@@ -232,6 +276,8 @@ app.signals.snapshot.add((lane) => {
     if (session.layout === 'overlay') session.refreshOverlayLanes();
   }
   if (lane.index === session.focus) buildParams(session);
+  // a replay's snapshot carries the frame its player shows
+  if (session.kind === 'replay' && lane.frame) replayBar.onFrame(lane, lane.frame);
   // a method switch changes the diagnostics: the plots start again with the new names
   if (session.kind === 'live' && session.plotNames && session.plotNames[lane.index] !== lane.snapshot.diagnostic_names.join('\n')) {
     lane.label = lane.snapshot.method;
@@ -256,16 +302,24 @@ app.signals.frame.add((lane) => {
   metricsDirty = true;
   const f = lane.frame;
   if (session.kind === 'live') plots.push(lane.index, f);
-  if (lane.index === 0) {
-    if (session.kind === 'replay') { replayBar.onFrame(f); plots.setCursor(f.seq * lane.snapshot.dt); }
-    $('status').textContent = `t = ${f.t.toFixed(2)} s · step ${f.step} · ${f.status}`;
+  if (session.kind === 'replay') replayBar.onFrame(lane, f);
+  else if (lane.index === 0) $('status').textContent = `t = ${f.t.toFixed(2)} s · step ${f.step} · ${f.status}`;
+  // the header says paused or live as the run does
+  if (session.kind === 'live' && lane.index === 0 && f.status !== session.shownStatus) {
+    session.shownStatus = f.status;
+    app.signals.connection.dispatch(session);
   }
   if (session.kind === 'live' && session.ended && !session.summaryShown) {
     session.summaryShown = true;
+    // its scene is read-only on screen too: no drags, no placing, no delete, no control notice
+    for (const l of session.lanes) sceneTools.unbind(l);
+    showControl('none');
+    $('ended-note').hidden = false;
     // an ended run takes no more inputs: its controls and joystick go quiet
     joystick.configure({ enabled: false, space: lane.snapshot ? lane.snapshot.task.space : 'xy', reach: 1 });
     $('joystick-section').hidden = true;
     for (const el of document.querySelectorAll('#controls button, #controls select')) el.disabled = true;
+    $('restart-scene').disabled = false;
     sceneTools.reset();
     app.signals.connection.dispatch(session);
     if (session.compare) showCompareSummary(session).catch(report);
@@ -279,7 +333,8 @@ app.signals.connection.add((s) => {
   const el = $('connection');
   const open = states.every((x) => x === 'open');
   if (s.ended) { el.textContent = `ended (${s.lanes[0].status})`; el.className = 'pill muted'; return; }
-  el.textContent = open ? (s.kind === 'live' ? 'live' : 'replay') : states.find((x) => x !== 'open') || '';
+  const paused = s.kind === 'live' && s.lanes[0].status === 'paused';
+  el.textContent = open ? (s.kind === 'live' ? (paused ? 'paused' : 'live') : 'replay') : states.find((x) => x !== 'open') || '';
   el.className = `pill ${open ? 'ok' : 'warn'}`;
 });
 
@@ -288,6 +343,7 @@ const fps = { frames: 0, since: performance.now(), value: 0, renderMs: 0 };
 let lastMetrics = 0;
 function tick(now) {
   const t0 = performance.now();
+  replayBar.tick(now);
   if (session) session.render();
   plots.render();
   // tables are text for people: 10 updates a second are plenty and spare the layout work
@@ -313,7 +369,7 @@ $('open-editor').onclick = async () => {
 };
 
 // For browser tests and for measuring: the state, the session and the frame rate.
-window.__rrlab = { app, fps, get session() { return session; }, plots };
+window.__rrlab = { app, fps, get session() { return session; }, plots, replay: replayBar };
 
 // ---- start: what the address asks for --------------------------------------
 async function start() {

@@ -1,69 +1,79 @@
-// The replay scrubber: play/pause, speed, frame step and seek for every lane
-// of a replayed session at once. The frame number follows in the address.
+// The replay bar: play/pause, speed, frame step and seek for every lane of a
+// replayed session at once. It holds the one current frame of the page: the
+// playhead advances here (not in each lane's server player, whose clocks
+// drift apart), every lane is asked for that frame, and the scrubber,
+// readout, status line, plot cursor and address follow it on every seek,
+// however it was asked for (scrubber, plot click, keyboard, deep link).
 import { api } from './api.js';
 import { app } from './state.js';
 import { isTyping } from './dom.js';
 
 const $ = (id) => document.getElementById(id);
+const URL_EVERY_MS = 1000;      // the address follows a playing replay once a second
+const REQUEST_TIMEOUT_MS = 2000; // a frame asked for that never comes does not stall the lane
 
 export class ReplayBar {
-  constructor() {
+  // onPresent(seq, frame|null): the page shows frame `seq` (frame: lane 0's, once it arrived)
+  constructor({ onPresent } = {}) {
+    this.onPresent = onPresent || (() => {});
     this.session = null;
-    this.playing = true;
-    this.lastSeek = 0;
+    this.playing = false;
+    this.current = 0;
+    this.head = 0;          // fractional playhead while playing, in frames
+    this.lastTick = null;
     this.lastUrl = 0;
     $('replay-play').onclick = () => this.setPlaying(!this.playing);
     $('replay-back').onclick = () => this.step(-1);
     $('replay-forward').onclick = () => this.step(1);
-    $('replay-speed').onchange = () => this.control({ action: this.playing ? 'play' : 'pause', speed: Number($('replay-speed').value) });
     const scrubber = $('scrubber');
-    scrubber.oninput = () => {
-      this.scrubbing = true;
-      const now = performance.now();
-      if (now - this.lastSeek > 50) { this.lastSeek = now; this.seek(Number(scrubber.value)); }
-    };
-    scrubber.onchange = () => { this.scrubbing = false; this.seek(Number(scrubber.value)); };
+    scrubber.oninput = () => this.seek(Number(scrubber.value));
+    scrubber.onchange = () => this.seek(Number(scrubber.value));
     window.addEventListener('keydown', (e) => {
-      if (!this.session || isTyping(e.target)) return;
+      if (!this.session || isTyping(e.target, e.key) || e.ctrlKey || e.metaKey || e.altKey) return;
       if (e.key === ',') this.step(-1);
       else if (e.key === '.') this.step(1);
       else if (e.key === ' ') { e.preventDefault(); this.setPlaying(!this.playing); }
+      else if (e.key === 'Home') { e.preventDefault(); this.seek(0); }
+      else if (e.key === 'End') { e.preventDefault(); this.seek(this.last); }
     });
   }
 
+  get last() { return Math.max(0, this.session ? this.session.frameCount - 1 : 0); }
+  get seq() { return this.current; }
+  get speed() { return Number($('replay-speed').value); }
+
+  // Shows frame `startFrame` paused, or plays from the start when it is null.
   attach(session, startFrame) {
     this.session = session;
-    this.pendingSeq = null;
+    for (const lane of session.lanes) {
+      lane.wanted = null;
+      lane.inflight = null;
+      lane.paused = false;
+      lane.shownSeq = lane.frame ? lane.frame.seq : null;
+    }
     $('replay-bar').hidden = false;
-    const last = Math.max(0, session.frameCount - 1);
-    $('scrubber').max = String(last);
+    $('scrubber').max = String(this.last);
+    const start = startFrame === null || startFrame === undefined ? 0 : startFrame;
     this.playing = startFrame === null || startFrame === undefined;
+    this.lastTick = null;
     this.showPlaying();
-    if (!this.playing) this.seek(Math.min(startFrame, last));
+    this.show(start, true);
   }
 
   detach() {
     this.session = null;
+    this.playing = false;
     $('replay-bar').hidden = true;
   }
 
-  get seq() { return Number($('scrubber').value); }
-
-  // Every lane's player gets the same command (socket if open, else REST).
-  async control(body) {
-    if (!this.session) return;
-    await Promise.all(this.session.lanes.map((lane) => {
-      if (lane.stream && lane.stream.send({ type: 'control', ...body })) return null;
-      return api('POST', `/api/replays/${lane.replayId}/control`, body).catch((e) => { this.pendingSeq = null; app.error(e); });
-    }));
-  }
-
   setPlaying(playing) {
+    if (!this.session) return;
+    // Play at the end starts again from the first frame
+    if (playing && this.current >= this.last) this.show(0, true);
     this.playing = playing;
-    this.pendingSeq = null;
+    this.lastTick = null;
     this.showPlaying();
-    this.control({ action: playing ? 'play' : 'pause', speed: Number($('replay-speed').value) });
-    if (!playing) this.session.updateUrl(this.seq);
+    if (!playing) this.session.updateUrl(this.current);
   }
 
   showPlaying() {
@@ -74,16 +84,11 @@ export class ReplayBar {
   // Seeking pauses: the frame shown is the one asked for.
   seek(seq) {
     if (!this.session) return;
-    seq = Math.max(0, Math.min(Number($('scrubber').max), Math.round(seq)));
-    $('scrubber').value = String(seq);
     if (this.playing) { this.playing = false; this.showPlaying(); }
-    this.pendingSeq = seq;  // frames sent before the seek must not move the scrubber back
-    this.control({ action: 'pause', seq });  // one command: a separate pause could land after the seek
-    this.session.updateUrl(seq);
-    for (const lane of this.session.lanes) if (lane.view) lane.view.resetTrace();
+    this.show(seq, true);
   }
 
-  step(delta) { this.seek(this.seq + delta); }
+  step(delta) { this.seek(this.current + delta); }
 
   // Seeks to the frame at run time t = seq·dt (a click on a plot).
   seekTime(t) {
@@ -92,17 +97,80 @@ export class ReplayBar {
     this.seek(t / lane.snapshot.dt);
   }
 
-  // A frame of lane 0 arrived: move the scrubber and the readout.
-  onFrame(frame) {
-    if (!this.session) return;
-    if (this.pendingSeq !== null && this.pendingSeq !== undefined) {
-      if (frame.seq !== this.pendingSeq) return;
-      this.pendingSeq = null;
-    }
-    if (!this.scrubbing) $('scrubber').value = String(frame.seq);
-    $('replay-frame').textContent = `${frame.seq} / ${$('scrubber').max} · ${frame.t.toFixed(2)} s`;
-    if (frame.seq >= Number($('scrubber').max) && this.playing) { this.playing = false; this.showPlaying(); }
+  // Called at the display rate: advances the playhead at the chosen speed.
+  tick(now) {
+    if (!this.session || !this.playing) { this.lastTick = null; return; }
+    const lane = this.session.lanes[0];
+    const dt = lane && lane.snapshot ? lane.snapshot.dt : null;
+    if (this.lastTick === null || !dt) { this.lastTick = now; this.head = this.current; return; }
+    this.head += (this.speed * (now - this.lastTick)) / 1000 / dt;
+    this.lastTick = now;
+    let seq = Math.floor(this.head);
+    if (seq >= this.last) { seq = this.last; this.playing = false; this.showPlaying(); }
+    if (seq !== this.current) this.show(seq, !this.playing);
+  }
+
+  // The one place the current frame changes: every readout follows at once,
+  // every lane is asked for the frame (its last one when it is shorter).
+  show(seq, writeAddress) {
+    seq = Math.max(0, Math.min(this.last, Math.round(Number(seq) || 0)));
+    this.current = seq;
+    this.head = seq;
+    $('scrubber').value = String(seq);
+    this.present(null);
     const now = performance.now();
-    if (this.playing && now - this.lastUrl > 1000) { this.lastUrl = now; this.session.updateUrl(frame.seq); }
+    if (writeAddress || now - this.lastUrl > URL_EVERY_MS) { this.lastUrl = now; this.session.updateUrl(seq); }
+    for (const lane of this.session.lanes) {
+      const frames = this.session.runs[lane.index].frames;
+      if (frames === 0) continue;
+      lane.wanted = Math.min(seq, frames - 1);
+      this.request(lane);
+    }
+    const first = this.session.lanes[0];
+    if (first.frame && first.frame.seq === first.wanted) this.present(first.frame);
+  }
+
+  // One request in flight per lane; the newest wish is sent when it is
+  // answered. The first always goes: it pauses the lane's server player,
+  // which starts out playing on its own clock.
+  request(lane) {
+    const now = performance.now();
+    if (lane.inflight !== null && now - lane.inflightSince < REQUEST_TIMEOUT_MS) return;
+    lane.inflight = null;
+    if (lane.wanted === null) return;
+    const shown = lane.wanted === lane.shownSeq;  // the server shows it already: no frame will come
+    if (shown && lane.paused) return;
+    lane.paused = true;
+    if (!shown) { lane.inflight = lane.wanted; lane.inflightSince = now; }
+    const body = { action: 'pause', seq: lane.wanted };  // one command: a separate pause could land after the seek
+    if (lane.stream && lane.stream.send({ type: 'control', ...body })) return;
+    if (!lane.replayId) { lane.inflight = null; return; }
+    api('POST', `/api/replays/${lane.replayId}/control`, body).catch((e) => { lane.inflight = null; app.error(e); });
+  }
+
+  // A frame of any lane arrived (its view has it already).
+  onFrame(lane, frame) {
+    if (!this.session || !this.session.lanes.includes(lane)) return;
+    const previous = lane.shownSeq;
+    lane.shownSeq = frame.seq;
+    // a jump (a seek, or frames skipped at speed): the trace is rebuilt up to this frame, not cleared
+    if (lane.view && frame.seq !== previous && frame.seq !== (previous === null ? 0 : previous + 1)) this.rebuildTrace(lane, frame.seq);
+    if (lane.inflight === frame.seq || lane.inflight === null) lane.inflight = null;
+    this.request(lane);
+    if (lane.index === 0 && frame.seq === Math.min(this.current, this.session.runs[0].frames - 1)) this.present(frame);
+  }
+
+  rebuildTrace(lane, seq) {
+    if (!lane.stored || !lane.view.rebuildTrace) return;
+    const points = [];
+    for (const f of lane.stored) { if (f.seq > seq) break; points.push(f.ee); }
+    lane.view.rebuildTrace(points);
+  }
+
+  // The readout; the page's status line and plot cursor through onPresent.
+  present(frame) {
+    const time = frame ? ` · ${frame.t.toFixed(2)} s` : '';
+    $('replay-frame').textContent = `${this.current} / ${this.last}${time}`;
+    this.onPresent(this.current, frame);
   }
 }

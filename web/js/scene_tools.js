@@ -17,7 +17,7 @@ export class SceneTools {
     $('add-obstacle').onclick = () => this.setPlacing(this.placing ? null : $('add-shape').value);
     $('delete-obstacle').onclick = () => this.deleteSelected();
     window.addEventListener('keydown', (e) => {
-      if (isTyping(e.target)) return;
+      if (isTyping(e.target, e.key)) return;
       if (e.key === 'Escape') this.setPlacing(null);
       if (e.key === 'Delete' && this.selected !== null) this.deleteSelected();
     });
@@ -39,6 +39,19 @@ export class SceneTools {
     view.onPlace = (point) => this.place(lane, point).catch((e) => app.error(e));
     view.onSelect = (index) => this.select(lane, index);
     view.placing = this.placing;
+  }
+
+  // An ended run's scene is read-only: nothing drags, places or deletes,
+  // and a drag in progress lets go (the obstacle is drawn where the run left it).
+  unbind(lane) {
+    const view = lane.view;
+    if (!view) return;
+    view.onObstacleDrag = null;
+    view.onPlace = null;
+    view.placing = null;
+    view.selected = null;
+    if (view.endDrag) view.endDrag();
+    view.invalidate();
   }
 
   live() { const s = this.getSession(); return s && s.kind === 'live' && !s.ended ? s : null; }

@@ -9,6 +9,9 @@ export class Signal {
 }
 
 export const LANE_COLOURS = ['#1e88e5', '#ef6c00', '#2e7d32', '#8e24aa'];
+// The link nearest an obstacle, and a collided one: hues no lane wears.
+export const NEAREST_LINK_COLOUR = '#fbc02d';
+export const COLLIDED_COLOUR = '#c62828';
 
 export const OVERLAYS = [
   { key: 'nearest', label: 'Nearest obstacle', help: 'segment from each link to its nearest obstacle, with the distance' },

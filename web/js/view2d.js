@@ -88,6 +88,13 @@ export class View2D {
   invalidate() { this.dirty = true; }
 
   resetTrace() { this.traceCount = 0; this.traceStart = 0; this.lastStep = -1; this.dirty = true; }
+  // A replay's seek: the trace as it stood at the frame shown, from the stored ends.
+  rebuildTrace(points) {
+    const step = this.lastStep;
+    this.resetTrace();
+    for (const p of points.slice(-TRACE_POINTS)) this.appendTrace(p);
+    this.lastStep = step;
+  }
   appendTrace(p) {
     if (!p) return;
     const i = (this.traceStart + this.traceCount) % TRACE_POINTS;
@@ -199,6 +206,7 @@ export class View2D {
         this.userMoved = true;
         this.dirty = true;
       } else if (g.kind === 'drag') {
+        if (!this.onObstacleDrag) { this.endDrag(); return; }  // the run ended meanwhile
         const [wx, wy] = this.toWorld(x, y);
         const position = [g.from[0] + wx - g.start[0], g.from[1] + wy - g.start[1], g.from[2] || 0];
         this.pending = { index: g.index, position, until: Infinity };
@@ -209,7 +217,7 @@ export class View2D {
     const end = (event) => {
       this.pointers.delete(event.pointerId);
       const g = this.gesture;
-      if (g && g.kind === 'drag' && this.pending) {
+      if (g && g.kind === 'drag' && this.pending && this.onObstacleDrag) {
         this.pending.until = performance.now() + 1500;
         this.onObstacleDrag(g.index, this.pending.position, 'end');
       }
@@ -223,6 +231,13 @@ export class View2D {
       this.zoomAt(x, y, Math.exp(-event.deltaY * 0.0015));
     }, { passive: false });
     c.addEventListener('dblclick', () => this.fit());
+  }
+
+  // Lets go of an obstacle being dragged: it is drawn where the frames put it.
+  endDrag() {
+    if (this.gesture && this.gesture.kind === 'drag') this.gesture = null;
+    this.pending = null;
+    this.dirty = true;
   }
 
   pinchDistance() { const [a, b] = [...this.pointers.values()]; return Math.hypot(a.x - b.x, a.y - b.y); }

@@ -2,6 +2,7 @@
 // ghosts), the nearest-obstacle segments with their distances, the
 // manipulability ellipse and the method's own overlays. Each overlay has its
 // own toggle in view.overlays.
+import { NEAREST_LINK_COLOUR, COLLIDED_COLOUR } from './state.js';
 
 // The ellipse is drawn at a fixed scale for the whole run, chosen at the first
 // frame so that its largest semi-axis is 15% of the reach: changes stay visible.
@@ -17,7 +18,7 @@ export function drawArm2D(view, snapshot, frame, colour, alpha) {
   c.lineCap = 'round';
   frame.links.forEach((l, i) => {
     const radius = snapshot.model.links[i] ? snapshot.model.links[i].radius : 0;
-    c.strokeStyle = i !== nearest ? colour : frame.metrics.collided ? '#c62828' : '#ef6c00';
+    c.strokeStyle = i !== nearest ? colour : frame.metrics.collided ? COLLIDED_COLOUR : NEAREST_LINK_COLOUR;
     c.lineWidth = Math.max(3, 2 * radius * view.scale);
     view.line([l[0], l[1]], [l[3], l[4]]);
   });

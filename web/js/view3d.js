@@ -308,6 +308,12 @@ export class View3D {
     this.dirty = true;
   }
 
+  // A replay's seek: the trace as it stood at the frame shown, from the stored ends.
+  rebuildTrace(points) {
+    this.resetTrace();
+    if (this.overlayLayer) for (const p of points) this.overlayLayer.record(p);
+  }
+
   // Frames the camera on the scene: the base, the arm as it stands, every
   // obstacle and the path (before any frame: the reach around the base); the
   // ground grid follows the same region.
@@ -444,7 +450,15 @@ export class View3D {
     return obstaclePosition(this.snapshot.obstacles[index]);
   }
 
+  // Lets go of an obstacle being dragged (the run ended): drawn where the frames put it.
+  endDrag() {
+    this.override = null;
+    if (this.pointer) this.pointer.cancel();
+    this.dirty = true;
+  }
+
   dragTo(index, position, phase) {
+    if (!this.onObstacleDrag) return;  // an ended run: nothing moves
     this.override = { index, position, releasedAt: phase === 'end' ? performance.now() : null };
     this.dirty = true;
     if (this.onObstacleDrag) this.onObstacleDrag(index, position, phase);

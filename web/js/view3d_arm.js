@@ -1,6 +1,7 @@
 // One arm in the 3D view: links as capsules of their radius, joints as small
 // spheres. Meshes are built once per model; update() only moves them.
 import * as THREE from 'three';
+import { NEAREST_LINK_COLOUR, COLLIDED_COLOUR } from './state.js';
 import { SegmentBuffer } from './view3d_lines.js';
 
 const unitCylinder = new THREE.CylinderGeometry(1, 1, 1, 20, 1, true);  // along y, centred
@@ -8,7 +9,7 @@ const unitSphere = new THREE.SphereGeometry(1, 20, 14);
 const yAxis = new THREE.Vector3(0, 1, 0);
 const start = new THREE.Vector3(), end = new THREE.Vector3(), direction = new THREE.Vector3();
 
-export const armColours = { nearest: '#ef6c00', collided: '#c62828', joint: '#eceff1', base: '#90a4ae' };
+export const armColours = { nearest: NEAREST_LINK_COLOUR, collided: COLLIDED_COLOUR, joint: '#eceff1', base: '#90a4ae' };
 
 // Visible radius of a link: its own (what collisions use), but never thinner
 // than a line you can see; a bare segment (radius 0) gets 1% of the reach.

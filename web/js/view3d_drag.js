@@ -62,6 +62,12 @@ export class PointerTool {
     event.preventDefault();
   }
 
+  // Drops a grab in progress (the run ended): the orbit works again.
+  cancel() {
+    if (this.down && this.down.index !== null) this.view.controls.enabled = true;
+    this.down = null;
+  }
+
   onMove(event) {
     const down = this.down;
     if (!down) return this.hover(event);

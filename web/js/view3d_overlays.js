@@ -3,10 +3,11 @@
 // the method's own overlays (ellipses, points, segments), ghost arms and the
 // end-effector trace. Objects are pooled: a frame rewrites them, never adds.
 import * as THREE from 'three';
+import { NEAREST_LINK_COLOUR } from './state.js';
 import { CSS2DObject } from 'three/addons/renderers/CSS2DRenderer.js';
 import { SegmentBuffer } from './view3d_lines.js';
 
-export const overlayColours = { nearest: '#ef6c00', distance: '#78909c', ellipsoid: '#1e88e5', method: '#8e24aa', trace: '#1e88e5' };
+export const overlayColours = { nearest: NEAREST_LINK_COLOUR, distance: '#78909c', ellipsoid: '#1e88e5', method: '#8e24aa', trace: '#1e88e5' };
 const traceCapacity = 2000;
 const unitSphere = new THREE.SphereGeometry(1, 32, 16);
 const pointMatrix = new THREE.Matrix4();

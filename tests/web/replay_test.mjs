@@ -1,0 +1,110 @@
+// Replays as a person uses them: one current frame that the scrubber, the
+// readout, the status line, the plot cursor, the address and every lane's
+// view follow, however the frame was asked for (scrubber click, keyboard,
+// plot click, deep link); Play at the end starts again; a compare group's
+// lanes stay on one frame; the trace is rebuilt to the frame shown.
+// Usage: node replay_test.mjs   (RRLAB_BINARY, RRLAB_SCREENSHOTS, CHROMIUM)
+import { suite, until, check } from './harness.mjs';
+
+// What the page says the current frame is, everywhere it says it.
+const shown = (page) => page.evaluate(() => {
+  const s = window.__rrlab.session;
+  const lanes = s ? s.lanes.map((l) => (l.frame ? l.frame.seq : null)) : [];
+  const dt = s && s.lanes[0].snapshot ? s.lanes[0].snapshot.dt : null;
+  const cursor = window.__rrlab.plots.cursorT;
+  return {
+    scrubber: Number(document.getElementById('scrubber').value),
+    readout: document.getElementById('replay-frame').textContent,
+    status: document.getElementById('status').textContent,
+    cursor: cursor === null || dt === null ? null : Math.round(cursor / dt),
+    address: new URLSearchParams(location.search).get('frame'),
+    lanes,
+    playing: window.__rrlab.replay.playing,
+  };
+});
+
+// Every readout names frame k, and every lane (up to its last frame) shows it.
+async function allAt(page, k, what) {
+  return until(async () => {
+    const s = await shown(page);
+    const ok = s.scrubber === k && s.readout.startsWith(`${k} /`) && s.readout.includes(' s') && s.status.includes(`frame ${k}`) &&
+      s.cursor === k && s.address === String(k) && s.lanes.every((seq) => seq === k);
+    return ok ? s : null;
+  }, `${what}: every readout at frame ${k} (last seen ${JSON.stringify(await shown(page))})`);
+}
+
+await suite('replay', [
+  ['a scrubber click, the keyboard and a deep link move every readout together', async (t) => {
+    const run = await t.post('/api/runs', { scenario: '01_planar7_obstacles', method: 'dls', mode: 'batch' });
+    await t.page.goto(`${t.base}/?run=${run.id}&frame=250`);
+    await allAt(t.page, 250, 'the deep link');
+    check(!(await shown(t.page)).playing, 'a deep link to a frame opens paused');
+    await t.screenshot('deep-link');
+
+    // a click on the scrubber, a third of the way along
+    const scrubber = t.page.locator('#scrubber');
+    const box = await scrubber.boundingBox();
+    await scrubber.click({ position: { x: box.width / 3, y: box.height / 2 } });
+    const clicked = (await shown(t.page)).scrubber;
+    check(Math.abs(clicked - 800 / 3) < 60, `the click lands about a third of the way (${clicked})`);
+    await allAt(t.page, clicked, 'the scrubber click');
+
+    // the scrubber keeps focus, and the shortcuts still work
+    check(await scrubber.evaluate((el) => el === document.activeElement), 'the scrubber has focus');
+    await t.page.keyboard.press('.');
+    await allAt(t.page, clicked + 1, 'one frame on with "."');
+    await t.page.keyboard.press(',');
+    await t.page.keyboard.press(',');
+    await allAt(t.page, clicked - 1, 'two frames back with ","');
+    await t.page.keyboard.press(' ');
+    await until(async () => (await shown(t.page)).playing && (await shown(t.page)).scrubber > clicked + 5, 'space plays from there');
+    await t.page.keyboard.press(' ');
+    const paused = (await shown(t.page)).scrubber;
+    await allAt(t.page, paused, 'space pauses, every readout at the frame it stopped on');
+    await t.screenshot('after-keys');
+
+    // the view shows the stored frame itself
+    const stored = (await t.get(`/api/runs/${run.id}/frames?from=${paused}&to=${paused}`)).frames[0];
+    const q = await t.page.evaluate(() => window.__rrlab.session.lanes[0].frame.q);
+    // the stream sends joint values to 7 significant digits
+    q.forEach((v, i) => check(Math.abs(v - stored.q[i]) <= 1e-6 * Math.max(1, Math.abs(stored.q[i])), `q${i + 1} drawn ${v}, stored ${stored.q[i]}`));
+  }],
+
+  ['Play at the last frame starts again; the trace is rebuilt to the frame shown', async (t) => {
+    const run = await t.post('/api/runs', { scenario: '01_planar7_obstacles', method: 'dls', mode: 'batch' });
+    await t.page.goto(`${t.base}/?run=${run.id}&frame=799`);
+    await allAt(t.page, 799, 'the last frame');
+    // the trace of a replay opened at its end is the whole path, once the stored run is loaded
+    const trace = () => t.page.evaluate(() => window.__rrlab.session.lanes[0].view.traceCount);
+    await until(async () => (await trace()) === 800, 'the trace to hold all 800 frames');
+    await t.page.locator('#replay-play').click();
+    await until(async () => { const s = await shown(t.page); return s.playing && s.scrubber < 400 ? s : null; }, 'play at the end to start from the first frame');
+    await t.page.locator('#replay-play').click();
+    // a seek back rebuilds the trace to that frame instead of clearing it
+    await t.page.locator('#scrubber').fill('600');
+    await t.page.locator('#scrubber').dispatchEvent('change');
+    await allAt(t.page, 600, 'the seek to 600');
+    await until(async () => (await trace()) === 601, 'the trace rebuilt to frames 0–600');
+    await t.screenshot('trace-rebuilt');
+  }],
+
+  ['a compare group replays its lanes on one frame, and a plot click seeks them all', async (t) => {
+    const group = await t.post('/api/compare', { scenario: '01_planar7_obstacles', methods: ['pinv', 'dls', 'gpm'], mode: 'batch' });
+    const ids = group.runs.map((r) => r.id);
+    await t.page.goto(`${t.base}/?compare=${ids.join(',')}`);
+    await until(async () => (await shown(t.page)).scrubber > 100, 'the group to play');
+    await t.page.locator('#replay-play').click();
+    const paused = (await shown(t.page)).scrubber;
+    await allAt(t.page, paused, 'every lane on the frame the group paused at');
+    // a click on a chart seeks every lane
+    await until(() => t.page.evaluate(() => window.__rrlab.plots.charts.get('distance') !== undefined), 'the distance chart');
+    const over = t.page.locator('#plots .plots-chart[data-chart="distance"] .u-over');
+    await over.scrollIntoViewIfNeeded();
+    const box = await over.boundingBox();
+    await over.click({ position: { x: box.width * 0.75, y: box.height / 2 } });
+    const sought = (await shown(t.page)).scrubber;
+    check(Math.abs(sought - 600) < 60, `the click three quarters along the chart seeks near frame 600 (${sought})`);
+    await allAt(t.page, sought, 'the plot click');
+    await t.screenshot('compare-synced');
+  }],
+]);
