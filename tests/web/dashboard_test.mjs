@@ -219,6 +219,7 @@ await suite('dashboard', [
     await t.page.goto(`${t.base}/?scenario=${await storedLongScenario(t)}`);
     await t.page.waitForSelector('#compare-rows .compare-row');
     await t.page.click('#compare-add');
+    await t.page.locator('#compare-rows .compare-row select').nth(1).selectOption('dls');
     await t.page.locator('#compare-rows .compare-row select').nth(2).selectOption('closest_point');
     await t.page.locator('#compare-rows .compare-row input').nth(1).fill('lambda=0.2');
     await t.page.selectOption('#compare-layout', 'overlay');

@@ -4,6 +4,7 @@
 import { api, ApiError } from './api.js';
 import { app, LANE_COLOURS } from './state.js';
 import { fmt } from './params.js';
+import { DEFAULT_CRITERION, compareVerdict } from './compare_verdict.js';
 import { escapeHtml } from './dom.js';
 
 const $ = (id) => document.getElementById(id);
@@ -16,11 +17,13 @@ export class CompareSetup {
     $('start-compare').onclick = () => this.submit().catch((e) => app.error(e));
   }
 
-  // Two rows to begin with: the plain pseudoinverse against the next method.
+  // Two rows to begin with: the plain pseudoinverse against an avoidance
+  // method (on the opening demo scenario the first collides, the second keeps clear).
   init() {
     $('compare-rows').replaceChildren();
     this.addRow('pinv');
-    this.addRow(app.methods.find((m) => m.name === 'dls') ? 'dls' : app.methods[1].name);
+    const second = ['closest_point', 'dls'].find((name) => app.methods.some((m) => m.name === name));
+    this.addRow(second || app.methods[1].name);
   }
 
   addRow(method) {
@@ -59,31 +62,81 @@ export class CompareSetup {
   }
 
   async submit() {
-    await this.start({ scenario: $('scenario').value, methods: this.methods(), mode: 'live', rate: Number($('rate').value) }, $('compare-layout').value);
+    await this.start({ scenario: $('compare-scenario').value, methods: this.methods(), mode: 'live', rate: Number($('rate').value) }, $('compare-layout').value);
   }
 }
 
-const SUMMARY = [
-  ['collided', (s) => s.collided],
-  ['min distance (m)', (s) => s.min_distance],
-  ['max tracking error (m)', (s) => s.max_tracking_error],
-  ['final tracking error (m)', (s) => s.final_tracking_error],
-  ['joint limit violated', (s) => s.joint_limit_violated],
-  ['min joint-limit margin', (s) => s.min_joint_limit_margin],
-  ['max condition number', (s) => s.max_condition_number],
-  ['non-finite steps', (s) => s.nonfinite_steps],
-  ['step p50 (µs)', (s) => s.step_us && s.step_us.p50],
-  ['step p99 (µs)', (s) => s.step_us && s.step_us.p99],
-];
+// The success criterion the summary judges by (editable on the page; the
+// benchmark's by default), and the last summaries shown, to judge again.
+const criterion = { ...DEFAULT_CRITERION };
+let shown = null;
 
-// The summary of every lane's stored run, side by side.
+// The summary of every lane's stored run, side by side: the best value of
+// each row marked, rows where the methods differ highlighted, each run's pass
+// or fail against the criterion, and one sentence that says what it means.
 export async function showCompareSummary(session) {
-  const box = $('compare-summary');
   const runs = await Promise.all(session.runIds.map((id) => api('GET', `/api/runs/${id}`)));
   if (runs.some((r) => !r.summary)) return;
-  const head = `<tr><th></th>${session.lanes.map((l) => `<th>${escapeHtml(l.label)}</th>`).join('')}</tr>`;
-  const rows = SUMMARY.map(([name, get]) => `<tr><td>${name}</td>${runs.map((r) => `<td class="${get(r.summary) === true ? 'collided' : ''}">${fmt(get(r.summary))}</td>`).join('')}</tr>`);
-  box.innerHTML = `<h2>Summary of the compare group</h2><table id="summary-table">${head}${rows.join('')}</table>`;
-  box.querySelectorAll('#summary-table tr:first-child th').forEach((th, i) => { if (i > 0) th.style.color = session.lanes[i - 1].colour; });
+  shown = { session, summaries: runs.map((r) => r.summary) };
+  renderSummary();
+}
+
+export function hideCompareSummary() {
+  shown = null;
+  $('compare-summary').hidden = true;
+  delete $('compare-summary').dataset.group;
+}
+
+// The criterion's fields are made once per summary and never rebuilt under
+// the cursor (a field removed while it has focus fires change again).
+function renderSummary() {
+  if (!shown) return;
+  const { session, summaries } = shown;
+  const box = $('compare-summary');
+  if (box.dataset.group !== session.runIds.join(',')) buildSummary(box, session);
+  const verdict = compareVerdict(summaries, session.lanes.map((l) => l.label), criterion);
+  box.querySelector('.verdict-headline').textContent = verdict.headline;
+  const head = `<tr><th></th>${session.lanes.map((l, i) => `<th data-lane="${i}">${escapeHtml(l.label)}</th>`).join('')}</tr>`;
+  const verdictRow = `<tr class="verdict-row"><td>verdict</td>${verdict.verdicts.map((v) =>
+    `<td class="${v.pass ? 'pass' : 'fail'}" title="${escapeHtml(v.reasons.join('; ') || 'meets the criterion')}">${v.pass ? 'pass' : 'fail'}</td>`).join('')}</tr>`;
+  const rows = verdict.rows.map((row) => `<tr class="${row.differs ? 'differs' : ''}" data-row="${row.key}"><td>${row.label}</td>${row.values.map((v, i) => {
+    const classes = [row.best.includes(i) ? 'best' : '', v === true && row.better === 'false' ? 'collided' : ''].filter(Boolean).join(' ');
+    return `<td class="${classes}"${row.best.includes(i) ? ' title="best of the group"' : ''}>${fmt(v)}</td>`;
+  }).join('')}</tr>`);
+  const table = box.querySelector('#summary-table');
+  table.innerHTML = head + verdictRow + rows.join('');
+  table.querySelectorAll('th[data-lane]').forEach((th) => { th.style.color = session.lanes[Number(th.dataset.lane)].colour; });
   box.hidden = false;
+}
+
+function buildSummary(box, session) {
+  box.dataset.group = session.runIds.join(',');
+  box.innerHTML = `<details open><summary><h2>Summary of the compare group</h2></summary>
+    <p class="verdict-headline"></p>
+    <p class="criterion small">Success: tracking error ≤ <input type="number" id="crit-error" min="0" step="any" aria-label="largest tracking error that passes, m"> m,
+      clearance ≥ <input type="number" id="crit-distance" step="any" placeholder="any" aria-label="smallest clearance that passes, m"> m,
+      <label class="inline"><input type="checkbox" id="crit-collision"> no collision</label>,
+      <label class="inline"><input type="checkbox" id="crit-limits"> joint limits kept</label>
+      <button type="button" id="crit-default" title="the benchmark suite's criterion">default</button></p>
+    <table id="summary-table"></table>
+    <p class="muted small">Bold: the best value of a row. Shaded rows: the methods differ there (to 4 digits; step times always differ).</p></details>`;
+  const fields = () => {
+    $('crit-error').value = criterion.max_tracking_error ?? '';
+    $('crit-distance').value = criterion.min_distance ?? '';
+    $('crit-collision').checked = !criterion.collision;
+    $('crit-limits').checked = criterion.joint_limits;
+  };
+  fields();
+  const number = (id) => { const v = $(id).value.trim(); return v === '' ? null : Number(v); };
+  const changed = () => {
+    const error = number('crit-error'), distance = number('crit-distance');
+    if ((error !== null && !(error >= 0)) || (distance !== null && !Number.isFinite(distance))) {
+      app.error('the success criterion takes a tracking error of 0 m or more and a clearance in metres');
+      return;
+    }
+    Object.assign(criterion, { max_tracking_error: error, min_distance: distance, collision: !$('crit-collision').checked, joint_limits: $('crit-limits').checked });
+    renderSummary();
+  };
+  for (const id of ['crit-error', 'crit-distance', 'crit-collision', 'crit-limits']) $(id).onchange = changed;
+  $('crit-default').onclick = () => { Object.assign(criterion, DEFAULT_CRITERION); fields(); renderSummary(); };
 }

@@ -8,7 +8,7 @@ import { sessionFor } from './session.js';
 import { buildParams, updateParams, setupMethodSwitch, fmt } from './params.js';
 import { showMetrics } from './metrics.js';
 import { RunList } from './runs.js';
-import { CompareSetup, showCompareSummary } from './compare.js';
+import { CompareSetup, showCompareSummary, hideCompareSummary } from './compare.js';
 import { ReplayBar } from './replay.js';
 import { SceneTools, buildOverlayToggles } from './scene_tools.js';
 import { Plots } from './plots.js';
@@ -50,7 +50,8 @@ const replayBar = new ReplayBar({
   onPresent: (seq, frame) => {
     const lane = session && session.lanes[0];
     if (lane && lane.snapshot) plots.setCursor(seq * lane.snapshot.dt);
-    $('status').textContent = frame ? `t = ${frame.t.toFixed(2)} s · step ${frame.step} · frame ${frame.seq}` : `frame ${seq}`;
+    const t = frame ? frame.t : lane && lane.snapshot ? seq * lane.snapshot.dt : null;
+    $('status').textContent = `${t === null ? '' : `t = ${t.toFixed(2)} s · `}${frame ? `step ${frame.step} · ` : ''}frame ${seq}`;
   },
 });
 const sceneTools = new SceneTools(() => session);
@@ -75,7 +76,9 @@ buildOverlayToggles(() => { if (session) for (const lane of session.lanes) if (l
 
 // ---- catalogue -----------------------------------------------------------
 function fillScenarios(selected) {
-  $('scenario').innerHTML = app.scenarios.map((s) => `<option value="${escapeHtml(s.name)}" ${s.name === selected ? 'selected' : ''}>${escapeHtml(s.name)}</option>`).join('');
+  const options = (chosen) => app.scenarios.map((s) => `<option value="${escapeHtml(s.name)}" ${s.name === chosen ? 'selected' : ''}>${escapeHtml(s.name)}</option>`).join('');
+  $('scenario').innerHTML = options(selected);
+  $('compare-scenario').innerHTML = options(selected);
   describeScenario();
 }
 function describeScenario() {
@@ -102,7 +105,8 @@ function closeSession(why) {
   replayBar.detach();
   sceneTools.reset();
   joystick.configure({ enabled: false, space: 'xy', reach: 1 });
-  for (const id of ['controls', 'params-section', 'joystick-section', 'compare-summary']) $(id).hidden = true;
+  for (const id of ['controls', 'params-section', 'joystick-section']) $(id).hidden = true;
+  hideCompareSummary();
   $('session-title').textContent = '';
   $('status').textContent = '';
   $('connection').textContent = 'not connected';
@@ -116,7 +120,7 @@ async function show(next, startFrame) {
   session = next;
   replayBar.detach();
   sceneTools.reset();
-  $('compare-summary').hidden = true;
+  hideCompareSummary();
   $('controls').hidden = next.kind !== 'live';
   $('ended-note').hidden = true;
   showControl('none');
@@ -133,6 +137,8 @@ async function show(next, startFrame) {
     replayBar.attach(next, startFrame);
     loadWholeRuns(next).catch(report);
   }
+  // a stored compare group has its summary at once
+  if (next.kind === 'replay' && next.compare) showCompareSummary(next).catch(report);
   runList.refresh();
 }
 
@@ -224,6 +230,11 @@ async function restartWithScene() {
   const run = await api('POST', '/api/runs', body);
   await openRuns([run.id]);
 }
+// The compare layout applies to the group on screen too (at its current frame).
+$('compare-layout').addEventListener('change', () => {
+  if (!session || !session.compare || session.layout === $('compare-layout').value) return;
+  openRuns(session.runIds, $('compare-layout').value, session.kind === 'replay' ? replayBar.seq : null).catch(report);
+});
 $('restart-scene').onclick = () => restartWithScene().catch(report);
 $('start-live').onclick = () => startLive().catch(report);
 $('start-batch').onclick = () => startBatch().catch(report);
@@ -291,6 +302,7 @@ app.signals.snapshot.add((lane) => {
     joystick.configure({ enabled: joystickTask, space: s.task.space, reach: s.model.reach });
   }
   metricsDirty = true;
+  endIfEnded(session);
 });
 
 app.signals.params.add((lane) => {
@@ -301,6 +313,7 @@ app.signals.frame.add((lane) => {
   if (!session || !session.lanes.includes(lane)) return;
   metricsDirty = true;
   const f = lane.frame;
+  lane.framesSeen = true;
   if (session.kind === 'live') plots.push(lane.index, f);
   if (session.kind === 'replay') replayBar.onFrame(lane, f);
   else if (lane.index === 0) $('status').textContent = `t = ${f.t.toFixed(2)} s · step ${f.step} · ${f.status}`;
@@ -309,8 +322,18 @@ app.signals.frame.add((lane) => {
     session.shownStatus = f.status;
     app.signals.connection.dispatch(session);
   }
-  if (session.kind === 'live' && session.ended && !session.summaryShown) {
+  endIfEnded(session);
+});
+
+// A live session whose runs all ended (seen in a frame, or in the first
+// snapshot when the runs ended before the page attached): the controls go
+// quiet, the scene turns read-only and a group gets its summary.
+function endIfEnded(s) {
+  if (s.kind === 'live' && s.ended && !s.summaryShown) {
+    const session = s, lane = s.lanes[0];
     session.summaryShown = true;
+    // ended before any frame reached the page: the stored runs replay instead
+    if (!session.lanes.some((l) => l.framesSeen)) { openRuns(session.runIds, session.layout).catch(report); return; }
     // its scene is read-only on screen too: no drags, no placing, no delete, no control notice
     for (const l of session.lanes) sceneTools.unbind(l);
     showControl('none');
@@ -325,7 +348,7 @@ app.signals.frame.add((lane) => {
     if (session.compare) showCompareSummary(session).catch(report);
     runList.refresh();
   }
-});
+}
 
 app.signals.connection.add((s) => {
   if (s !== session) return;

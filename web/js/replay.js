@@ -169,7 +169,9 @@ export class ReplayBar {
 
   // The readout; the page's status line and plot cursor through onPresent.
   present(frame) {
-    const time = frame ? ` · ${frame.t.toFixed(2)} s` : '';
+    const lane = this.session && this.session.lanes[0];
+    const t = frame ? frame.t : lane && lane.snapshot ? this.current * lane.snapshot.dt : null;
+    const time = t === null ? '' : ` · ${t.toFixed(2)} s`;
     $('replay-frame').textContent = `${this.current} / ${this.last}${time}`;
     this.onPresent(this.current, frame);
   }

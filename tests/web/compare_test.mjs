@@ -1,0 +1,73 @@
+// Compare as a newcomer meets it: the page opens on a scenario and a preset
+// that separate the methods; the summary gives a verdict (best values, rows
+// that differ, pass/fail against an editable criterion, "no difference"
+// when there is none); 2–4 lanes lay out without empty cells; the plots keep
+// their height beside the summary; a layout change applies to the group.
+// Usage: node compare_test.mjs   (RRLAB_BINARY, RRLAB_SCREENSHOTS, CHROMIUM)
+import { suite, until, check } from './harness.mjs';
+
+const summaryCells = (page) => page.evaluate(() => [...document.querySelectorAll('#summary-table tr')].map((tr) => ({
+  row: tr.dataset.row || tr.className,
+  cells: [...tr.querySelectorAll('td')].slice(1).map((td) => ({ text: td.textContent, classes: td.className })),
+})));
+
+await suite('compare', [
+  ['the opening preset separates the methods and the summary gives a verdict', async (t) => {
+    await t.page.goto(t.base + '/');
+    await t.page.waitForSelector('#compare-rows .compare-row');
+    check((await t.page.inputValue('#scenario')) === '00_demo_avoidance', 'the page opens on the demo scenario');
+    check((await t.page.inputValue('#compare-scenario')) === '00_demo_avoidance', 'the compare panel picks its own scenario, the demo first');
+    const preset = await t.page.locator('#compare-rows select').evaluateAll((selects) => selects.map((s) => s.value));
+    check(preset.join() === 'pinv,closest_point', `the preset compares pinv with an avoidance method (${preset})`);
+    await t.page.selectOption('#rate', '0');  // as fast as possible: the group ends at once
+    await t.page.click('#start-compare');
+    await until(async () => !(await t.page.isHidden('#compare-summary')), 'the summary at the end');
+    check((await t.page.textContent('.verdict-headline')) === 'closest_point passes; pinv fails.', `the headline: ${await t.page.textContent('.verdict-headline')}`);
+    const rows = await summaryCells(t.page);
+    const verdict = rows.find((r) => r.row === 'verdict-row');
+    check(verdict.cells.map((c) => c.text).join() === 'fail,pass', `pass/fail per run: ${JSON.stringify(verdict.cells)}`);
+    const distance = rows.find((r) => r.row === 'min_distance');
+    check(distance.cells[1].classes.includes('best') && !distance.cells[0].classes.includes('best'), 'closest_point\'s clearance is marked best');
+    check(await t.page.locator('#summary-table tr[data-row="min_distance"].differs').count() === 1, 'the clearance row is marked as differing');
+    check(await t.page.locator('#summary-table tr[data-row="max_tracking_error"].differs').count() === 0, 'the tracking row is not (both 3 mm)');
+    // the charts keep their height beside the summary
+    const heights = await t.page.locator('#plots .plots-chart canvas').evaluateAll((cs) => cs.map((c) => c.getBoundingClientRect().height));
+    check(heights.length >= 3 && heights.every((h) => h >= 100), `every chart keeps its height (${heights.map((h) => h.toFixed(0))})`);
+    await t.screenshot('verdict');
+    // a stricter criterion, typed on the page: both fail
+    await t.page.fill('#crit-error', '0.001');
+    await t.page.locator('#crit-error').dispatchEvent('change');
+    await until(async () => (await t.page.textContent('.verdict-headline')) === 'All fail the criterion.', 'the verdict under a 1 mm criterion');
+    await t.page.click('#crit-default');
+    await until(async () => (await t.page.textContent('.verdict-headline')).startsWith('closest_point passes'), 'the default criterion back');
+    await t.screenshot('criterion');
+  }],
+
+  ['methods that give the same result are said to give no difference', async (t) => {
+    // damped least squares without damping is the pseudoinverse
+    const group = await t.post('/api/compare', { scenario: '01_planar7_obstacles', methods: ['pinv', { name: 'dls', params: { lambda: 0 } }], mode: 'batch' });
+    await t.page.goto(`${t.base}/?compare=${group.runs.map((r) => r.id).join(',')}`);
+    await until(async () => !(await t.page.isHidden('#compare-summary')), 'the summary of a stored group');
+    const headline = await t.page.textContent('.verdict-headline');
+    check(headline.startsWith('No difference'), `the headline: ${headline}`);
+    check(await t.page.locator('#summary-table tr:not([data-row^="step"]) td.best').count() === 0, 'no result is marked best (only the faster step time)');
+  }],
+
+  ['three and four lanes fill their grid; the layout applies to the group on screen', async (t) => {
+    for (const methods of [['pinv', 'dls', 'closest_point'], ['pinv', 'dls', 'closest_point', 'gpm']]) {
+      const group = await t.post('/api/compare', { scenario: '00_demo_avoidance', methods, mode: 'batch', steps: 50 });
+      await t.page.goto(`${t.base}/?compare=${group.runs.map((r) => r.id).join(',')}&frame=10`);
+      await until(() => t.page.evaluate((n) => window.__rrlab.session && window.__rrlab.session.lanes.filter((l) => l.view).length === n, methods.length), `${methods.length} views`);
+      const cells = await t.page.locator('#views .view-cell').evaluateAll((els) => els.map((e) => { const r = e.getBoundingClientRect(); return { x: r.x, y: r.y, w: r.width, h: r.height }; }));
+      const views = await t.page.locator('#views').evaluate((e) => { const r = e.getBoundingClientRect(); return { x: r.x, y: r.y, w: r.width, h: r.height }; });
+      const area = cells.reduce((a, c) => a + c.w * c.h, 0);
+      check(area > 0.9 * views.w * views.h, `${methods.length} lanes fill the view area (${(100 * area / (views.w * views.h)).toFixed(0)} %)`);
+      await t.screenshot(`${methods.length}-lanes`);
+    }
+    await t.page.click('#compare-setup > summary');  // the panel folds away while a session is on screen
+    await t.page.selectOption('#compare-layout', 'overlay');
+    await until(async () => (await t.page.locator('#views .view-cell').count()) === 1, 'the group on screen overlaid');
+    await until(() => t.page.evaluate(() => window.__rrlab.replay.seq === 10), 'the frame kept across the layout change');
+    await t.screenshot('overlaid');
+  }],
+]);

@@ -1,0 +1,50 @@
+// The compare summary's verdict (web/js/compare_verdict.js): best values per
+// row with their direction, rows that differ, pass or fail against the
+// criterion, and the headline sentence.
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { bestOf, differs, judge, compareVerdict, DEFAULT_CRITERION } from '../../../web/js/compare_verdict.js';
+
+const summary = (over = {}) => ({
+  collided: false, min_distance: 0.2, max_tracking_error: 0.003, final_tracking_error: 0.001, joint_limit_violated: false,
+  min_joint_limit_margin: 1.5, max_condition_number: 4, nonfinite_steps: 0, step_us: { p50: 2, p99: 9 }, ...over,
+});
+
+test('the best value follows the row\'s direction; ties share it; equal rows have none', () => {
+  assert.deepEqual(bestOf([0.1, 0.3, 0.2], 'high'), [1]);
+  assert.deepEqual(bestOf([0.1, 0.3, 0.1], 'low'), [0, 2]);
+  assert.deepEqual(bestOf([true, false, false], 'false'), [1, 2]);
+  assert.deepEqual(bestOf([0.2, 0.2], 'high'), []);
+  assert.deepEqual(bestOf([0.2, null], 'high'), []);  // one known value ranks nothing
+  assert.deepEqual(bestOf([0.1, 0.3], null), []);
+});
+
+test('values equal to 4 significant digits do not differ', () => {
+  assert.equal(differs([0.16411, 0.164112]), false);
+  assert.equal(differs([0.1641, 0.1642]), true);
+  assert.equal(differs([false, false]), false);
+  assert.equal(differs([false, true]), true);
+});
+
+test('the default criterion is the benchmark suite\'s; each failure is named', () => {
+  assert.deepEqual({ ...DEFAULT_CRITERION }, { max_tracking_error: 0.01, min_distance: null, collision: false, joint_limits: true });
+  assert.deepEqual(judge(summary()), { pass: true, reasons: [] });
+  assert.deepEqual(judge(summary({ collided: true, min_distance: -0.1 })).reasons, ['collided']);
+  assert.deepEqual(judge(summary({ max_tracking_error: 0.02 })).reasons, ['tracking error above 0.01 m']);
+  assert.deepEqual(judge(summary({ max_tracking_error: NaN })).pass, false);  // NaN never passes a bound
+  assert.deepEqual(judge(summary({ joint_limit_violated: true, nonfinite_steps: 3 })).reasons, ['crossed a joint limit', 'non-finite output']);
+  assert.equal(judge(summary({ collided: true }), { collision: true }).pass, true);
+  assert.equal(judge(summary({ min_distance: 0.04 }), { min_distance: 0.05 }).pass, false);
+});
+
+test('the headline says no difference, who passes and who fails', () => {
+  assert.match(compareVerdict([summary(), summary({ step_us: { p50: 5, p99: 20 } })], ['pinv', 'dls']).headline, /^No difference/);
+  const split = compareVerdict([summary({ collided: true, min_distance: -0.1 }), summary({ min_distance: 0.19 })], ['pinv', 'closest_point']);
+  assert.equal(split.headline, 'closest_point passes; pinv fails.');
+  assert.deepEqual(split.verdicts.map((v) => v.pass), [false, true]);
+  const distance = split.rows.find((r) => r.key === 'min_distance');
+  assert.deepEqual(distance.best, [1]);
+  assert.equal(distance.differs, true);
+  assert.equal(split.rows.find((r) => r.key === 'step_p50').differs, false);  // timing never makes methods differ
+  assert.match(compareVerdict([summary(), summary({ min_distance: 0.3 })], ['a', 'b']).headline, /^All pass; they differ in min distance/);
+});

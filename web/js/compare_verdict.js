@@ -1,0 +1,82 @@
+// The verdict of a compare group, from its runs' summaries: which value of
+// each row is best, which rows differ, and each run's pass or fail against a
+// success criterion (by default the benchmark suite's: tracking error at most
+// 1 cm, no collision, joint limits kept, no non-finite step). Pure: no DOM.
+
+export const DEFAULT_CRITERION = Object.freeze({
+  max_tracking_error: 0.01,  // m
+  min_distance: null,        // m; null: any clearance passes (a collision still fails)
+  collision: false,          // false: a collision fails the run
+  joint_limits: true,        // true: a joint-limit violation fails the run
+});
+
+// Rows of the summary table: how to read each value and which way is better
+// ('low', 'high', 'false': false is better, null: not ranked). `timing` rows
+// differ between any two runs and never make methods "differ".
+export const SUMMARY_ROWS = [
+  { key: 'collided', label: 'collided', get: (s) => s.collided, better: 'false' },
+  { key: 'min_distance', label: 'min distance (m)', get: (s) => s.min_distance, better: 'high' },
+  { key: 'max_tracking_error', label: 'max tracking error (m)', get: (s) => s.max_tracking_error, better: 'low' },
+  { key: 'final_tracking_error', label: 'final tracking error (m)', get: (s) => s.final_tracking_error, better: 'low' },
+  { key: 'joint_limit_violated', label: 'joint limit violated', get: (s) => s.joint_limit_violated, better: 'false' },
+  { key: 'min_joint_limit_margin', label: 'min joint-limit margin', get: (s) => s.min_joint_limit_margin, better: 'high' },
+  { key: 'max_condition_number', label: 'max condition number', get: (s) => s.max_condition_number, better: 'low' },
+  { key: 'nonfinite_steps', label: 'non-finite steps', get: (s) => s.nonfinite_steps, better: 'low' },
+  { key: 'step_p50', label: 'step p50 (µs)', get: (s) => s.step_us && s.step_us.p50, better: 'low', timing: true },
+  { key: 'step_p99', label: 'step p99 (µs)', get: (s) => s.step_us && s.step_us.p99, better: 'low', timing: true },
+];
+
+// Two numbers the same to display precision (4 significant digits) are not a difference.
+const RELATIVE_SAME = 5e-5;
+function same(a, b) {
+  if (typeof a !== 'number' || typeof b !== 'number') return a === b;
+  if (!Number.isFinite(a) || !Number.isFinite(b)) return Object.is(a, b);
+  return Math.abs(a - b) <= RELATIVE_SAME * Math.max(Math.abs(a), Math.abs(b), 1e-12);
+}
+
+// Indices of the best values (ties share it); [] when the row is not ranked,
+// has fewer than two values, or all are the same.
+export function bestOf(values, better) {
+  const known = values.map((v, i) => [v, i]).filter(([v]) => v !== null && v !== undefined && !(typeof v === 'number' && Number.isNaN(v)));
+  if (!better || known.length < 2 || !differs(values)) return [];
+  let best;
+  if (better === 'false') best = known.some(([v]) => v === false) ? false : null;
+  else best = known.reduce((b, [v]) => (better === 'low' ? Math.min(b, v) : Math.max(b, v)), better === 'low' ? Infinity : -Infinity);
+  if (best === null) return [];
+  return known.filter(([v]) => same(v, best)).map(([, i]) => i);
+}
+
+export function differs(values) {
+  return values.some((v) => !same(v, values[0]));
+}
+
+// {pass, reasons: [text]} of one summary against a criterion.
+export function judge(summary, criterion = DEFAULT_CRITERION) {
+  const reasons = [];
+  const c = { ...DEFAULT_CRITERION, ...criterion };
+  if (!c.collision && summary.collided) reasons.push('collided');
+  if (c.joint_limits && summary.joint_limit_violated) reasons.push('crossed a joint limit');
+  if (summary.nonfinite_steps > 0) reasons.push('non-finite output');
+  // a NaN error or distance never passes a bound
+  if (Number.isFinite(c.max_tracking_error) && !(summary.max_tracking_error <= c.max_tracking_error)) reasons.push(`tracking error above ${c.max_tracking_error} m`);
+  if (Number.isFinite(c.min_distance) && !(summary.min_distance >= c.min_distance)) reasons.push(`clearance below ${c.min_distance} m`);
+  return { pass: reasons.length === 0, reasons };
+}
+
+// The table's content and one sentence: rows with their best indices and
+// whether they differ, each run's verdict, and the headline.
+export function compareVerdict(summaries, labels, criterion = DEFAULT_CRITERION) {
+  const rows = SUMMARY_ROWS.map((row) => {
+    const values = summaries.map((s) => row.get(s));
+    return { ...row, values, best: bestOf(values, row.better), differs: !row.timing && differs(values) };
+  });
+  const verdicts = summaries.map((s) => judge(s, criterion));
+  const passed = labels.filter((_, i) => verdicts[i].pass);
+  const failed = labels.filter((_, i) => !verdicts[i].pass);
+  let headline;
+  if (!rows.some((r) => r.differs)) headline = `No difference: ${labels.join(', ')} give the same result on this scenario (to 4 digits).`;
+  else if (!failed.length) headline = `All pass; they differ in ${rows.filter((r) => r.differs).map((r) => r.label.replace(/ \(.*\)$/, '')).join(', ')}.`;
+  else if (!passed.length) headline = 'All fail the criterion.';
+  else headline = `${passed.join(', ')} pass${passed.length === 1 ? 'es' : ''}; ${failed.join(', ')} fail${failed.length === 1 ? 's' : ''}.`;
+  return { rows, verdicts, headline };
+}
