@@ -11,9 +11,13 @@ namespace rrlab::storage {
 
 namespace {
 
+// The last column: a sweep run's identity, from sweep_runs (NULL for other runs).
 constexpr const char* kRunColumns =
     "id, scenario_name, scenario, method, params, seed, mode, created, status, frames, summary, dof, "
-    "diagnostic_names, source_run, compare_group, frame_bytes";
+    "diagnostic_names, source_run, compare_group, frame_bytes, "
+    "(SELECT json_object('sweep', w.sweep, 'case', w.scenario_key, 'config', w.config_key, 'family', w.family, "
+    "'success', json(CASE w.success WHEN 0 THEN 'false' ELSE 'true' END), 'failure_mode', w.failure_mode, "
+    "'failure_t', w.failure_t) FROM sweep_runs w WHERE w.run_id = runs.id)";
 
 RunRecord read_run(const Statement& s) {
   RunRecord r;
@@ -33,6 +37,7 @@ RunRecord read_run(const Statement& s) {
   if (!s.is_null(13)) r.source_run = s.column_int(13);
   if (!s.is_null(14)) r.compare_group = s.column_int(14);
   r.frame_bytes = s.column_int(15);
+  if (!s.is_null(16)) r.sweep_json = s.column_text(16);
   return r;
 }
 

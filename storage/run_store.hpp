@@ -48,6 +48,8 @@ struct RunRecord {
   int dof = 0;
   std::string diagnostic_names_json;
   std::optional<std::int64_t> source_run, compare_group;
+  // a sweep run's {sweep, case, config, family, success, failure_mode, failure_t}
+  std::optional<std::string> sweep_json;
 };
 
 struct StoredEvent {
@@ -88,6 +90,7 @@ struct SweepRunEntry {
   std::uint64_t seed = 0;
   std::optional<std::string> summary_json;
   std::optional<std::string> difficulty_json = std::nullopt;  // the scenario's witness.difficulty (generated cases)
+  std::int64_t frames = 0;                                    // stored frames (a sweep stores none unless asked)
 };
 
 struct RunFilter {

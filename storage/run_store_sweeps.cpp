@@ -80,7 +80,7 @@ std::vector<SweepRunEntry> RunStore::sweep_runs(const std::optional<std::string>
   std::lock_guard lock(read_mutex_);
   Statement s = read_db_->prepare(
       "SELECT w.sweep, w.key, w.scenario_key, w.config_key, w.family, w.success, w.run_id, r.seed, r.summary, "
-      "w.failure_mode, w.failure_t, json_extract(r.scenario, '$.witness.difficulty') "
+      "w.failure_mode, w.failure_t, json_extract(r.scenario, '$.witness.difficulty'), r.frames "
       "FROM sweep_runs w JOIN runs r ON r.id = w.run_id WHERE (?1 IS NULL OR w.sweep = ?1) ORDER BY w.sweep, w.key");
   if (sweep) s.bind(1, *sweep); else s.bind_null(1);
   std::vector<SweepRunEntry> out;
@@ -94,6 +94,7 @@ std::vector<SweepRunEntry> RunStore::sweep_runs(const std::optional<std::string>
     if (!s.is_null(9)) e.row.failure_mode = s.column_text(9);
     if (!s.is_null(10)) e.row.failure_t = s.column_double(10);
     if (!s.is_null(11)) e.difficulty_json = s.column_text(11);
+    e.frames = s.column_int(12);
     out.push_back(std::move(e));
   }
   return out;

@@ -62,6 +62,11 @@ std::shared_ptr<const Scenario> generated_case(const ScenarioEntry& entry, int i
 Scenario scenario_of_case(const SweepSpec& spec, const SweepCase& c) {
   const ScenarioEntry& entry = spec.scenarios.at(c.entry);
   Scenario scenario = entry.generated() ? *generated_case(entry, c.index) : *entry.scenario;
+  if (!entry.generated() && !entry.name.empty()) {
+    // one name everywhere: a file's runs carry its catalogue name (the file's stem), as the server's do
+    scenario.name = entry.name;
+    scenario.json["name"] = entry.name;
+  }
   const MethodConfig& config = spec.configs.at(c.config);
   scenario.method.name = config.method;
   scenario.method.params.clear();

@@ -15,6 +15,7 @@
 #include "sweep/sweep_report_json.hpp"
 #include "sweep/sweep_runner.hpp"
 #include "sweep/sweep_spec.hpp"
+#include "storage/run_store.hpp"
 
 namespace rrlab::server {
 
@@ -200,15 +201,47 @@ json SweepJobs::status_of(Job& job) {
   return body;
 }
 
-json SweepJobs::status(std::int64_t id) {
-  std::shared_ptr<Job> job;
-  {
-    std::lock_guard lock(mutex_);
-    auto it = jobs_.find(id);
-    if (it == jobs_.end()) throw ApiError(404, "not_found", "no sweep " + std::to_string(id), "id");
-    job = it->second;
+std::shared_ptr<SweepJobs::Job> SweepJobs::find(std::int64_t id) {
+  std::lock_guard lock(mutex_);
+  auto it = jobs_.find(id);
+  if (it == jobs_.end()) throw ApiError(404, "not_found", "no sweep " + std::to_string(id), "id");
+  return it->second;
+}
+
+json SweepJobs::status(std::int64_t id) { return status_of(*find(id)); }
+
+json SweepJobs::runs(std::int64_t id, const RunQuery& query) {
+  const std::shared_ptr<Job> job = find(id);
+  std::vector<storage::SweepRunEntry> matching;
+  for (storage::SweepRunEntry& e : runs_.store().sweep_runs(job->spec.name)) {
+    if (query.family && e.row.family != *query.family) continue;
+    if (query.config && e.row.config_key != *query.config) continue;
+    if (query.outcome && (e.row.success != (*query.outcome == "pass"))) continue;
+    if (query.failure_mode && e.row.failure_mode != query.failure_mode) continue;
+    matching.push_back(std::move(e));
   }
-  return status_of(*job);
+  json page = json::array();
+  for (size_t i = size_t(query.offset); i < matching.size() && i < size_t(query.offset + query.limit); ++i) {
+    const storage::SweepRunEntry& e = matching[i];
+    json summary = e.summary_json ? json::parse(*e.summary_json, nullptr, false) : json();
+    const auto field = [&](const char* key) { return summary.is_object() && summary.contains(key) ? summary[key] : json(); };
+    page.push_back({{"run", e.run_id},
+                    {"key", e.row.key},
+                    {"case", e.row.scenario_key},
+                    {"config", e.row.config_key},
+                    {"family", e.row.family},
+                    {"success", e.row.success},
+                    {"failure_mode", e.row.failure_mode ? json(*e.row.failure_mode) : json()},
+                    {"failure_t", e.row.failure_t ? json(*e.row.failure_t) : json()},
+                    {"frames", e.frames},
+                    {"steps", field("steps")},
+                    {"collided", field("collided")},
+                    {"min_distance", field("min_distance")},
+                    {"max_tracking_error", field("max_tracking_error")},
+                    {"difficulty", e.difficulty_json ? json::parse(*e.difficulty_json, nullptr, false) : json()}});
+  }
+  return {{"id", id}, {"sweep", job->spec.name}, {"total", matching.size()}, {"offset", query.offset},
+          {"limit", query.limit}, {"runs", page}};
 }
 
 json SweepJobs::list() {
@@ -220,7 +253,8 @@ json SweepJobs::list() {
   json list = json::array();
   for (const auto& job : jobs) {
     std::lock_guard lock(job->mutex);
-    list.push_back({{"id", job->id}, {"name", job->spec.name}, {"status", job->status}, {"total", job->cases.size()}});
+    list.push_back({{"id", job->id}, {"name", job->spec.name}, {"status", job->status}, {"total", job->cases.size()},
+                    {"failed", job->outcome.failures.size()}});
   }
   return list;
 }
@@ -228,14 +262,7 @@ json SweepJobs::list() {
 json SweepJobs::control(std::int64_t id, const json& body) {
   if (!body.is_object() || body.size() != 1 || !body.contains("action") || body["action"] != "stop")
     throw ApiError(400, "invalid", "a sweep takes {\"action\": \"stop\"}", "action");
-  std::shared_ptr<Job> job;
-  {
-    std::lock_guard lock(mutex_);
-    auto it = jobs_.find(id);
-    if (it == jobs_.end()) throw ApiError(404, "not_found", "no sweep " + std::to_string(id), "id");
-    job = it->second;
-  }
-  job->stop = true;
+  find(id)->stop = true;
   return {{"id", id}, {"stopping", true}};
 }
 

@@ -10,6 +10,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <thread>
@@ -29,6 +30,12 @@ class SweepJobs {
   // Progress; once ended, the report of the sweep's stored runs. 404 if unknown.
   nlohmann::json status(std::int64_t id);
   nlohmann::json list();
+  // One page of a sweep's stored runs, filtered (a report cell's runs).
+  struct RunQuery {
+    std::optional<std::string> family, config, outcome, failure_mode;  // outcome: "pass" | "fail"
+    std::int64_t limit = 100, offset = 0;
+  };
+  nlohmann::json runs(std::int64_t id, const RunQuery& query);
   // {"action": "stop"}: workers finish their current run; stored runs stay (resumable).
   nlohmann::json control(std::int64_t id, const nlohmann::json& body);
   // Stops every sweep and waits for their threads (server shutdown).
@@ -36,7 +43,8 @@ class SweepJobs {
 
  private:
   struct Job;
-  void admit(const Job& job);  // its cost against the run quotas (413 beyond)
+  void admit(const Job& job);
+  std::shared_ptr<Job> find(std::int64_t id);  // 404 if unknown  // its cost against the run quotas (413 beyond)
   nlohmann::json status_of(Job& job);
 
   RunManager& runs_;

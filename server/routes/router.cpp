@@ -47,6 +47,7 @@ constexpr Route kRoutes[] = {
     {"POST", "/api/sweeps", post_sweep, true},
     {"GET", "/api/sweeps", list_sweeps},
     {"GET", "/api/sweeps/{}", get_sweep},
+    {"GET", "/api/sweeps/{}/runs", get_sweep_runs},
     {"POST", "/api/sweeps/{}/control", post_sweep_control},
 };
 

@@ -109,6 +109,7 @@ std::int64_t query_int(const RouteContext& context, const std::string& name, std
 ApiResponse post_sweep(RouteContext&);
 ApiResponse list_sweeps(RouteContext&);
 ApiResponse get_sweep(RouteContext&);
+ApiResponse get_sweep_runs(RouteContext&);
 ApiResponse post_sweep_control(RouteContext&);
 
 }  // namespace rrlab::server

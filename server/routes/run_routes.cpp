@@ -66,7 +66,8 @@ json run_record_json(const storage::RunRecord& r) {
           {"diagnostic_names", parse_json(r.diagnostic_names_json)},
           {"summary", parse_or_null(r.summary_json)},
           {"source_run", r.source_run ? json(*r.source_run) : json()},
-          {"compare_group", r.compare_group ? json(*r.compare_group) : json()}};
+          {"compare_group", r.compare_group ? json(*r.compare_group) : json()},
+          {"sweep", parse_or_null(r.sweep_json)}};
 }
 
 void parse_run_options(JsonObject& body, const json& doc, const std::string& default_mode, GroupOptions& options,

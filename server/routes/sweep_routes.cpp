@@ -14,6 +14,25 @@ ApiResponse list_sweeps(RouteContext& c) { return json_response(200, c.runs.swee
 
 ApiResponse get_sweep(RouteContext& c) { return json_response(200, c.runs.sweeps().status(c.id())); }
 
+// ?family=&config=&outcome=pass|fail&failure_mode=&limit=&offset=
+ApiResponse get_sweep_runs(RouteContext& c) {
+  SweepJobs::RunQuery query;
+  const auto& q = c.request.query;
+  const auto text = [&](const char* name) -> std::optional<std::string> {
+    auto it = q.find(name);
+    return it == q.end() || it->second.empty() ? std::nullopt : std::optional<std::string>(it->second);
+  };
+  query.family = text("family");
+  query.config = text("config");
+  query.outcome = text("outcome");
+  query.failure_mode = text("failure_mode");
+  if (query.outcome && *query.outcome != "pass" && *query.outcome != "fail")
+    throw ApiError(400, "invalid", "must be pass or fail", "outcome");
+  query.limit = query_int(c, "limit", 100, 1, 1000);
+  query.offset = query_int(c, "offset", 0, 0, 1'000'000'000);
+  return json_response(200, c.runs.sweeps().runs(c.id(), query));
+}
+
 ApiResponse post_sweep_control(RouteContext& c) {
   return json_response(200, c.runs.sweeps().control(c.id(), parse_body(c.request)));
 }

@@ -120,5 +120,44 @@ TEST_F(SweepRoutes, BadSpecsAreNamedByTheirPath) {
   EXPECT_EQ(send("POST", "/api/sweeps", json::array()).status, 422);
 }
 
+TEST_F(SweepRoutes, ItsRunsArePagedByCellAndSayWhichSweepAndCaseTheyBelongTo) {
+  const HttpResult started = send("POST", "/api/sweeps", spec("rest-cells", 2));
+  ASSERT_EQ(started.status, 202) << started.body;
+  const std::int64_t id = started.json()["id"].get<std::int64_t>();
+  const json done = wait_ended(id);
+  ASSERT_EQ(done["status"], "completed");
+  const std::string base = "/api/sweeps/" + std::to_string(id) + "/runs";
+
+  const json all = get(base).json();
+  EXPECT_EQ(all["total"], 9);  // 3 cases x 3 configurations
+  EXPECT_EQ(all["runs"].size(), 9u);
+  const json cell = get(base + "?family=planar_clutter&config=pinv").json();
+  ASSERT_EQ(cell["total"], 2);
+  for (const json& r : cell["runs"]) {
+    EXPECT_EQ(r["family"], "planar_clutter");
+    EXPECT_EQ(r["config"], "pinv");
+    EXPECT_EQ(r["frames"], 0);  // a sweep stores summaries
+    EXPECT_TRUE(r["min_distance"].is_number());
+    EXPECT_EQ(r["case"].get<std::string>().rfind("gen:planar_clutter:", 0), 0u) << r["case"];
+    // the run's own record names its sweep and case
+    const json record = get("/api/runs/" + std::to_string(r["run"].get<std::int64_t>())).json();
+    EXPECT_EQ(record["sweep"]["sweep"], "rest-cells");
+    EXPECT_EQ(record["sweep"]["case"], r["case"]);
+    EXPECT_EQ(record["sweep"]["config"], "pinv");
+    EXPECT_EQ(record["sweep"]["success"], r["success"]);
+  }
+  // outcomes split the cell; pages and bad filters
+  const int passed = get(base + "?outcome=pass").json()["total"].get<int>();
+  const int failed = get(base + "?outcome=fail").json()["total"].get<int>();
+  EXPECT_EQ(passed + failed, 9);
+  EXPECT_EQ(get(base + "?limit=4&offset=8").json()["runs"].size(), 1u);
+  EXPECT_EQ(error_of(get(base + "?outcome=maybe"))["path"], "outcome");
+  EXPECT_EQ(error_of(get(base + "?limit=0"))["path"], "limit");
+  EXPECT_EQ(get("/api/sweeps/999/runs").status, 404);
+  // a run of no sweep says so
+  const HttpResult plain = send("POST", "/api/runs", {{"scenario", "01_planar7_obstacles"}, {"mode", "batch"}, {"steps", 3}});
+  EXPECT_TRUE(get("/api/runs/" + std::to_string(plain.json()["id"].get<std::int64_t>())).json()["sweep"].is_null());
+}
+
 }  // namespace
 }  // namespace rrlab::testing
