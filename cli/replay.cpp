@@ -8,8 +8,8 @@
 namespace rrlab::cli {
 
 namespace {
-// --verify's exit codes: 0 identical, 1 a frame differs, 2 bad input, 3 the run
-// stored no frames, so nothing was compared.
+// --verify's exit codes: 0 identical, 1 a frame (or a frameless run's summary)
+// differs, 2 bad input, 3 the run stored nothing to compare (no frames, no steps).
 constexpr int kExitNothingCompared = 3;
 }  // namespace
 
@@ -30,11 +30,14 @@ int replay(const ReplayOptions& options) {
     std::cout << out.dump() << '\n';
     if (!result.compared()) {
       std::cerr << "rrlab: " << (options.verify ? "verify: " : "") << "nothing compared: run " << run->id
-                << " stored no frames\n";
+                << " stored no frames and completed no steps\n";
       return options.verify ? kExitNothingCompared : 0;
     }
     if (options.verify && !result.identical()) {
-      std::cerr << "rrlab: verify failed: frame " << *result.first_mismatch << " differs (" << result.mismatch << ")\n";
+      if (result.first_mismatch)
+        std::cerr << "rrlab: verify failed: frame " << *result.first_mismatch << " differs (" << result.mismatch << ")\n";
+      else
+        std::cerr << "rrlab: verify failed: the summary differs (" << result.summary_mismatch << ")\n";
       return 1;
     }
     return 0;

@@ -27,10 +27,15 @@ struct ResimulationResult {
   std::optional<std::int64_t> first_mismatch;  // seq of the first differing frame
   std::string mismatch;                         // what differed there
   Summary summary;
-  // A verdict only when at least one frame was compared: a run that stored no
-  // frames is neither identical nor different.
-  bool compared() const { return frames_compared > 0; }
-  bool identical() const { return compared() && !first_mismatch; }
+  // A run that stored no frames but completed steps (a sweep's) is stepped as
+  // far as its summary says, and its summary compared instead: every result
+  // field (not the step times) must be the same, bit for bit.
+  bool summary_compared = false;
+  std::string summary_mismatch;  // the first differing field, empty when none
+  // A verdict only when frames or a summary were compared: a run that stored
+  // nothing to compare is neither identical nor different.
+  bool compared() const { return frames_compared > 0 || summary_compared; }
+  bool identical() const { return compared() && !first_mismatch && summary_mismatch.empty(); }
 };
 
 constexpr const char* kNothingCompared = "the run stored no frames: nothing to compare";

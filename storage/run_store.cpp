@@ -358,11 +358,14 @@ std::vector<RunRecord> RunStore::runs(const RunFilter& filter) {
   Statement s = read_db_->prepare(std::string("SELECT ") + kRunColumns +
                              " FROM runs WHERE (?1 IS NULL OR scenario_name = ?1) AND (?2 IS NULL OR method = ?2)"
                              " AND (?3 IS NULL OR status = ?3) AND status != 'deleting'"
+                             " AND (?6 IS NULL OR (?6 = '') = NOT EXISTS (SELECT 1 FROM sweep_runs w WHERE w.run_id = runs.id"
+                             " AND (?6 = '' OR w.sweep = ?6)))"
                              " ORDER BY id DESC LIMIT ?4 OFFSET ?5");
   if (filter.scenario) s.bind(1, *filter.scenario); else s.bind_null(1);
   if (filter.method) s.bind(2, *filter.method); else s.bind_null(2);
   if (filter.status) s.bind(3, *filter.status); else s.bind_null(3);
   s.bind(4, filter.limit).bind(5, filter.offset);
+  if (filter.sweep) s.bind(6, *filter.sweep); else s.bind_null(6);
   std::vector<RunRecord> out;
   while (s.step()) out.push_back(read_run(s));
   return out;

@@ -95,6 +95,7 @@ struct SweepRunEntry {
 
 struct RunFilter {
   std::optional<std::string> scenario, method, status;
+  std::optional<std::string> sweep;  // a sweep's name: its runs; "" : runs of no sweep
   int limit = 100, offset = 0;
 };
 

@@ -63,13 +63,6 @@ RunFacts facts_of(const storage::SweepRunEntry& e) {
   return f;
 }
 
-// The family a group is reported under: a generator family, or for scenario
-// files each file on its own ("file:NAME"), so a sweep over paper scenarios
-// reports per scenario.
-std::string report_family(const storage::SweepRunRow& row) {
-  return row.family == "file" ? row.scenario_key : row.family;
-}
-
 GroupStats group_stats(const std::vector<const RunFacts*>& runs) {
   GroupStats g;
   const storage::SweepRunRow& row = runs.front()->entry->row;
@@ -288,6 +281,10 @@ SweepReport build_report(const std::vector<storage::SweepRunEntry>& entries) {
   }
   compare_within_families(cases, report);
   return report;
+}
+
+std::string report_family(const storage::SweepRunRow& row) {
+  return row.family == "file" ? row.scenario_key : row.family;
 }
 
 }  // namespace rrlab::sweep

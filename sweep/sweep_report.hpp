@@ -111,4 +111,9 @@ inline constexpr double kDistanceTie = 1e-9;
 // Throws std::runtime_error on a stored summary that is not JSON.
 SweepReport build_report(const std::vector<storage::SweepRunEntry>& runs);
 
+// The family a run is reported under: its generator family, or for scenario
+// files each file on its own ("file:NAME"), so a sweep over paper scenarios
+// reports per scenario.
+std::string report_family(const storage::SweepRunRow& row);
+
 }  // namespace rrlab::sweep

@@ -214,7 +214,7 @@ json SweepJobs::runs(std::int64_t id, const RunQuery& query) {
   const std::shared_ptr<Job> job = find(id);
   std::vector<storage::SweepRunEntry> matching;
   for (storage::SweepRunEntry& e : runs_.store().sweep_runs(job->spec.name)) {
-    if (query.family && e.row.family != *query.family) continue;
+    if (query.family && sweep::report_family(e.row) != *query.family) continue;
     if (query.config && e.row.config_key != *query.config) continue;
     if (query.outcome && (e.row.success != (*query.outcome == "pass"))) continue;
     if (query.failure_mode && e.row.failure_mode != query.failure_mode) continue;
@@ -229,7 +229,7 @@ json SweepJobs::runs(std::int64_t id, const RunQuery& query) {
                     {"key", e.row.key},
                     {"case", e.row.scenario_key},
                     {"config", e.row.config_key},
-                    {"family", e.row.family},
+                    {"family", sweep::report_family(e.row)},
                     {"success", e.row.success},
                     {"failure_mode", e.row.failure_mode ? json(*e.row.failure_mode) : json()},
                     {"failure_t", e.row.failure_t ? json(*e.row.failure_t) : json()},

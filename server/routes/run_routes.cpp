@@ -147,6 +147,8 @@ ApiResponse list_runs(RouteContext& c) {
   if (auto it = q.find("scenario"); it != q.end()) filter.scenario = it->second;
   if (auto it = q.find("method"); it != q.end()) filter.method = it->second;
   if (auto it = q.find("status"); it != q.end()) filter.status = it->second;
+  // ?sweep=NAME: that sweep's runs; ?sweep=none: runs of no sweep
+  if (auto it = q.find("sweep"); it != q.end()) filter.sweep = it->second == "none" ? "" : it->second;
   filter.limit = int(query_int(c, "limit", 100, 1, 1000));
   filter.offset = int(query_int(c, "offset", 0, 0, 1'000'000'000));
   json list = json::array();

@@ -1,5 +1,6 @@
 // Sweeps over REST: start, progress, report, stop; specs are checked like the
 // command line's (422 naming the JSON path) and may not name files.
+#include <algorithm>
 #include <chrono>
 #include <thread>
 
@@ -151,12 +152,22 @@ TEST_F(SweepRoutes, ItsRunsArePagedByCellAndSayWhichSweepAndCaseTheyBelongTo) {
   const int failed = get(base + "?outcome=fail").json()["total"].get<int>();
   EXPECT_EQ(passed + failed, 9);
   EXPECT_EQ(get(base + "?limit=4&offset=8").json()["runs"].size(), 1u);
+  // a scenario file is a family of its own, as the report names it
+  const json file = get(base + "?family=file:01_planar7_obstacles").json();
+  EXPECT_EQ(file["total"], 3);
+  for (const json& r : file["runs"]) EXPECT_EQ(r["family"], "file:01_planar7_obstacles");
   EXPECT_EQ(error_of(get(base + "?outcome=maybe"))["path"], "outcome");
   EXPECT_EQ(error_of(get(base + "?limit=0"))["path"], "limit");
   EXPECT_EQ(get("/api/sweeps/999/runs").status, 404);
   // a run of no sweep says so
   const HttpResult plain = send("POST", "/api/runs", {{"scenario", "01_planar7_obstacles"}, {"mode", "batch"}, {"steps", 3}});
-  EXPECT_TRUE(get("/api/runs/" + std::to_string(plain.json()["id"].get<std::int64_t>())).json()["sweep"].is_null());
+  const std::int64_t plain_id = plain.json()["id"].get<std::int64_t>();
+  EXPECT_TRUE(get("/api/runs/" + std::to_string(plain_id)).json()["sweep"].is_null());
+  // the run list filters by sweep: one sweep's runs, or the runs of none
+  EXPECT_EQ(get("/api/runs?sweep=rest-cells&limit=100").json().size(), 9u);
+  const json unswept = get("/api/runs?sweep=none&limit=1000").json();
+  for (const json& r : unswept) EXPECT_TRUE(r["sweep"].is_null()) << r["id"];
+  EXPECT_TRUE(std::any_of(unswept.begin(), unswept.end(), [&](const json& r) { return r["id"] == plain_id; }));
 }
 
 }  // namespace

@@ -14,6 +14,9 @@ import { SceneTools, buildOverlayToggles } from './scene_tools.js';
 import { Plots } from './plots.js';
 import { Joystick } from './joystick.js';
 import { ScenarioEditor } from './scenario_editor.js';
+import { SweepList } from './sweeps.js';
+import { SweepPage } from './sweep_view.js';
+import { resimulate } from './resimulate.js';
 import { escapeHtml } from './dom.js';
 
 const $ = (id) => document.getElementById(id);
@@ -44,6 +47,11 @@ const runList = new RunList({
   // the run on screen was deleted: nothing left to show
   deleted: (id) => { if (session && session.runIds.includes(id)) closeSession(`run #${id} was deleted`); },
 });
+const sweepPage = new SweepPage({ open: (ids) => openRuns(ids).catch(report) });
+const sweepList = new SweepList({ open: (id) => openSweep(id).catch(report) });
+runList.sweeps = () => sweepList.sweeps;
+runList.openSweep = (id) => openSweep(id).catch(report);
+runList.resimulate = (id) => resimulateAndOpen(id).catch(report);
 const compareSetup = new CompareSetup({ start: (body, layout) => startCompare(body, layout) });
 // The replay's current frame, shown everywhere it is named (the bar's readout is its own).
 const replayBar = new ReplayBar({
@@ -115,7 +123,25 @@ function closeSession(why) {
   if (why) app.info(why);
 }
 
+// A sweep's page in the centre, instead of any run.
+async function openSweep(id) {
+  closeSession();
+  writeUrl({ sweep: id });
+  $('connection').textContent = 'sweep';
+  await sweepPage.show(id);
+}
+
+// A run that stored no frames: re-simulated from its recorded inputs (progress
+// in the status line), then replayed.
+async function resimulateAndOpen(runId) {
+  const id = await resimulate(runId, (done, total) => {
+    $('status').textContent = `re-simulating run #${runId}: ${done}${total ? ` / ${total}` : ''} frames`;
+  });
+  await openRuns([id]);
+}
+
 async function show(next, startFrame) {
+  sweepPage.hide();
   if (session) session.close();
   session = next;
   replayBar.detach();
@@ -271,6 +297,12 @@ $('release-control').onclick = () => controlAction('release', () => app.info('Yo
 app.signals.control.add((controller) => { if (session && session.kind === 'live' && !session.ended) showControl(controller); });
 app.signals.controlTaken.add((text) => { showControl('other'); app.error(text); });
 
+// "Re-simulate" in a lane that stored no frames
+$('views').addEventListener('click', (e) => {
+  const button = e.target.closest('button[data-resimulate]');
+  if (button) { button.disabled = true; resimulateAndOpen(Number(button.dataset.resimulate)).catch(report); }
+});
+
 // ---- stream events -------------------------------------------------------
 app.signals.viewCreated.add((lane) => {
   if (session && session.kind === 'live') sceneTools.bind(lane);
@@ -402,6 +434,8 @@ async function start() {
   if (url.method && app.methods.some((m) => m.name === url.method)) $('method').value = url.method;
   if (url.compare.length > 1) await openRuns(url.compare, 'side', url.frame);
   else if (url.run) await openRuns([url.run], 'side', url.frame);
+  else if (url.sweep) await openSweep(url.sweep);
   else runList.refresh();
+  sweepList.refresh();
 }
 start().catch(report);

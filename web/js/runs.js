@@ -12,6 +12,9 @@ export class RunList {
   constructor({ open, deleted }) {
     this.open = open;  // (ids) opens runs: live ones attach, ended ones replay
     this.deleted = deleted;  // (id) after a run was deleted
+    this.sweeps = null;  // () → the server's sweeps [{id, name, total, status}], grouped below the runs
+    this.openSweep = () => {};  // (id) shows a sweep's page
+    this.resimulate = () => {};  // (id) re-simulates a run without frames, then replays it
     for (const id of ['filter-scenario', 'filter-method', 'filter-status']) $(id).onchange = () => this.refresh();
     this.timer = setInterval(() => { if (!document.hidden) this.refresh(); }, 2000);
   }
@@ -25,15 +28,43 @@ export class RunList {
     fill('filter-method', app.methods.map((m) => m.name));
   }
 
+  // Runs of no sweep, newest first; then one folded group per sweep of this
+  // server, whose runs (named by their case) load when it is unfolded.
   async refresh() {
-    const q = new URLSearchParams({ limit: '40' });
+    const q = new URLSearchParams({ limit: '40', sweep: 'none' });
     for (const [key, id] of [['scenario', 'filter-scenario'], ['method', 'filter-method'], ['status', 'filter-status']])
       if ($(id).value) q.set(key, $(id).value);
     let runs;
     try { runs = await api('GET', `/api/runs?${q}`); } catch (e) { return; }
     const list = $('runs');
-    list.replaceChildren(...runs.map((r) => this.item(r, runs)));
-    if (!runs.length) list.innerHTML = '<li class="muted">no runs yet</li>';
+    const open = new Set([...list.querySelectorAll('details.sweep-runs[open]')].map((d) => d.dataset.sweep));
+    const items = runs.map((r) => this.item(r, runs));
+    if (!runs.length) items.push(Object.assign(document.createElement('li'), { className: 'muted', textContent: 'no runs yet' }));
+    for (const sweep of this.sweeps ? this.sweeps() : []) items.push(this.sweepGroup(sweep, open.has(sweep.name), q));
+    list.replaceChildren(...items);
+  }
+
+  // A sweep's runs under one folded entry: its name, Open (its page), and its
+  // runs by case once unfolded.
+  sweepGroup(sweep, open, filters) {
+    const li = document.createElement('li');
+    li.className = 'sweep-group';
+    li.innerHTML = `<details class="sweep-runs" data-sweep="${escapeHtml(sweep.name)}"><summary><span class="title">sweep ${escapeHtml(sweep.name)}</span>
+      <span class="muted small">${sweep.total} runs · ${escapeHtml(sweep.status)}</span></summary><ul class="sweep-run-list"><li class="muted small">loading…</li></ul></details>
+      <div class="actions"><button type="button">Open sweep</button></div>`;
+    li.querySelector('button').onclick = () => this.openSweep(sweep.id);
+    const details = li.querySelector('details');
+    const load = async () => {
+      const q = new URLSearchParams(filters);
+      q.set('sweep', sweep.name);
+      const runs = await api('GET', `/api/runs?${q}`).catch(() => []);
+      const ul = li.querySelector('.sweep-run-list');
+      ul.replaceChildren(...runs.map((r) => this.item(r, runs)));
+      if (!runs.length) ul.innerHTML = '<li class="muted small">no runs match the filters</li>';
+    };
+    details.addEventListener('toggle', () => { if (details.open) load(); });
+    if (open) { details.open = true; load(); }
+    return li;
   }
 
   item(r, runs) {
@@ -41,9 +72,18 @@ export class RunList {
     li.dataset.run = String(r.id);
     const live = isLive(r.status);
     if (live) li.className = 'live';
-    li.innerHTML = `<div class="title">#${r.id} ${escapeHtml(r.scenario)}</div>
-      <div class="muted small">${escapeHtml(r.method)} · ${escapeHtml(r.mode)} · ${escapeHtml(r.status)} · <span class="frames">${r.frames}</span> frames</div>
+    if (r.sweep) {
+      // a sweep's run: named by its case and method configuration, with its verdict
+      const w = r.sweep;
+      const verdict = w.success ? 'pass' : `fail${w.failure_mode ? `: ${w.failure_mode}${Number.isFinite(w.failure_t) ? ` at ${w.failure_t.toFixed(2)} s` : ''}` : ''}`;
+      li.innerHTML = `<div class="title">#${r.id} <span class="mono">${escapeHtml(w.case)}</span></div>
+        <div class="muted small">${escapeHtml(w.config)} · <span class="${w.success ? 'pass' : 'fail'}">${escapeHtml(verdict)}</span> · ${r.frames ? `<span class="frames">${r.frames}</span> frames` : 'no frames stored'}</div>
+        <div class="actions"></div>`;
+    } else {
+      li.innerHTML = `<div class="title">#${r.id} ${escapeHtml(r.scenario)}</div>
+      <div class="muted small">${escapeHtml(r.method)} · ${escapeHtml(r.mode)}${r.source_run ? ` of #${r.source_run}` : ''} · ${escapeHtml(r.status)} · <span class="frames">${r.frames}</span> frames</div>
       <div class="actions"></div>`;
+    }
     const actions = li.querySelector('.actions');
     const button = (text, title, onclick) => {
       const b = document.createElement('button');
@@ -55,6 +95,9 @@ export class RunList {
     };
     if (live) button('Watch', 'attach to the live run', () => this.open([r.id]));
     else if (r.frames > 0) button('Replay', 'play the stored frames', () => this.open([r.id]));
+    else if (r.status === 'completed' && r.summary && r.summary.steps > 0) {
+      button('Re-simulate', 'no frames were stored: simulate it again from its recorded inputs, then replay it', () => this.resimulate(r.id));
+    }
     if (r.compare_group) {
       const group = runs.filter((o) => o.compare_group === r.compare_group).map((o) => o.id).sort((a, b) => a - b);
       if (group.length > 1 && group[0] === r.id) button('Compare', `open the compare group ${group.join(', ')}`, () => this.open(group));

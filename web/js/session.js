@@ -59,9 +59,13 @@ export class Session {
     this.buildCells();
     for (const lane of this.lanes) {
       let path = `/ws/runs/${lane.runId}`;
-      if (this.kind === 'replay' && this.runs[lane.index].frames === 0) {
-        // stopped before its first step: nothing to play
-        lane.cell.innerHTML = '<p class="empty-lane muted">This run stored no frames: it was stopped before its first step.</p>';
+      const run = this.runs[lane.index];
+      if (this.kind === 'replay' && run.frames === 0) {
+        // a completed run without frames (a sweep's: summaries only) can be re-simulated; a stopped one had no step
+        lane.cell.innerHTML = run.status === 'completed' && run.summary && run.summary.steps > 0
+          ? `<p class="empty-lane muted">Run #${run.id} completed ${run.summary.steps} steps but stored no frames${run.sweep ? ' (a sweep stores summaries only)' : ''}.
+             <button type="button" data-resimulate="${run.id}" title="simulate it again from its recorded inputs, store the frames and replay them">Re-simulate</button></p>`
+          : `<p class="empty-lane muted">Run #${run.id} stored no frames: it ${run.status === 'failed' ? 'failed' : 'was stopped'} before its first step.</p>`;
         continue;
       }
       if (this.kind === 'replay') {

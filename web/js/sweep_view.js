@@ -1,0 +1,175 @@
+// A sweep's page (/?sweep=ID): progress while it runs; once it has ended,
+// which method to use per family, the method × family success table with
+// 95 % intervals (each column's best marked), failure modes, success against
+// difficulty, step cost and the ranking. A cell opens its runs; a run opens
+// as a replay (re-simulated first when the sweep stored no frames) and a case
+// as a compare of the sweep's methods on it.
+import { api } from './api.js';
+import { app, LANE_COLOURS } from './state.js';
+import { escapeHtml } from './dom.js';
+import { fmt } from './params.js';
+import { successTable, formatRate, formatFailureModes, difficultySvg, parseConfig } from './sweep_report.js';
+import { resimulate } from './resimulate.js';
+
+const $ = (id) => document.getElementById(id);
+const POLL_MS = 1000;
+const CHART_COLOURS = LANE_COLOURS.concat(['#00838f', '#6d4c41', '#c2185b', '#546e7a']);
+const RUNS_PER_PAGE = 50;
+
+export class SweepPage {
+  // open(ids, layout): opens runs on the page; onClose(): the page was left
+  constructor({ open }) {
+    this.openRuns = open;
+    this.id = null;
+    this.timer = null;
+    this.status = null;
+    this.cell = null;
+  }
+
+  get shown() { return this.id !== null; }
+
+  async show(id) {
+    this.hide();
+    this.id = id;
+    this.cell = null;
+    document.getElementById('center').classList.add('showing-sweep');
+    $('sweep-page').hidden = false;
+    $('sweep-page').innerHTML = '<p class="muted">loading the sweep…</p>';
+    await this.load();
+  }
+
+  hide() {
+    clearTimeout(this.timer);
+    this.id = null;
+    this.status = null;
+    document.getElementById('center').classList.remove('showing-sweep');
+    $('sweep-page').hidden = true;
+    $('sweep-page').replaceChildren();
+  }
+
+  async load() {
+    const id = this.id;
+    let status;
+    try {
+      status = await api('GET', `/api/sweeps/${id}`);
+    } catch (e) {
+      if (this.id === id) $('sweep-page').innerHTML = `<p class="bad">${escapeHtml(e.status === 404 ? `There is no sweep #${id} on this server (sweeps are kept while the server runs; their runs stay stored).` : e.message)}</p>`;
+      return;
+    }
+    if (this.id !== id) return;
+    this.status = status;
+    this.render();
+    if (status.status === 'running') this.timer = setTimeout(() => this.load().catch((e) => app.error(e)), POLL_MS);
+  }
+
+  render() {
+    const s = this.status;
+    const page = $('sweep-page');
+    const head = `<h2 class="sweep-title">Sweep ${escapeHtml(s.name)} <span class="muted">#${s.id}</span></h2>
+      <p class="sweep-progress">${escapeHtml(s.status)} · ${s.done} / ${s.total} runs stored${s.failed ? ` · ${s.failed} could not run` : ''}
+      ${s.status === 'running' ? `<progress max="${s.total}" value="${s.done}"></progress> <button type="button" id="sweep-stop">Stop</button>` : ''}</p>`;
+    if (!s.report) {
+      page.innerHTML = `${head}<p class="muted">The report appears when the sweep has ended.</p>`;
+    } else {
+      page.innerHTML = head + this.reportHtml(s.report) + '<div id="sweep-cell"></div>';
+      page.querySelectorAll('.legend-item').forEach((el) => { el.style.color = CHART_COLOURS[Number(el.dataset.colour) % CHART_COLOURS.length]; });
+      page.querySelectorAll('td[data-family]').forEach((td) => {
+        td.onclick = () => this.showCell(td.dataset.family, td.dataset.config).catch((e) => app.error(e));
+      });
+      if (this.cell) this.showCell(this.cell.family, this.cell.config, this.cell.offset).catch((e) => app.error(e));
+    }
+    const stop = $('sweep-stop');
+    if (stop) stop.onclick = () => api('POST', `/api/sweeps/${s.id}/control`, { action: 'stop' }).catch((e) => app.error(e));
+  }
+
+  reportHtml(report) {
+    const table = successTable(report);
+    const { families, configs, cell, best } = table;
+    const verdicts = (report.verdicts || []).map((v) => {
+      const cost = (config) => { const g = cell(v.family, config); return g && Number.isFinite(g.step_us_p50) ? ` (${fmt(g.step_us_p50)} µs/step)` : ''; };
+      return `<tr><td>${escapeHtml(v.family)}</td><td>${v.not_worse.map((c) => `${escapeHtml(c)}${cost(c)}`).join(', ')}</td></tr>`;
+    }).join('');
+    const headRow = `<tr><th>method</th>${families.map((f) => `<th>${escapeHtml(f)}</th>`).join('')}</tr>`;
+    const rows = configs.map((c) => `<tr><th scope="row">${escapeHtml(c)}</th>${families.map((f) => {
+      const g = cell(f, c);
+      if (!g) return '<td class="muted">—</td>';
+      const modes = formatFailureModes(g.failure_modes);
+      const isBest = best.get(f).has(c);
+      return `<td class="cell${isBest ? ' best' : ''}" data-family="${escapeHtml(f)}" data-config="${escapeHtml(c)}" tabindex="0"
+        title="${g.successes} of ${g.n} passed${isBest ? '; the best of this family' : ''}. Click for its runs.">
+        <div class="rate">${formatRate(g)}</div><div class="n small muted">n = ${g.n}</div>${modes ? `<div class="modes small">${escapeHtml(modes)}</div>` : ''}</td>`;
+    }).join('')}</tr>`).join('');
+    const cost = configs.map((c) => `<tr><th scope="row">${escapeHtml(c)}</th>${families.map((f) => {
+      const g = cell(f, c);
+      return g ? `<td>${fmt(g.step_us_p50)} / ${fmt(g.step_us_p99)}${Number.isFinite(g.step_ratio_to_pinv) ? ` <span class="muted">(${g.step_ratio_to_pinv.toFixed(2)}× pinv)</span>` : ''}</td>` : '<td class="muted">—</td>';
+    }).join('')}</tr>`).join('');
+    const charts = families.map((f) => {
+      const groups = configs.map((c) => cell(f, c)).filter(Boolean);
+      const svg = difficultySvg(groups, configs.map((c, i) => CHART_COLOURS[i % CHART_COLOURS.length]).filter((_, i) => cell(f, configs[i])));
+      return svg ? `<figure class="difficulty"><figcaption>${escapeHtml(f)}</figcaption>${svg}</figure>` : '';
+    }).join('');
+    const legend = charts ? `<p class="small">${configs.map((c, i) => `<span class="legend-item" data-colour="${i}">${escapeHtml(c)}</span>`).join(' ')}</p>` : '';
+    const ranking = (report.ranking || []).map((r, i) => `<tr><td>${i + 1}</td><td>${escapeHtml(r.config)}</td><td>${Math.round(100 * r.success_rate)} %</td><td>${r.n}</td></tr>`).join('');
+    return `<h3>Which method when</h3>
+      <table class="sweep-verdicts"><tr><th>family</th><th>not significantly worse than the best (cost per step)</th></tr>${verdicts}</table>
+      <h3>Success by method and family</h3>
+      <p class="small muted">Success rate with its 95 % Wilson interval; bold: a family's best. Click a cell for its runs.</p>
+      <table class="sweep-success">${headRow}${rows}</table>
+      ${charts ? `<h3>Success against difficulty</h3>${legend}<div class="difficulty-charts">${charts}</div>` : ''}
+      <h3>Step cost</h3><p class="small muted">p50 / p99 µs per step, and the ratio to pinv (shifted geometric mean).</p>
+      <table class="sweep-cost">${headRow}${cost}</table>
+      <h3>Ranking</h3><table class="sweep-ranking"><tr><th>#</th><th>method</th><th>success</th><th>runs</th></tr>${ranking}</table>`;
+  }
+
+  // One cell's runs, a page at a time.
+  async showCell(family, config, offset = 0) {
+    const id = this.id;
+    this.cell = { family, config, offset };
+    const q = new URLSearchParams({ family, config, limit: String(RUNS_PER_PAGE), offset: String(offset) });
+    const page = await api('GET', `/api/sweeps/${id}/runs?${q}`);
+    if (this.id !== id) return;
+    const box = $('sweep-cell');
+    const rows = page.runs.map((r) => `<tr data-run="${r.run}">
+      <td class="mono">${escapeHtml(r.case)}</td>
+      <td class="${r.success ? 'pass' : 'fail'}">${r.success ? 'pass' : `fail${r.failure_mode ? `: ${escapeHtml(r.failure_mode)}${Number.isFinite(r.failure_t) ? ` at ${r.failure_t.toFixed(2)} s` : ''}` : ''}`}</td>
+      <td>${fmt(r.min_distance)}</td><td>${fmt(r.max_tracking_error)}</td>
+      <td class="actions"><button type="button" class="run-open" title="${r.frames ? 'replay its stored frames' : 'the sweep stored no frames: re-simulate the run from its recorded inputs, then replay it'}">${r.frames ? 'Replay' : 'Re-simulate'}</button>
+        <button type="button" class="run-compare" title="run every method of this sweep on this case, side by side">Compare methods</button></td></tr>`).join('');
+    const more = page.total > offset + page.runs.length;
+    box.innerHTML = `<h3>Runs of ${escapeHtml(config)} on ${escapeHtml(family)} <span class="muted">(${offset + 1}–${offset + page.runs.length} of ${page.total})</span></h3>
+      <p class="small muted" id="sweep-cell-progress" role="status"></p>
+      <table class="sweep-runs"><tr><th>case</th><th>outcome</th><th>min distance (m)</th><th>max tracking error (m)</th><th></th></tr>${rows}</table>
+      <div class="buttons">${offset > 0 ? '<button type="button" id="cell-prev">Previous</button>' : ''}${more ? '<button type="button" id="cell-next">Next</button>' : ''}</div>`;
+    box.querySelectorAll('tr[data-run]').forEach((tr) => {
+      const run = page.runs.find((r) => r.run === Number(tr.dataset.run));
+      tr.querySelector('.run-open').onclick = () => this.openRun(run).catch((e) => app.error(e));
+      tr.querySelector('.run-compare').onclick = () => this.compareCase(run).catch((e) => app.error(e));
+    });
+    if ($('cell-prev')) $('cell-prev').onclick = () => this.showCell(family, config, Math.max(0, offset - RUNS_PER_PAGE)).catch((e) => app.error(e));
+    if ($('cell-next')) $('cell-next').onclick = () => this.showCell(family, config, offset + RUNS_PER_PAGE).catch((e) => app.error(e));
+    box.scrollIntoView({ block: 'nearest' });
+  }
+
+  // A run with frames replays; one without is re-simulated first (with progress).
+  async openRun(run) {
+    if (run.frames > 0) return this.openRuns([run.run]);
+    const note = $('sweep-cell-progress');
+    const id = await resimulate(run.run, (done, total) => {
+      if (note) note.textContent = `re-simulating run #${run.run}: ${done}${total ? ` / ${total}` : ''} frames`;
+    });
+    return this.openRuns([id]);
+  }
+
+  // Every method configuration of the sweep on this run's case, as one group.
+  async compareCase(run) {
+    const report = this.status && this.status.report;
+    const configs = successTable(report).configs.filter((c) => successTable(report).cell(run.family, c));
+    const record = await api('GET', `/api/runs/${run.run}/record`);
+    const methods = configs.slice(0, 4).map(parseConfig);  // a compare group holds at most 4 lanes
+    if (configs.length > 4) app.info(`a compare holds 4 methods: the sweep's first 4 of ${configs.length} (by rank)`);
+    const note = $('sweep-cell-progress');
+    if (note) note.textContent = `running ${methods.length} methods on ${run.case}…`;
+    const group = await api('POST', '/api/compare', { scenario: record.scenario, methods, mode: 'batch' });
+    return this.openRuns(group.runs.map((r) => r.id));
+  }
+}
