@@ -82,6 +82,13 @@ class CommittedBenchmark(unittest.TestCase):
                                os.path.join(SOURCE_DIR, "docs", "results.md")], capture_output=True, text=True)
         self.assertEqual(done.returncode, 0, done.stderr + " (re-run scripts/reproduction-table into docs/results.md)")
 
+    def test_the_dashboards_papers_panel_shows_the_same_marks(self):
+        """web/data/papers.json (the Papers panel) is what scripts/reproduction-table --papers-json prints."""
+        done = subprocess.run([sys.executable, os.path.join(SOURCE_DIR, "scripts", "reproduction-table"), "--check-papers-json",
+                               os.path.join(SOURCE_DIR, "web", "data", "papers.json")], capture_output=True, text=True)
+        self.assertEqual(done.returncode, 0,
+                         done.stderr + " (re-run scripts/reproduction-table --papers-json > web/data/papers.json)")
+
 
 if __name__ == "__main__":
     unittest.main(verbosity=2)

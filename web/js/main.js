@@ -17,6 +17,7 @@ import { ScenarioEditor } from './scenario_editor.js';
 import { SweepList } from './sweeps.js';
 import { SweepPage } from './sweep_view.js';
 import { resimulate } from './resimulate.js';
+import { Papers, PAPER_KEYS } from './paper_view.js';
 import { escapeHtml } from './dom.js';
 
 const $ = (id) => document.getElementById(id);
@@ -52,6 +53,7 @@ const sweepList = new SweepList({ open: (id) => openSweep(id).catch(report) });
 runList.sweeps = () => sweepList.sweeps;
 runList.openSweep = (id) => openSweep(id).catch(report);
 runList.resimulate = (id) => resimulateAndOpen(id).catch(report);
+const papers = new Papers({ start: (what) => startPaperExample(what).catch(report) });
 const compareSetup = new CompareSetup({ start: (body, layout) => startCompare(body, layout) });
 // The replay's current frame, shown everywhere it is named (the bar's readout is its own).
 const replayBar = new ReplayBar({
@@ -89,11 +91,19 @@ function fillScenarios(selected) {
   $('compare-scenario').innerHTML = options(selected);
   describeScenario();
 }
+// The list gives the first 200 characters of a description; "read all" fetches the rest.
 function describeScenario() {
   const s = app.scenarios.find((x) => x.name === $('scenario').value);
   $('scenario-description').textContent = s ? s.description : '';
-  $('scenario-description').title = s ? s.description : '';
+  $('scenario-more').hidden = !s || s.description.length < 199;
 }
+$('scenario-more').onclick = async () => {
+  const name = $('scenario').value;
+  try {
+    const full = await api('GET', `/api/scenarios/${encodeURIComponent(name)}`);
+    if ($('scenario').value === name) { $('scenario-description').textContent = full.description || ''; $('scenario-more').hidden = true; }
+  } catch (e) { report(e); }
+};
 $('scenario').onchange = () => { describeScenario(); if (!session) writeUrl({ scenario: $('scenario').value, method: $('method').value }); };
 $('method').onchange = () => { if (!session) writeUrl({ scenario: $('scenario').value, method: $('method').value }); };
 
@@ -123,9 +133,36 @@ function closeSession(why) {
   if (why) app.info(why);
 }
 
+// A paper's page in the centre, instead of any run or sweep.
+async function openPaper(key) {
+  closeSession();
+  sweepPage.hide();
+  writeUrl({ paper: key });
+  $('connection').textContent = 'paper';
+  await papers.show(key);
+}
+
+// An example of a paper: live with its configuration, or as a live compare
+// with the paper's baselines.
+async function startPaperExample({ kind, scenario, methods }) {
+  const rate = Number($('rate').value);
+  if (kind === 'live') {
+    const body = { scenario, mode: 'live', rate };
+    const own = methods[0];
+    if (typeof own === 'string') body.method = own;
+    else if (own) { body.method = own.name; body.params = own.params; }
+    const run = await api('POST', '/api/runs', body);
+    await openRuns([run.id]);
+    return;
+  }
+  const group = await api('POST', '/api/compare', { scenario, methods, mode: 'live', rate });
+  await openRuns(group.runs.map((r) => r.id), 'side');
+}
+
 // A sweep's page in the centre, instead of any run.
 async function openSweep(id) {
   closeSession();
+  papers.hide();
   writeUrl({ sweep: id });
   $('connection').textContent = 'sweep';
   await sweepPage.show(id);
@@ -142,6 +179,7 @@ async function resimulateAndOpen(runId) {
 
 async function show(next, startFrame) {
   sweepPage.hide();
+  papers.hide();
   if (session) session.close();
   session = next;
   replayBar.detach();
@@ -435,7 +473,12 @@ async function start() {
   if (url.compare.length > 1) await openRuns(url.compare, 'side', url.frame);
   else if (url.run) await openRuns([url.run], 'side', url.frame);
   else if (url.sweep) await openSweep(url.sweep);
+  else if (url.paper) {
+    if (PAPER_KEYS.includes(url.paper)) { $('papers-section').open = true; await openPaper(url.paper); }
+    else app.error(`no paper "${url.paper}" (paper= takes one of ${PAPER_KEYS.join(', ')})`);
+  }
   else runList.refresh();
   sweepList.refresh();
+  papers.fillList((key) => openPaper(key).catch(report)).catch(report);
 }
 start().catch(report);

@@ -41,8 +41,8 @@ export const app = {
   info(text) { this.signals.message.dispatch(text, 'info'); },
 };
 
-// ?run=ID[&frame=K] | ?compare=ID,ID[,..][&frame=K] | ?sweep=ID | ?scenario=NAME[&method=M]
-// The query string (with or without its "?") as {run, compare, sweep, scenario, method, frame}.
+// ?run=ID[&frame=K] | ?compare=ID,ID[,..][&frame=K] | ?sweep=ID | ?paper=KEY | ?scenario=NAME[&method=M]
+// The query string (with or without its "?") as {run, compare, sweep, paper, scenario, method, frame}.
 export function parseUrlState(search) {
   const q = new URLSearchParams(search);
   // decimal digits only: '', ' 3', '0x10' and '1e2' are not ids or frames
@@ -53,6 +53,7 @@ export function parseUrlState(search) {
     run: ids('run')[0] || null,
     compare: ids('compare'),
     sweep: ids('sweep')[0] || null,
+    paper: q.get('paper'),
     scenario: q.get('scenario'),
     method: q.get('method'),
     frame: Number.isInteger(frame) && frame >= 0 ? frame : null,

@@ -32,7 +32,7 @@ export class SweepPage {
     this.hide();
     this.id = id;
     this.cell = null;
-    document.getElementById('center').classList.add('showing-sweep');
+    document.getElementById('center').classList.add('showing-page');
     $('sweep-page').hidden = false;
     $('sweep-page').innerHTML = '<p class="muted">loading the sweep…</p>';
     await this.load();
@@ -42,7 +42,7 @@ export class SweepPage {
     clearTimeout(this.timer);
     this.id = null;
     this.status = null;
-    document.getElementById('center').classList.remove('showing-sweep');
+    if ($('paper-page').hidden) document.getElementById('center').classList.remove('showing-page');
     $('sweep-page').hidden = true;
     $('sweep-page').replaceChildren();
   }

@@ -5,7 +5,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { parseUrlState, formatUrlState, readUrl, writeUrl } from '../../../web/js/state.js';
 
-const DEFAULTS = { run: null, compare: [], sweep: null, scenario: null, method: null, frame: null };
+const DEFAULTS = { run: null, compare: [], sweep: null, paper: null, scenario: null, method: null, frame: null };
 
 test('an empty query string opens nothing: every field at its default', () => {
   assert.deepEqual(parseUrlState(''), DEFAULTS);
@@ -65,7 +65,7 @@ test('a frame must be a non-negative integer; frame 0 is a frame', () => {
 test('unknown keys are ignored and a repeated key keeps its first value', () => {
   const url = parseUrlState('?foo=1&run=2&bar=&run=3&layout=stacked');
   assert.deepEqual(url, { ...DEFAULTS, run: 2 });
-  assert.deepEqual(Object.keys(url).sort(), ['compare', 'frame', 'method', 'run', 'scenario', 'sweep']);
+  assert.deepEqual(Object.keys(url).sort(), ['compare', 'frame', 'method', 'paper', 'run', 'scenario', 'sweep']);
 });
 
 test('formatUrlState writes the given keys in order and drops null, undefined and empty values', () => {
