@@ -138,27 +138,40 @@ await suite('dashboard', [
     const id = await openLive(t, '01_planar7_obstacles', { paused: true });  // a paused run stays live and takes inputs
     const slider = t.page.locator('.param input[type=range]').first();
     const name = (await slider.getAttribute('id')).replace('param-', '');
-    const max = Number(await slider.getAttribute('max')), min = Number(await slider.getAttribute('min'));
-    const value = min + (max - min) * 0.37;
-    await slider.fill(String(value));
-    await slider.dispatchEvent('change');
+    const spec = await t.page.evaluate((n) => window.__rrlab.session.lanes[0].snapshot.param_specs.find((p) => p.name === n), name);
+    const start = await t.page.evaluate((n) => window.__rrlab.session.lanes[0].snapshot.params[n], name);
+    const typed = t.page.locator(`.param:has(#param-${name}) input.typed`);
+    // nothing is marked changed before it is touched (the scenario's value is the start, not the method's default)
+    check(await t.page.locator('.param.changed').count() === 0, 'no parameter shows as changed at the start');
+    // a typed value goes to the run as typed
+    const value = Number((spec.min + (spec.max - spec.min) * 0.37).toPrecision(6));
+    await typed.fill(String(value));
+    await typed.dispatchEvent('change');
     await until(async () => (await t.get(`/api/runs/${id}/events`)).some((e) => e.kind === 'params'), 'a params event');
     const stored = (await t.get(`/api/runs/${id}/events`)).find((e) => e.kind === 'params');
-    check(Math.abs(stored.payload[name] - value) <= 1e-6 * Math.max(1, Math.abs(value)), `the stored ${name} is the slider's value: ${JSON.stringify(stored.payload)}`);
-    // another client's change comes as a params message: the same slider shows it (the panel is not rebuilt)
+    check(Math.abs(stored.payload[name] - value) <= 1e-6 * Math.max(1, Math.abs(value)), `the stored ${name} is the typed value: ${JSON.stringify(stored.payload)}`);
+    await until(async () => (await t.page.locator(`.param.changed:has(#param-${name})`).count()) === 1, 'the parameter marked changed');
+    // another client's change comes as a params message: the same controls show it (the panel is not rebuilt)
     await slider.evaluate((el) => { el.dataset.kept = 'yes'; });
-    await t.request('PATCH', `/api/runs/${id}/params`, { [name]: max });
-    await until(async () => Number(await slider.inputValue()) === max, `the slider to show ${max}`);
+    await t.request('PATCH', `/api/runs/${id}/params`, { [name]: spec.max });
+    await until(async () => Number(await typed.inputValue()) === spec.max && Number(await slider.inputValue()) === Number(await slider.getAttribute('max')), `the controls to show ${spec.max}`);
     check(await slider.evaluate((el) => el.dataset.kept === 'yes'), 'the panel was updated in place, not rebuilt');
-    // reset to default
-    const count = (await t.get(`/api/runs/${id}/events`)).length;
-    await t.page.waitForSelector(`#param-${name} ~ *, .param button.reset:not([disabled])`);
-    const spec = await t.page.evaluate((n) => window.__rrlab.session.lanes[0].snapshot.param_specs.find((p) => p.name === n), name);
-    await t.page.locator(`button.reset[aria-label="reset ${name} to its default"]`).click();
+    // a slider moved by the mouse sends its value (3 significant digits on a log slider)
+    const box = await slider.boundingBox();
+    await slider.click({ position: { x: box.width * 0.5, y: box.height / 2 } });
     await until(async () => {
       const events = await t.get(`/api/runs/${id}/events`);
-      return events.length > count && events[events.length - 1].payload[name] === spec.default;
-    }, 'the reset to the default to be stored');
+      const last = events[events.length - 1].payload[name];
+      return Math.abs(last - Number(await typed.inputValue())) <= 1e-9 * Math.max(1, Math.abs(last)) && last !== spec.max;
+    }, 'the slider click stored as the typed field shows it');
+    // back to the run's starting value
+    const count = (await t.get(`/api/runs/${id}/events`)).length;
+    await t.page.locator(`button.reset[aria-label="reset ${name} to its starting value"]`).click();
+    await until(async () => {
+      const events = await t.get(`/api/runs/${id}/events`);
+      return events.length > count && events[events.length - 1].payload[name] === start;
+    }, 'the reset to the starting value to be stored');
+    await until(async () => (await t.page.locator('.param.changed').count()) === 0, 'nothing marked changed after the reset');
     await t.page.selectOption('#switch-method', 'dls');
     await t.page.click('#switch-method-go');
     await until(async () => (await pageState.lane(t.page)).method === 'dls', 'the stream to report the new method');

@@ -18,6 +18,7 @@ import { SweepList } from './sweeps.js';
 import { SweepPage } from './sweep_view.js';
 import { resimulate } from './resimulate.js';
 import { Papers, PAPER_KEYS } from './paper_view.js';
+import { setupLayout } from './layout.js';
 import { escapeHtml } from './dom.js';
 
 const $ = (id) => document.getElementById(id);
@@ -26,6 +27,7 @@ let metricsDirty = false;
 
 // ---- messages -----------------------------------------------------------
 setTokenPrompt(askForToken);
+setupLayout();
 app.signals.message.add((what, kind) => {
   // another tab or client steers this run: say so plainly and offer to take over
   if (what && what.code === 'not_controller') {
@@ -353,6 +355,7 @@ app.signals.snapshot.add((lane) => {
   // after a method switch the lane's name is its new method: tabs, captions, legends
   if (lane.label !== lane.snapshot.method) {
     lane.label = lane.snapshot.method;
+    $('session-title').textContent = `${session.kind === 'live' ? 'live' : 'replay'} · ${session.runs[0].scenario} · ${session.lanes.map((l) => l.label).join(' vs ')}`;
     if (lane.view && session.compare && session.layout === 'side') { lane.view.label = lane.label; lane.view.invalidate(); }
     if (session.layout === 'overlay') session.refreshOverlayLanes();
   }

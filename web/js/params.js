@@ -21,41 +21,82 @@ function sliderStep(spec) {
   return spec.step && Number.isInteger(Math.round(((spec.max - spec.min) / spec.step) * 1e9) / 1e9) ? spec.step : 'any';
 }
 
-// A slider's value as text, beside its name.
-function showValue(div, spec, value) {
-  div.querySelector('.value').textContent = `${fmt(value)} ${spec.unit || ''}`;
+const LOG_POSITIONS = 1000;
+
+// How a slider maps a parameter's range: linear, or logarithmic where the
+// range spans two decades or more (0.001–10 m, 0–1000), so every decade gets
+// the same travel; a range from 0 keeps 0 at the left end. Exported for tests.
+export function sliderScale(spec) {
+  const lo = spec.min > 0 ? spec.min : Math.max(spec.step || 0, spec.max * 1e-4);
+  const log = spec.min >= 0 && spec.max > 0 && lo > 0 && spec.max / lo >= 100;
+  if (!log) return { log: false, min: spec.min, max: spec.max, step: sliderStep(spec), toPosition: (v) => v, fromPosition: (p) => p };
+  const zero = spec.min === 0;  // position 0 is the value 0
+  const first = zero ? 1 : 0;
+  const span = LOG_POSITIONS - first;
+  const toPosition = (v) => {
+    if (zero && v <= 0) return 0;
+    const x = Math.min(spec.max, Math.max(lo, v));
+    return first + Math.round((span * Math.log(x / lo)) / Math.log(spec.max / lo));
+  };
+  const fromPosition = (p) => {
+    if (zero && p <= 0) return 0;
+    const value = lo * Math.pow(spec.max / lo, (p - first) / span);
+    return Number(value.toPrecision(3));  // a slider sets 3 significant digits; type for more
+  };
+  return { log: true, min: 0, max: LOG_POSITIONS, step: 1, toPosition, fromPosition };
 }
 
-// Whether the value differs from the default: marked, and the reset enabled.
-function markChanged(div, spec, value) {
-  const changed = value !== spec.default;
+// Whether the value differs from the run's starting value (the scenario's):
+// marked, and the reset (back to it) enabled.
+function markChanged(div, value, start) {
+  const changed = value !== start;
   div.classList.toggle('changed', changed);
   div.querySelector('button.reset').disabled = !changed;
 }
 
-function paramControl(spec, value, setParam) {
+function paramControl(spec, value, start, setParam) {
   const div = document.createElement('div');
   div.className = 'param';
   div.title = spec.help || '';
   const id = `param-${spec.name}`;
   const head = `<div class="head"><label class="name" for="${id}">${escape(spec.label || spec.name)}</label>
     <span class="value"></span>
-    <button type="button" class="reset" title="reset to the default (${escape(fmt(spec.default))})" aria-label="reset ${escape(spec.name)} to its default">↺</button></div>`;
+    <button type="button" class="reset" title="back to the run's starting value (${escape(fmt(start))}); the method's default is ${escape(fmt(spec.default))}" aria-label="reset ${escape(spec.name)} to its starting value">↺</button></div>`;
   if (spec.choices && spec.choices.length) {
     div.innerHTML = `${head}<select id="${id}">${spec.choices.map((c, i) => `<option value="${i}" ${i === value ? 'selected' : ''}>${escape(c)}</option>`).join('')}</select>`;
     div.querySelector('select').onchange = (e) => setParam(spec.name, Number(e.target.value));
   } else {
-    div.innerHTML = `${head}<input id="${id}" type="range" min="${spec.min}" max="${spec.max}" step="${sliderStep(spec)}" value="${value}">`;
-    const input = div.querySelector('input');
-    showValue(div, spec, value);
-    input.oninput = () => showValue(div, spec, Number(input.value));
-    input.onchange = () => setParam(spec.name, Number(input.value));
+    const scale = sliderScale(spec);
+    div.innerHTML = `${head}<input id="${id}" type="range" min="${scale.min}" max="${scale.max}" step="${scale.step}" value="${scale.toPosition(value)}"${scale.log ? ' data-scale="log"' : ''}>`;
+    div.querySelector('.value').innerHTML = `<input type="number" class="typed" step="any" min="${spec.min}" max="${spec.max}" aria-label="${escape(spec.name)}, typed"> <span class="unit">${escape(spec.unit || '')}</span>`;
+    const slider = div.querySelector('input[type=range]');
+    const typed = div.querySelector('input.typed');
+    typed.value = String(value);
+    slider.oninput = () => { typed.value = String(scale.fromPosition(Number(slider.value))); };
+    slider.onchange = () => setParam(spec.name, scale.fromPosition(Number(slider.value)));
+    typed.onchange = () => {
+      typed.dataset.committed = typed.value;  // sent: new values from the run may replace it
+      const v = Number(typed.value);
+      if (typed.value.trim() === '' || !Number.isFinite(v) || v < spec.min || v > spec.max) {
+        app.error(`${spec.label || spec.name}: type a number in [${fmt(spec.min)}, ${fmt(spec.max)}]${spec.unit ? ` ${spec.unit}` : ''}`);
+        return;
+      }
+      setParam(spec.name, v);
+    };
+    div.scale = scale;
   }
-  markChanged(div, spec, value);
-  div.querySelector('button.reset').onclick = () => setParam(spec.name, spec.default);
+  markChanged(div, value, start);
+  div.querySelector('button.reset').onclick = () => setParam(spec.name, start);
   return div;
 }
 
+// The run's starting values per method (the first snapshot of that method).
+function startValues(lane) {
+  const snapshot = lane.snapshot;
+  lane.startParams = lane.startParams || {};
+  if (!lane.startParams[snapshot.method]) lane.startParams[snapshot.method] = { ...snapshot.params };
+  return lane.startParams[snapshot.method];
+}
 
 // Rebuilds the panel from the focused lane's snapshot.
 export function buildParams(session) {
@@ -68,9 +109,10 @@ export function buildParams(session) {
   const box = $('params');
   box.replaceChildren();
   if (!snapshot.param_specs.length) box.innerHTML = '<p class="muted">This method has no parameters.</p>';
+  const start = startValues(lane);
   for (const spec of snapshot.param_specs) {
     const setParam = (name, value) => session.input('params', { [name]: value }, lane.runId).catch((e) => app.error(e));
-    const control = paramControl(spec, snapshot.params[spec.name], setParam);
+    const control = paramControl(spec, snapshot.params[spec.name], start[spec.name], setParam);
     if (!live) for (const el of control.querySelectorAll('input, select, button')) el.disabled = true;
     box.appendChild(control);
   }
@@ -88,16 +130,20 @@ export function buildParams(session) {
 export function updateParams(session) {
   const lane = session.focusLane;
   if (!lane || !lane.snapshot) return;
+  const start = startValues(lane);
   for (const spec of lane.snapshot.param_specs) {
     const div = $(`param-${spec.name}`)?.closest('.param');
     if (!div) return buildParams(session);  // not the panel of this method: build it
     const value = lane.snapshot.params[spec.name];
-    const control = div.querySelector('input, select');
-    if (!control.matches(':active')) {  // not while the user drags it
-      control.value = String(value);
-      if (control.tagName === 'INPUT') showValue(div, spec, value);
+    const control = div.querySelector('input[type=range], select');
+    if (!control.matches(':active')) control.value = String(div.scale ? div.scale.toPosition(value) : value);  // not while the user drags it
+    const typed = div.querySelector('input.typed');
+    // not over a number being typed (focused, and changed since it was last sent)
+    if (typed && (document.activeElement !== typed || typed.value === typed.dataset.committed)) {
+      typed.value = String(value);
+      typed.dataset.committed = typed.value;
     }
-    markChanged(div, spec, value);
+    markChanged(div, value, start[spec.name]);
   }
 }
 

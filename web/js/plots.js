@@ -184,6 +184,14 @@ export class Plots {
 
   // Live: the last windowSeconds (from 0 until the window fills). Replay: the run.
   xRange(min, max) {
+    if (this.mode === 'live') {
+      // from the lanes' own times: uPlot widens a single point to ±100 around it
+      const kept = this.series.filter((s) => s.t.length);
+      if (kept.length) {
+        min = Math.min(...kept.map((s) => s.t[0]));
+        max = Math.max(...kept.map((s) => s.t[s.t.length - 1]));
+      }
+    }
     if (min === null || max === null) return [0, this.mode === 'live' ? this.windowSeconds : 1];
     if (this.mode === 'live') {
       const hi = Math.max(max, min + this.windowSeconds);
@@ -259,13 +267,19 @@ export class Plots {
 
   // -- diagnostic check boxes ----------------------------------------------
 
+  // The diagnostics to chart: a folded list ("Diagnostics: 2 of 25 charted"),
+  // open at first when there are few, so a long list never pushes the charts away.
   buildTickList() {
     this.tickList.replaceChildren();
     if (!this.names.length) return;
-    const heading = document.createElement('span');
-    heading.className = 'plots-diagnostics-heading';
-    heading.textContent = 'Diagnostics:';
-    this.tickList.appendChild(heading);
+    const details = document.createElement('details');
+    details.open = this.names.length <= 6;
+    const summary = document.createElement('summary');
+    summary.className = 'plots-diagnostics-heading';
+    const count = () => { summary.textContent = `Diagnostics: ${this.ticked.size} of ${this.names.length} charted`; };
+    count();
+    const choices = document.createElement('div');
+    choices.className = 'plots-diagnostics-choices';
     for (const name of this.names) {
       const label = document.createElement('label');
       const box = document.createElement('input');
@@ -274,11 +288,14 @@ export class Plots {
       box.checked = this.ticked.has(name);
       box.addEventListener('change', () => {
         if (box.checked) this.ticked.add(name); else this.ticked.delete(name);
+        count();
         this.layout();  // the new chart comes filled with the data already kept
       });
       label.append(box, ` ${name}`);
-      this.tickList.appendChild(label);
+      choices.appendChild(label);
     }
+    details.append(summary, choices);
+    this.tickList.appendChild(details);
   }
 
   // -- size -------------------------------------------------------------------
