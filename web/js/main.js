@@ -19,6 +19,7 @@ import { SweepPage } from './sweep_view.js';
 import { resimulate } from './resimulate.js';
 import { Papers, PAPER_KEYS } from './paper_view.js';
 import { setupLayout } from './layout.js';
+import { ExportDialog } from './export_dialog.js';
 import { escapeHtml } from './dom.js';
 
 const $ = (id) => document.getElementById(id);
@@ -68,6 +69,7 @@ const replayBar = new ReplayBar({
 });
 const sceneTools = new SceneTools(() => session);
 const plots = new Plots($('plots'));
+const exportDialog = new ExportDialog({ getSession: () => session, plots, replayBar });
 plots.onSeek = (t) => replayBar.seekTime(t);
 const joystick = new Joystick($('joystick'), {
   send: (command) => {
@@ -111,6 +113,7 @@ $('method').onchange = () => { if (!session) writeUrl({ scenario: $('scenario').
 
 async function loadCatalogue() {
   [app.scenarios, app.methods] = await Promise.all([listScenarios(api), api('GET', '/api/methods')]);
+  api('GET', '/api/health').then((h) => { app.version = h.version; }, () => {});
   fillScenarios();
   $('method').innerHTML = '<option value="">(the scenario\'s own)</option>' +
     app.methods.map((m) => `<option value="${escapeHtml(m.name)}" title="${escapeHtml(m.description)}">${escapeHtml(m.name)}</option>`).join('');
@@ -122,6 +125,7 @@ async function loadCatalogue() {
 function closeSession(why) {
   if (session) session.close();
   session = null;
+  exportDialog.update(null);
   replayBar.detach();
   sceneTools.reset();
   joystick.configure({ enabled: false, space: 'xy', reach: 1 });
@@ -182,6 +186,7 @@ async function resimulateAndOpen(runId) {
 async function show(next, startFrame) {
   sweepPage.hide();
   papers.hide();
+  exportDialog.update(next);
   if (session) session.close();
   session = next;
   replayBar.detach();

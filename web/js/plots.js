@@ -182,6 +182,35 @@ export class Plots {
     return chart;
   }
 
+  // Chart `id` drawn afresh at width × height CSS pixels (an export): a
+  // canvas at the device's pixel ratio, with its title; null when no such chart.
+  async chartImage(id, width, height) {
+    const chart = this.charts.get(id);
+    if (!chart) return null;
+    const host = document.createElement('div');
+    host.className = 'plots-export-host';
+    document.body.appendChild(host);
+    try {
+      const options = chartOptions(chart.spec, { width, syncKey: null, xRange: (min, max) => this.xRange(min, max), onDraw: () => {}, onCursor: () => {} });
+      options.height = height;
+      options.cursor = { show: false };
+      options.legend = { show: false };
+      const u = new uPlot(options, this.chartData(chart.spec), host);
+      await new Promise((resolve) => requestAnimationFrame(resolve));  // uPlot draws on its next commit
+      const source = u.ctx.canvas;
+      const out = document.createElement('canvas');
+      out.width = source.width;
+      out.height = source.height;
+      out.getContext('2d').drawImage(source, 0, 0);
+      u.destroy();
+      return { canvas: out, title: chart.spec.title, series: chart.spec.series.map((x) => ({ label: x.label, colour: x.colour, dash: x.dash })) };
+    } finally {
+      host.remove();
+    }
+  }
+
+  chartIds() { return [...this.charts.values()].map((c) => ({ id: c.spec.id, title: c.spec.title })); }
+
   // Live: the last windowSeconds (from 0 until the window fills). Replay: the run.
   xRange(min, max) {
     if (this.mode === 'live') {

@@ -97,6 +97,28 @@ export class ReplayBar {
     this.seek(t / lane.snapshot.dt);
   }
 
+  // Seeks to `seq` and resolves when every lane shows it (its last frame when
+  // it is shorter): a video export draws each frame exactly once.
+  showAndWait(seq, timeoutMs = 10000) {
+    this.seek(seq);
+    const session = this.session;
+    const target = this.current;
+    const started = performance.now();
+    return new Promise((resolve, reject) => {
+      const check = () => {
+        if (this.session !== session) { reject(new Error('the replay was closed')); return; }
+        const ready = session.lanes.every((lane) => {
+          const frames = session.runs[lane.index].frames;
+          return frames === 0 || (lane.frame && lane.frame.seq === Math.min(target, frames - 1) && lane.view);
+        });
+        if (ready) { resolve(); return; }
+        if (performance.now() - started > timeoutMs) { reject(new Error(`frame ${target} did not arrive in ${timeoutMs / 1000} s`)); return; }
+        setTimeout(check, 2);
+      };
+      check();
+    });
+  }
+
   // Called at the display rate: advances the playhead at the chosen speed.
   tick(now) {
     if (!this.session || !this.playing) { this.lastTick = null; return; }

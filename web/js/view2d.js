@@ -118,6 +118,33 @@ export class View2D {
     this.dirty = true;
   }
 
+  // The view drawn afresh into a canvas of width × height pixels (an export):
+  // the same picture as on screen, at that resolution; a different aspect
+  // shows more or less of the scene around the same centre.
+  renderAt(width, height) {
+    const saved = { canvas: this.canvas, context: this.context, width: this.width, height: this.height, scale: this.scale, origin: this.origin };
+    const out = document.createElement('canvas');
+    out.width = width;
+    out.height = height;
+    const k = width / this.width;  // pixels per on-screen pixel: lines and text keep their look
+    const logical = { w: this.width, h: height / k };
+    const centre = this.toWorld(this.width / 2, this.height / 2);
+    try {
+      this.canvas = out;
+      this.context = out.getContext('2d');
+      this.context.setTransform(k, 0, 0, k, 0, 0);
+      this.width = logical.w;
+      this.height = logical.h;
+      this.origin = { x: logical.w / 2 - this.scale * centre[0], y: logical.h / 2 + this.scale * centre[1] };
+      this.dirty = true;
+      this.render();
+    } finally {
+      Object.assign(this, saved);
+      this.dirty = true;
+    }
+    return out;
+  }
+
   // The scene as it is: the arm, every bounded obstacle, the path and the
   // target (the whole reach would leave the arm small in an empty grid).
   fit() {

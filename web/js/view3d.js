@@ -410,6 +410,36 @@ export class View3D {
     return true;
   }
 
+  // The view drawn afresh at width × height pixels into a 2D canvas (an
+  // export), from the same camera; labels drawn as HTML (distances, lane
+  // names) are not in the picture.
+  renderAt(width, height) {
+    const out = document.createElement('canvas');
+    out.width = width;
+    out.height = height;
+    if (this.failed) return out;
+    const size = this.renderer.getSize(new THREE.Vector2());
+    const ratio = this.renderer.getPixelRatio();
+    const aspect = this.camera.aspect;
+    try {
+      this.renderer.setPixelRatio(1);
+      this.renderer.setSize(width, height, false);
+      this.camera.aspect = width / height;
+      this.camera.updateProjectionMatrix();
+      this.applyFrame();
+      this.renderer.clear();
+      this.renderer.render(this.scene, this.camera);
+      out.getContext('2d').drawImage(this.renderer.domElement, 0, 0);  // before the buffer is cleared
+    } finally {
+      this.renderer.setPixelRatio(ratio);
+      this.renderer.setSize(size.x, size.y, false);
+      this.camera.aspect = aspect;
+      this.camera.updateProjectionMatrix();
+      this.dirty = true;
+    }
+    return out;
+  }
+
   applyFrame() {
     const frame = this.frame, snapshot = this.snapshot;
     if (!frame || !snapshot) return;

@@ -1,0 +1,113 @@
+// The Export dialog: what to export (a view, a chart, a figure, a video of a
+// replay), its size, and for a video the frame range, stride and rate; the
+// file downloads when it is ready, with progress for a video.
+import { app } from './state.js';
+import { viewPng, chartPng, figurePng, recordVideo, checkRange, download } from './exports.js';
+
+const $ = (id) => document.getElementById(id);
+
+export class ExportDialog {
+  // getSession(), plots, replayBar, version (rrlab's, for the figure's metadata)
+  constructor({ getSession, plots, replayBar }) {
+    this.getSession = getSession;
+    this.plots = plots;
+    this.replayBar = replayBar;
+    this.busy = false;
+    this.cancel = false;
+    $('open-export').onclick = () => this.open();
+    $('export-what').onchange = () => this.showFields();
+    $('export-cancel').onclick = () => { if (this.busy) this.cancel = true; else $('export-dialog').close(); };
+    $('export-form').onsubmit = (e) => { e.preventDefault(); this.run().catch((err) => this.failed(err)); };
+  }
+
+  // Enabled while a run or group with a view is on screen.
+  update(session) { $('open-export').disabled = !session; }
+
+  open() {
+    const session = this.getSession();
+    if (!session) return;
+    const options = [['view', session.compare ? 'the views, side by side (PNG)' : 'the view (PNG)']];
+    for (const c of this.plots.chartIds()) options.push([`chart:${c.id}`, `chart: ${c.title} (PNG)`]);
+    options.push(['figure', 'a figure for a paper: views, charts, legend, metadata (PNG)']);
+    if (session.kind === 'replay' && !session.empty) options.push(['video', 'a video of the replay (WebM)']);
+    $('export-what').innerHTML = options.map(([v, t]) => `<option value="${v}">${t}</option>`).join('');
+    const last = Math.max(0, session.frameCount - 1);
+    $('export-from').value = '0';
+    $('export-to').value = String(last);
+    $('export-from').max = $('export-to').max = String(last);
+    $('export-progress').textContent = '';
+    this.showFields();
+    $('export-dialog').showModal();
+  }
+
+  showFields() {
+    const what = $('export-what').value;
+    $('export-video').hidden = what !== 'video';
+    $('export-height-label').hidden = what === 'figure';
+    const notes = {
+      view: 'Drawn afresh at this size (3D: distance and lane labels are HTML and are left out).',
+      figure: 'The height follows from the width and the lanes.',
+      video: 'One video frame per stored frame of the range (every N-th), at the chosen rate; it takes about as long as the video lasts.',
+    };
+    $('export-note').textContent = notes[what] || 'The chart drawn afresh at this size, with its title.';
+    if (what === 'view' || what === 'video') {
+      const cell = document.querySelector('#views .view-cell');
+      if (cell && !this.sizeTouched) {
+        const r = document.getElementById('views').getBoundingClientRect();
+        $('export-width').value = String(Math.min(4096, Math.round(r.width * 2 / 2) * 2));
+        $('export-height').value = String(Math.min(4096, Math.round(r.height * 2 / 2) * 2));
+      }
+    }
+  }
+
+  failed(error) {
+    this.busy = false;
+    $('export-go').disabled = false;
+    $('export-progress').textContent = `Not exported: ${error.message || error}`;
+    app.error(`export: ${error.message || error}`);
+  }
+
+  async run() {
+    const session = this.getSession();
+    if (!session || this.busy) return;
+    const what = $('export-what').value;
+    const width = Number($('export-width').value), height = Number($('export-height').value);
+    const name = `rrlab-run-${session.runIds.join('-')}`;
+    this.busy = true;
+    this.cancel = false;
+    $('export-go').disabled = true;
+    $('export-progress').textContent = 'drawing…';
+    if (what === 'view') download(await viewPng(session, width, height), `${name}-view-${width}x${height}.png`);
+    else if (what.startsWith('chart:')) download(await chartPng(this.plots, what.slice(6), width, height), `${name}-${what.slice(6)}-${width}x${height}.png`);
+    else if (what === 'figure') download(await figurePng(session, this.plots, { width, meta: this.metadata(session) }), `${name}-figure.png`);
+    else if (what === 'video') {
+      const from = Number($('export-from').value), to = Number($('export-to').value);
+      const stride = Number($('export-stride').value), fps = Number($('export-fps').value);
+      checkRange(from, to, Math.max(0, session.frameCount - 1), fps);
+      if (!Number.isInteger(stride) || stride < 1) throw new Error('"every" takes a whole number of frames, 1 or more');
+      const result = await recordVideo(session, (seq) => this.replayBar.showAndWait(seq), {
+        from, to, stride, fps, width, height,
+        onProgress: (done, total) => { $('export-progress').textContent = `recording frame ${done} of ${total}…`; },
+        cancelled: () => this.cancel,
+      });
+      download(result.blob, `${name}-frames-${from}-${to}${stride > 1 ? `-every-${stride}` : ''}-${fps}fps.webm`);
+      $('export-progress').textContent = `${result.frames} frames recorded`;
+    }
+    if (what !== 'video') $('export-progress').textContent = 'downloaded';
+    this.busy = false;
+    $('export-go').disabled = false;
+  }
+
+  // What the figure says about itself, for a caption.
+  metadata(session) {
+    const lanes = session.lanes.map((l) => {
+      const params = l.snapshot && l.snapshot.params ? Object.entries(l.snapshot.params).map(([k, v]) => `${k}=${v}`).join(', ') : '';
+      return `${l.label}${params ? ` (${params})` : ''}, run #${l.runId}`;
+    });
+    const frame = session.lanes[0].frame;
+    return [
+      `scenario ${session.runs[0].scenario}; ${lanes.join('; ')}`,
+      frame ? `shown: t = ${frame.t.toFixed(2)} s (frame ${frame.seq ?? frame.step}); drawn by rrlab ${app.version || ''}`.trim() : 'drawn by rrlab',
+    ];
+  }
+}
