@@ -107,4 +107,25 @@ await suite('replay', [
     await allAt(t.page, sought, 'the plot click');
     await t.screenshot('compare-synced');
   }],
+  ['recorded inputs are marked on the scrubber and the charts, each named, and a mark seeks to its frame', async (t) => {
+    const run = await t.post('/api/runs', { scenario: '01_planar7_obstacles', mode: 'live', paused: true });
+    const step = async (n) => { for (let i = 0; i < n; ++i) await t.post(`/api/runs/${run.id}/control`, { action: 'step' }); };
+    await step(20);
+    await t.request('PATCH', `/api/runs/${run.id}/params`, { gain: 3 });
+    await step(20);
+    await t.post(`/api/runs/${run.id}/method`, { name: 'dls' });
+    await step(20);
+    await t.post(`/api/runs/${run.id}/control`, { action: 'stop' });
+    const events = await t.get(`/api/runs/${run.id}/events`);
+    await t.page.goto(`${t.base}/?run=${run.id}&frame=0`);
+    await until(async () => (await t.page.locator('#replay-markers .event-marker').count()) === 2, 'two marks on the scrubber');
+    const titles = await t.page.locator('#replay-markers .event-marker').evaluateAll((els) => els.map((e) => e.title));
+    const params = events.find((e) => e.kind === 'params'), method = events.find((e) => e.kind === 'method');
+    check(titles[0] === `frame ${params.seq}: parameters: gain = 3`, `the parameter change is named: ${titles[0]}`);
+    check(titles[1] === `frame ${method.seq}: method switched to dls`, `the method switch is named: ${titles[1]}`);
+    await until(() => t.page.evaluate(() => document.querySelectorAll('#plots .plots-chart[data-chart="distance"] .plots-marker').length === 2), 'two marks on the distance chart');
+    await t.page.locator('#replay-markers .event-marker').nth(1).click();
+    await allAt(t.page, method.seq, 'a click on the method mark');
+    await t.screenshot('markers');
+  }],
 ]);

@@ -20,6 +20,7 @@ import { resimulate } from './resimulate.js';
 import { Papers, PAPER_KEYS } from './paper_view.js';
 import { setupLayout } from './layout.js';
 import { ExportDialog } from './export_dialog.js';
+import { eventMarkers } from './events.js';
 import { escapeHtml } from './dom.js';
 
 const $ = (id) => document.getElementById(id);
@@ -207,6 +208,7 @@ async function show(next, startFrame) {
   if (next.kind === 'replay' && !next.empty) {
     replayBar.attach(next, startFrame);
     loadWholeRuns(next).catch(report);
+    loadMarkers(next).catch(report);
   }
   // a stored compare group has its summary at once
   if (next.kind === 'replay' && next.compare) showCompareSummary(next).catch(report);
@@ -240,6 +242,16 @@ async function loadWholeRuns(s) {
     plots.setRun(lane.index, data);
     if (lane.shownSeq !== null && lane.shownSeq !== undefined && lane.view) replayBar.rebuildTrace(lane, lane.shownSeq);
   }));
+}
+
+// The recorded inputs of a replay, marked on the scrubber and the charts.
+async function loadMarkers(s) {
+  const events = await Promise.all(s.runIds.map((id) => api('GET', `/api/runs/${id}/events`)));
+  const markers = eventMarkers(events);
+  if (session !== s) return;
+  replayBar.setMarkers(markers);
+  const { dt } = await s.lanes[0].ready;
+  if (session === s) plots.setMarkers(markers.map((m) => ({ ...m, t: m.seq * dt })));
 }
 
 async function openRuns(ids, layout = 'side', frame = null) {

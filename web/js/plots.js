@@ -171,7 +171,7 @@ export class Plots {
     chart.u = new uPlot(chartOptions(spec, {
       width: this.width, syncKey: this.syncKey,
       xRange: (min, max) => this.xRange(min, max),
-      onDraw: () => this.placeCursorLine(chart),
+      onDraw: () => { this.placeCursorLine(chart); this.placeMarkers(chart); },
       onCursor: (u) => { if (u.cursor.left < 0) queueMicrotask(() => this.showLegendValues(chart)); },
     }), this.chartData(spec), box);
     chart.cursorLine = document.createElement('div');
@@ -248,6 +248,30 @@ export class Plots {
       const i = this.series[s.lane].index.get(s.key);
       return i === undefined ? new Array(x.length).fill(null) : this.joined[this.offsets[s.lane] + i];
     })];
+  }
+
+  // Recorded inputs as marks on every chart ({t, kind, text}), each with its words as a tooltip.
+  setMarkers(markers) {
+    this.markers = markers;
+    for (const chart of this.charts.values()) this.placeMarkers(chart);
+  }
+
+  placeMarkers(chart) {
+    if (!chart.markerBox) {
+      chart.markerBox = document.createElement('div');
+      chart.markerBox.className = 'plots-markers';
+      chart.u.over.appendChild(chart.markerBox);
+    }
+    const list = this.mode === 'replay' ? this.markers || [] : [];
+    chart.markerBox.replaceChildren(...list.map((m) => {
+      const x = chart.u.valToPos(m.t, 'x');
+      if (!Number.isFinite(x) || x < 0 || x > chart.u.over.clientWidth) return null;
+      const mark = document.createElement('div');
+      mark.className = `plots-marker event-${m.kind}`;
+      mark.title = m.text;
+      mark.style.transform = `translateX(${Math.round(x)}px)`;
+      return mark;
+    }).filter(Boolean));
   }
 
   placeCursorLine(chart) {

@@ -60,7 +60,26 @@ export class ReplayBar {
     this.show(start, true);
   }
 
+  // The recorded inputs along the scrubber ({seq, kind, text}): each a mark
+  // with its words as a tooltip; a click shows its frame.
+  setMarkers(markers) {
+    const box = $('replay-markers');
+    box.replaceChildren();
+    const last = this.last;
+    for (const m of markers) {
+      const mark = document.createElement('button');
+      mark.type = 'button';
+      mark.className = `event-marker event-${m.kind}`;
+      mark.title = `frame ${m.seq}: ${m.text}`;
+      mark.setAttribute('aria-label', mark.title);
+      mark.style.left = `${last > 0 ? (100 * Math.min(m.seq, last)) / last : 0}%`;
+      mark.onclick = () => this.seek(m.seq);
+      box.appendChild(mark);
+    }
+  }
+
   detach() {
+    $('replay-markers').replaceChildren();
     this.session = null;
     this.playing = false;
     $('replay-bar').hidden = true;
