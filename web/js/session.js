@@ -119,10 +119,13 @@ export class Session {
     lane.snapshot = snapshot;
     lane.status = snapshot.status;
     lane.resolveReady(snapshot);
+    const framesBefore = lane.framesReceived || 0;
     if (!lane.view && lane.cell) await this.makeView(lane, snapshot);
     if (this.closed) return;
     if (lane.view) lane.view.setSnapshot(snapshot);
-    if (snapshot.frame) lane.frame = snapshot.frame;
+    // a frame that came while the view was being made (the 3D module loads) is newer than the snapshot's
+    if ((lane.framesReceived || 0) !== framesBefore && lane.frame) { if (lane.view) lane.view.setFrame(lane.frame); }
+    else if (snapshot.frame) lane.frame = snapshot.frame;
     this.refreshOverlayLanes();
     app.signals.snapshot.dispatch(lane);
   }
@@ -173,6 +176,7 @@ export class Session {
   frame(lane, frame) {
     if (this.closed) return;
     lane.frame = frame;
+    lane.framesReceived = (lane.framesReceived || 0) + 1;
     lane.status = frame.status;
     if (lane.view) lane.view.setFrame(frame);
     if (this.layout === 'overlay' && lane.index > 0 && this.lanes[0].view) this.lanes[0].view.invalidate();

@@ -105,6 +105,8 @@ export class View3D {
     this.controls.enableDamping = true;
     this.controls.dampingFactor = 0.15;
     this.controls.addEventListener('change', () => { this.dirty = true; });
+    this.listenToGizmo();
+    this.addViewButtons();
     this.resizeObserver = new ResizeObserver(() => this.resize());
     this.resizeObserver.observe(container);
     this.resize();
@@ -138,7 +140,9 @@ export class View3D {
     this.scene.add(this.sun);
     this.sceneRoot = new THREE.Group();  // everything built from a snapshot
     this.scene.add(this.sceneRoot);
-    this.target = new THREE.Mesh(new THREE.SphereGeometry(1, 20, 14), new THREE.MeshLambertMaterial({ color: targetColour }));
+    // the target is drawn over everything (the ellipsoid, the frame axes and the trace sit around it)
+    this.target = new THREE.Mesh(new THREE.SphereGeometry(1, 20, 14), new THREE.MeshBasicMaterial({ color: targetColour, depthTest: false }));
+    this.target.renderOrder = 10;
     this.target.visible = false;
     this.scene.add(this.target);
     this.buildGround(new THREE.Box3(new THREE.Vector3(-2, -2, 0), new THREE.Vector3(2, 2, 1)), 3, [0, 0, 0]);
@@ -179,6 +183,60 @@ export class View3D {
       group.add(post);
     }
     return group;
+  }
+
+  // The axes gizmo (bottom right, 128 px) turns the camera to look along the
+  // clicked axis. Its pointer events go to it alone: no drag, select or place.
+  listenToGizmo() {
+    const element = this.renderer.domElement;
+    const inside = (e) => {
+      const r = element.getBoundingClientRect();
+      return e.clientX >= r.right - 128 && e.clientY >= r.bottom - 128;
+    };
+    for (const type of ['pointerdown', 'pointermove', 'pointerup']) {
+      element.addEventListener(type, (e) => {
+        if (!inside(e) || (type === 'pointermove' && !e.buttons)) return;
+        e.stopImmediatePropagation();
+        if (type === 'pointerup') {
+          this.axesGizmo.center.copy(this.controls.target);
+          if (this.axesGizmo.handleClick(e)) { this.gizmoClock = performance.now(); this.dirty = true; }
+        }
+      }, { capture: true });
+    }
+  }
+
+  // Fit (frame the scene from where the camera looks now) and Reset (from the first view's direction).
+  addViewButtons() {
+    const bar = document.createElement('div');
+    bar.className = 'view3d-buttons';
+    for (const [text, title, action] of [
+      ['Fit', 'frame the whole scene, looking from where you look now', () => this.fitFromHere()],
+      ['Reset', 'the first view: from the front right, above', () => this.fit()],
+    ]) {
+      const b = document.createElement('button');
+      b.type = 'button';
+      b.textContent = text;
+      b.title = title;
+      b.className = `view3d-${text.toLowerCase()}`;
+      b.onclick = action;
+      bar.appendChild(b);
+    }
+    this.container.appendChild(bar);
+  }
+
+  // Ends the orbit's coasting (damping) at once, so a fit is not turned afterwards.
+  settle() {
+    this.controls.enableDamping = false;
+    this.controls.update();
+    this.controls.enableDamping = true;
+  }
+
+  fitFromHere() {
+    if (this.failed || !this.snapshot) return;
+    this.settle();
+    const direction = this.camera.position.clone().sub(this.controls.target);
+    if (direction.lengthSq() === 0) return this.fit();
+    return this.fit(direction.normalize());
   }
 
   // ---- the page's interface ----
@@ -317,12 +375,12 @@ export class View3D {
   // Frames the camera on the scene: the base, the arm as it stands, every
   // obstacle and the path (before any frame: the reach around the base); the
   // ground grid follows the same region.
-  fit() {
+  fit(direction = new THREE.Vector3(0.45, -1, 0.6).normalize()) {  // by default from the front right, above
     if (this.failed || !this.snapshot) return;
+    this.settle();
     const box = this.sceneBox();
     const { base, reach } = this.snapshot.model;
     this.buildGround(box, reach, base);
-    const direction = new THREE.Vector3(0.45, -1, 0.6).normalize();  // from the front right, above
     const centre = box.getCenter(new THREE.Vector3());
     let distance = this.fitDistance(box, centre, direction);
     // perspective makes the near side look larger: centre the box's picture, then fit again
@@ -391,7 +449,13 @@ export class View3D {
   // Draws when something changed (a frame, the page's settings, the camera).
   render() {
     if (this.failed) return false;
-    const moved = this.controls.update();
+    let moved = this.controls.update();
+    if (this.axesGizmo.animating) {  // turning to a clicked axis
+      const now = performance.now();
+      this.axesGizmo.update((now - (this.gizmoClock || now)) / 1000);
+      this.gizmoClock = now;
+      moved = true;
+    }
     const key = Object.entries(this._overlays).map(([k, v]) => (v ? k : '')).join();
     if (key !== this.overlayKey) { this.overlayKey = key; this.dirty = true; }
     if (!this.dirty && !moved) return false;
@@ -402,6 +466,7 @@ export class View3D {
     this.renderer.render(this.scene, this.camera);
     this.axesGizmo.render(this.renderer);
     this.labels.render(this.scene, this.camera);
+    if (this.overlayLayer) this.overlayLayer.declutter(this.renderer.domElement);
     const ms = performance.now() - started;
     this.stats.renders += 1;
     this.stats.totalMs += ms;

@@ -168,7 +168,7 @@ export class Overlays {
       else this.nearestLines.set(lines++, ax, ay, az, bx, by, bz);
       const l = this.nearestLabels[i];
       l.position.set(ax + 0.3 * (bx - ax), ay + 0.3 * (by - ay), az + 0.3 * (bz - az));  // near the link: lines to one obstacle point would stack their labels
-      const text = Number.isFinite(distance) ? distance.toFixed(3) : '—';
+      const text = Number.isFinite(distance) ? `${distance.toFixed(3)} m` : '—';
       if (l.element.textContent !== text) l.element.textContent = text;
       l.element.classList.toggle('view3d-label-nearest', isMin);
       l.visible = labelled.has(i);
@@ -176,6 +176,23 @@ export class Overlays {
     for (let i = rows.length; i < this.nearestLabels.length; ++i) this.nearestLabels[i].visible = false;
     this.nearestLines.commit(lines);
     this.nearestMin.commit(minDrawn);
+  }
+
+  // After the labels are placed on screen: a distance label that would cover
+  // one of a nearer link is hidden (nearest first), so none overlap.
+  declutter(canvas) {
+    const shown = [];
+    const labels = this.nearestLabels.filter((l) => l.visible && l.element.style.display !== 'none');
+    const distance = (l) => parseFloat(l.element.textContent);
+    labels.sort((a, b) => distance(a) - distance(b));
+    for (const l of labels) {
+      l.element.classList.remove('view3d-label-hidden');
+      const r = l.element.getBoundingClientRect();
+      if (!r.width) continue;
+      if (shown.some((o) => r.left < o.right + 2 && r.right > o.left - 2 && r.top < o.bottom + 1 && r.bottom > o.top - 1)) {
+        l.element.classList.add('view3d-label-hidden');
+      } else shown.push(r);
+    }
   }
 
   // Indices of the three rows with the smallest distances.
