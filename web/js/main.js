@@ -140,14 +140,16 @@ function closeSession(why) {
   if (why) app.info(why);
 }
 
-// A paper's page in the centre, instead of any run or sweep.
-async function openPaper(key) {
+// A page in the centre — a paper's or a sweep's — instead of any run.
+async function openCentrePage(name, address, show) {
   closeSession();
-  sweepPage.hide();
-  writeUrl({ paper: key });
-  $('connection').textContent = 'paper';
-  await papers.show(key);
+  (name === 'paper' ? sweepPage : papers).hide();
+  writeUrl(address);
+  $('connection').textContent = name;
+  await show();
 }
+function openPaper(key) { return openCentrePage('paper', { paper: key }, () => papers.show(key)); }
+function openSweep(id) { return openCentrePage('sweep', { sweep: id }, () => sweepPage.show(id)); }
 
 // An example of a paper: live with its configuration, or as a live compare
 // with the paper's baselines.
@@ -164,15 +166,6 @@ async function startPaperExample({ kind, scenario, methods }) {
   }
   const group = await api('POST', '/api/compare', { scenario, methods, mode: 'live', rate });
   await openRuns(group.runs.map((r) => r.id), 'side');
-}
-
-// A sweep's page in the centre, instead of any run.
-async function openSweep(id) {
-  closeSession();
-  papers.hide();
-  writeUrl({ sweep: id });
-  $('connection').textContent = 'sweep';
-  await sweepPage.show(id);
 }
 
 // A run that stored no frames: re-simulated from its recorded inputs (progress
