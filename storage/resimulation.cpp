@@ -64,11 +64,8 @@ constexpr const char* kSummaryResultFields[] = {"steps", "collided", "min_distan
 void resimulate_from_summary(Simulator& sim, const RunRecord& run, EventReplayer& replayer,
                              const std::function<void(std::int64_t, const Frame&, const std::string&)>& on_frame,
                              ResimulationResult& result) {
-  if (!run.summary_json) return;
-  const json stored = json::parse(*run.summary_json, nullptr, false);
-  if (!stored.is_object() || !stored.contains("steps") || !stored["steps"].is_number_integer()) return;
-  const std::int64_t steps = stored["steps"].get<std::int64_t>();
-  if (steps <= 0 || steps > ScenarioLimits::max_steps * 16) return;
+  const std::int64_t steps = summary_steps(run);
+  if (steps == 0) return;
   std::string packed;
   for (std::int64_t seq = 0; seq < steps; ++seq) {
     replayer.apply_due(sim, long(seq));
@@ -92,6 +89,14 @@ std::string summary_difference(const RunRecord& run, const Summary& fresh_summar
 }
 
 }  // namespace
+
+std::int64_t summary_steps(const RunRecord& run) {
+  if (!run.summary_json) return 0;
+  const json stored = json::parse(*run.summary_json, nullptr, false);
+  if (!stored.is_object() || !stored.contains("steps") || !stored["steps"].is_number_integer()) return 0;
+  const std::int64_t steps = stored["steps"].get<std::int64_t>();
+  return steps > 0 && steps <= std::int64_t(ScenarioLimits::max_steps) * 16 ? steps : 0;
+}
 
 json verification_json(const ResimulationResult& result) {
   json out = {{"identical", result.compared() ? json(result.identical()) : json()},

@@ -45,6 +45,10 @@ constexpr const char* kNothingCompared = "the run stored no frames: nothing to c
 // verdict as the CLI and REST report it.
 nlohmann::json verification_json(const ResimulationResult& result);
 
+// The steps a run's summary says it completed (0 without a summary or steps;
+// at most ScenarioLimits::max_steps × 16, as a re-simulation steps).
+std::int64_t summary_steps(const RunRecord& run);
+
 // on_frame (may be empty) sees each re-simulated frame with its seq and packed blob.
 ResimulationResult resimulate(RunStore& store, const RunRecord& run,
                               const std::function<void(std::int64_t, const Frame&, const std::string&)>& on_frame);

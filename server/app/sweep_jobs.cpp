@@ -23,6 +23,14 @@ using nlohmann::json;
 
 namespace {
 
+// Stored JSON text as JSON; null when absent or not JSON (an unquoted string
+// from json_extract, a row written by an older rrlab): never a discarded value.
+json parsed_or_null(const std::optional<std::string>& text) {
+  if (!text) return json();
+  json value = json::parse(*text, nullptr, false);
+  return value.is_discarded() ? json() : value;
+}
+
 constexpr size_t kMaxRunsPerSweep = 100'000;
 constexpr size_t kMaxGeneratorEntries = 64;
 constexpr int kMaxRunningSweeps = 4;
@@ -92,7 +100,9 @@ void SweepJobs::admit(const Job& job) {
 
 SweepJobs::~SweepJobs() { stop_all(); }
 
-json SweepJobs::start(const json& body, int jobs) {
+// A spec checked as a start would check it (422 naming the path, the REST
+// limits, the run quotas), expanded into its cases; nothing is started.
+std::shared_ptr<SweepJobs::Job> SweepJobs::prepare(const json& body) {
   refuse_paths(body);
   auto job = std::make_shared<Job>();
   try {
@@ -117,6 +127,20 @@ json SweepJobs::start(const json& body, int jobs) {
                    "scenarios");
   job->cases = sweep::expand_sweep(job->spec);
   admit(*job);
+  return job;
+}
+
+json SweepJobs::validate(const json& body) {
+  const std::shared_ptr<Job> job = prepare(body);
+  return {{"valid", true},
+          {"name", job->spec.name},
+          {"total", job->cases.size()},
+          {"scenario_entries", job->spec.scenarios.size()},
+          {"configurations", job->spec.configs.size()}};
+}
+
+json SweepJobs::start(const json& body, int jobs) {
+  const std::shared_ptr<Job> job = prepare(body);
   // one core stays for live runs
   const int cores = int(std::max(1u, std::thread::hardware_concurrency()));
   job->jobs = std::clamp(jobs, 1, std::max(1, cores - 1));
@@ -223,7 +247,7 @@ json SweepJobs::runs(std::int64_t id, const RunQuery& query) {
   json page = json::array();
   for (size_t i = size_t(query.offset); i < matching.size() && i < size_t(query.offset + query.limit); ++i) {
     const storage::SweepRunEntry& e = matching[i];
-    json summary = e.summary_json ? json::parse(*e.summary_json, nullptr, false) : json();
+    json summary = parsed_or_null(e.summary_json);
     const auto field = [&](const char* key) { return summary.is_object() && summary.contains(key) ? summary[key] : json(); };
     page.push_back({{"run", e.run_id},
                     {"key", e.row.key},
@@ -238,7 +262,7 @@ json SweepJobs::runs(std::int64_t id, const RunQuery& query) {
                     {"collided", field("collided")},
                     {"min_distance", field("min_distance")},
                     {"max_tracking_error", field("max_tracking_error")},
-                    {"difficulty", e.difficulty_json ? json::parse(*e.difficulty_json, nullptr, false) : json()}});
+                    {"difficulty", parsed_or_null(e.difficulty_json)}});
   }
   return {{"id", id}, {"sweep", job->spec.name}, {"total", matching.size()}, {"offset", query.offset},
           {"limit", query.limit}, {"runs", page}};

@@ -27,6 +27,8 @@ class SweepJobs {
   // Validates the spec (422 naming the JSON path), starts it: {id, name, total, status, ...}.
   // `jobs`: worker threads, at most the cores less one (one stays for live runs).
   nlohmann::json start(const nlohmann::json& spec, int jobs);
+  // The checks of start() without starting: {valid, name, total, scenario_entries, configurations}.
+  nlohmann::json validate(const nlohmann::json& spec);
   // Progress; once ended, the report of the sweep's stored runs. 404 if unknown.
   nlohmann::json status(std::int64_t id);
   nlohmann::json list();
@@ -44,7 +46,8 @@ class SweepJobs {
  private:
   struct Job;
   void admit(const Job& job);
-  std::shared_ptr<Job> find(std::int64_t id);  // 404 if unknown  // its cost against the run quotas (413 beyond)
+  std::shared_ptr<Job> find(std::int64_t id);  // 404 if unknown
+  std::shared_ptr<Job> prepare(const nlohmann::json& spec);  // parsed, limited, expanded, admitted  // its cost against the run quotas (413 beyond)
   nlohmann::json status_of(Job& job);
 
   RunManager& runs_;

@@ -23,8 +23,17 @@ ApiResponse resimulate_run(RouteContext& c, const storage::RunRecord& run) {
   // a re-simulation stores a copy of the run's frames: admitted like a run of as many steps
   std::int64_t reserved = 0;
   try {
-    const std::int64_t frame_bytes = run.frames > 0 ? (run.frame_bytes + run.frames - 1) / run.frames : 0;
-    reserved = runs.admit_work({estimate_lane(storage::scenario_of_run(run), run.frames, frame_bytes)}, true);
+    std::int64_t frames = run.frames;
+    std::int64_t frame_bytes = run.frames > 0 ? (run.frame_bytes + run.frames - 1) / run.frames : 0;
+    const Scenario scenario = storage::scenario_of_run(run);
+    if (frames == 0) {
+      // a run that stored no frames is stepped as far as its summary says: admitted for that many,
+      // each the size of its first frame packed (as a new run is)
+      frames = storage::summary_steps(run);
+      const Simulator sim(scenario);
+      frame_bytes = std::int64_t(storage::pack_frame(sim.frame()).size());
+    }
+    reserved = runs.admit_work({estimate_lane(scenario, frames, frame_bytes)}, true);
   } catch (const ApiError&) {
     throw;
   } catch (...) {

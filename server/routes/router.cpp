@@ -45,6 +45,7 @@ constexpr Route kRoutes[] = {
     {"POST", "/api/replays/{}/control", post_replay_control},
     {"POST", "/api/compare", post_compare, true},
     {"POST", "/api/sweeps", post_sweep, true},
+    {"POST", "/api/sweeps/validate", validate_sweep, true},
     {"GET", "/api/sweeps", list_sweeps},
     {"GET", "/api/sweeps/{}", get_sweep},
     {"GET", "/api/sweeps/{}/runs", get_sweep_runs},

@@ -110,6 +110,7 @@ ApiResponse post_sweep(RouteContext&);
 ApiResponse list_sweeps(RouteContext&);
 ApiResponse get_sweep(RouteContext&);
 ApiResponse get_sweep_runs(RouteContext&);
+ApiResponse validate_sweep(RouteContext&);
 ApiResponse post_sweep_control(RouteContext&);
 
 }  // namespace rrlab::server

@@ -14,6 +14,9 @@ ApiResponse list_sweeps(RouteContext& c) { return json_response(200, c.runs.swee
 
 ApiResponse get_sweep(RouteContext& c) { return json_response(200, c.runs.sweeps().status(c.id())); }
 
+// Checks a spec as POST /api/sweeps would and starts nothing (the dashboard's dialog).
+ApiResponse validate_sweep(RouteContext& c) { return json_response(200, c.runs.sweeps().validate(parse_body(c.request))); }
+
 // ?family=&config=&outcome=pass|fail&failure_mode=&limit=&offset=
 ApiResponse get_sweep_runs(RouteContext& c) {
   SweepJobs::RunQuery query;

@@ -3,6 +3,8 @@
 // anything is stored or started, with an error naming the limit and the
 // numbers; limits reached during a live run stop its storage, not the run.
 // Each test starts its own server with the limits it tests.
+#include <chrono>
+#include <thread>
 #include "server_fixture.hpp"
 
 namespace rrlab::testing {
@@ -271,6 +273,35 @@ TEST(Quotas, StoredScenariosAreCappedAndListedAsPagedSummaries) {
   EXPECT_EQ(get("/api/scenarios?limit=0").status, 400);
   EXPECT_EQ(get("/api/scenarios?limit=1001").status, 400);
   EXPECT_EQ(get("/api/scenarios?offset=-1").status, 400);
+}
+
+// Found in review: a sweep run stores no frames, and its re-simulation steps as
+// far as its summary says; it was admitted as a run of 0 frames, past every limit.
+TEST(Quotas, ReSimulatingAFramelessSweepRunIsAdmittedForTheStepsItWillStore) {
+  ServerProcess server("", {"--max-run-frames", "100"});
+  const json spec = {{"name", "frameless-quota"},
+                     {"scenarios", json::array({"01_planar7_obstacles"})},
+                     {"methods", json::array({"dls"})},
+                     {"steps", 150},
+                     {"success", {{"max_tracking_error", 0.01}}}};
+  const HttpResult started = post(server, "/api/sweeps", spec);
+  ASSERT_EQ(started.status, 202) << started.body;
+  const std::string status = "/api/sweeps/" + std::to_string(started.json()["id"].get<long>());
+  json sweep;
+  for (int i = 0; i < 600; ++i) {
+    sweep = http(server.port(), "GET", status).json();
+    if (sweep["status"] != "running") break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  ASSERT_EQ(sweep["status"], "completed") << sweep;
+  const json runs = http(server.port(), "GET", status + "/runs").json()["runs"];
+  ASSERT_EQ(runs.size(), 1u);
+  const std::string run = std::to_string(runs[0]["run"].get<long>());
+  EXPECT_EQ(runs[0]["frames"], 0);
+  const HttpResult refused = post(server, "/api/runs/" + run + "/replay", {{"mode", "resimulate"}});
+  ASSERT_EQ(refused.status, 413) << refused.body;
+  EXPECT_EQ(error_of(refused)["limit"], "max_run_frames");
+  EXPECT_EQ(error_of(refused)["requested"], 150);
 }
 
 }  // namespace

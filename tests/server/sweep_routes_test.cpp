@@ -170,5 +170,23 @@ TEST_F(SweepRoutes, ItsRunsArePagedByCellAndSayWhichSweepAndCaseTheyBelongTo) {
   EXPECT_TRUE(std::any_of(unswept.begin(), unswept.end(), [&](const json& r) { return r["id"] == plain_id; }));
 }
 
+TEST_F(SweepRoutes, ValidateChecksASpecAsAStartWouldAndStartsNothing) {
+  const HttpResult ok = send("POST", "/api/sweeps/validate", spec("rest-validated", 3));
+  ASSERT_EQ(ok.status, 200) << ok.body;
+  EXPECT_EQ(ok.json()["valid"], true);
+  EXPECT_EQ(ok.json()["name"], "rest-validated");
+  EXPECT_EQ(ok.json()["total"], 12);  // 4 scenarios x 3 configurations
+  EXPECT_EQ(ok.json()["configurations"], 3);
+  for (const json& started : get("/api/sweeps").json()) EXPECT_NE(started["name"], "rest-validated");  // nothing started
+  json bad = spec("rest-validated", 3);
+  bad["methods"] = json::array({"no_such_method"});
+  const HttpResult refused = send("POST", "/api/sweeps/validate", bad);
+  EXPECT_EQ(refused.status, 422) << refused.body;
+  EXPECT_EQ(error_of(refused)["path"].get<std::string>().rfind("methods[0]", 0), 0u) << refused.body;
+  bad = spec("rest-validated", 3);
+  bad["scenarios"] = json::array({"../etc/passwd.json"});
+  EXPECT_EQ(send("POST", "/api/sweeps/validate", bad).status, 422);  // never a path over REST
+}
+
 }  // namespace
 }  // namespace rrlab::testing

@@ -91,10 +91,14 @@ await suite('replay', [
   ['a compare group replays its lanes on one frame, and a plot click seeks them all', async (t) => {
     const group = await t.post('/api/compare', { scenario: '01_planar7_obstacles', methods: ['pinv', 'dls', 'gpm'], mode: 'batch' });
     const ids = group.runs.map((r) => r.id);
-    await t.page.goto(`${t.base}/?compare=${ids.join(',')}`);
-    await until(async () => (await shown(t.page)).scrubber > 100, 'the group to play');
+    // opened at frame 0, paused; played by hand (an autoplay could reach the end before a slow test acts)
+    await t.page.goto(`${t.base}/?compare=${ids.join(',')}&frame=0`);
+    await allAt(t.page, 0, 'the group at frame 0');
+    await t.page.locator('#replay-play').click();
+    await until(async () => { const s = await shown(t.page); return s.playing && s.scrubber > 20; }, 'the group to play');
     await t.page.locator('#replay-play').click();
     const paused = (await shown(t.page)).scrubber;
+    check(!(await shown(t.page)).playing, 'Play again pauses');
     await allAt(t.page, paused, 'every lane on the frame the group paused at');
     // a click on a chart seeks every lane
     await until(() => t.page.evaluate(() => window.__rrlab.plots.charts.get('distance') !== undefined), 'the distance chart');

@@ -84,7 +84,11 @@ await suite('sweeps', [
     forgiveRefusals(t);
     await t.page.fill('#sweep-spec', '{"name": ');
     check((await t.page.textContent('#sweep-syntax')).startsWith('not JSON'), 'a spec that is not JSON says so as it is typed');
+    // checked by the server as it is typed: what is wrong, or what it would run
+    await t.page.fill('#sweep-spec', JSON.stringify({ ...SPEC, name: 'dialog-sweep', success: { max_tracking_error: -1 } }));
+    await until(async () => (await t.page.textContent('#sweep-syntax')).includes('success.max_tracking_error'), 'the server naming the bad field');
     await t.page.fill('#sweep-spec', JSON.stringify({ ...SPEC, name: 'dialog-sweep' }));
+    await until(async () => (await t.page.textContent('#sweep-syntax')).startsWith('valid: 8 runs'), 'the dialog to say 8 runs');
     await t.page.click('#sweep-start');
     await until(() => t.page.evaluate(() => new URLSearchParams(location.search).has('sweep')), 'the new sweep\'s page');
     await t.page.waitForSelector('.sweep-success td.cell', { timeout: 60000 });
@@ -99,5 +103,6 @@ await suite('sweeps', [
     check(/gen:planar_clutter|file:00_demo_avoidance/.test(first), `a run named by its case: ${first}`);
     check(await group.locator('li[data-run] button', { hasText: 'Re-simulate' }).count() === 8, 'each offers re-simulation (no frames stored)');
     await t.screenshot('grouped');
+    forgiveRefusals(t);  // the refusals the dialog asked for
   }],
 ]);

@@ -54,8 +54,9 @@ await suite('view3d-tools', [
     await t.screenshot('from-x');
 
     // distance labels: in metres, never overlapping
+    const before = await t.page.evaluate(() => window.__rrlab.session.lanes[0].view.stats.renders);
     await t.page.click('.view3d-reset');
-    await t.page.waitForTimeout(100);
+    await until(() => t.page.evaluate((n) => window.__rrlab.session.lanes[0].view.stats.renders > n, before), 'the view drawn after Reset');
     const labels = await t.page.evaluate(() => [...document.querySelectorAll('.view3d-label')]
       .filter((e) => e.style.display !== 'none' && !e.classList.contains('view3d-label-hidden') && e.getBoundingClientRect().width > 0)
       .map((e) => { const r = e.getBoundingClientRect(); return { text: e.textContent, l: r.left, r: r.right, t: r.top, b: r.bottom }; }));

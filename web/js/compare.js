@@ -76,7 +76,7 @@ let shown = null;
 // or fail against the criterion, and one sentence that says what it means.
 export async function showCompareSummary(session) {
   const runs = await Promise.all(session.runIds.map((id) => api('GET', `/api/runs/${id}`)));
-  if (runs.some((r) => !r.summary)) return;
+  if (session.closed || runs.some((r) => !r.summary)) return;  // another session was opened meanwhile
   shown = { session, summaries: runs.map((r) => r.summary) };
   renderSummary();
 }

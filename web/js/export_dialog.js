@@ -2,6 +2,7 @@
 // replay), its size, and for a video the frame range, stride and rate; the
 // file downloads when it is ready, with progress for a video.
 import { app } from './state.js';
+import { escapeHtml } from './dom.js';
 import { viewPng, chartPng, figurePng, recordVideo, checkRange, download } from './exports.js';
 
 const $ = (id) => document.getElementById(id);
@@ -16,6 +17,7 @@ export class ExportDialog {
     this.cancel = false;
     $('open-export').onclick = () => this.open();
     $('export-what').onchange = () => this.showFields();
+    for (const id of ['export-width', 'export-height']) $(id).addEventListener('input', () => { this.sizeTouched = true; });
     $('export-cancel').onclick = () => { if (this.busy) this.cancel = true; else $('export-dialog').close(); };
     $('export-form').onsubmit = (e) => { e.preventDefault(); this.run().catch((err) => this.failed(err)); };
   }
@@ -30,7 +32,7 @@ export class ExportDialog {
     for (const c of this.plots.chartIds()) options.push([`chart:${c.id}`, `chart: ${c.title} (PNG)`]);
     options.push(['figure', 'a figure for a paper: views, charts, legend, metadata (PNG)']);
     if (session.kind === 'replay' && !session.empty) options.push(['video', 'a video of the replay (WebM)']);
-    $('export-what').innerHTML = options.map(([v, t]) => `<option value="${v}">${t}</option>`).join('');
+    $('export-what').innerHTML = options.map(([v, t]) => `<option value="${escapeHtml(v)}">${escapeHtml(t)}</option>`).join('');
     const last = Math.max(0, session.frameCount - 1);
     $('export-from').value = '0';
     $('export-to').value = String(last);

@@ -243,7 +243,8 @@ async function loadMarkers(s) {
   const markers = eventMarkers(events);
   if (session !== s) return;
   replayBar.setMarkers(markers);
-  const { dt } = await s.lanes[0].ready;
+  const lane = s.lanes.find((l) => s.runs[l.index].frames > 0) || s.lanes[0];
+  const { dt } = await lane.ready;
   if (session === s) plots.setMarkers(markers.map((m) => ({ ...m, t: m.seq * dt })));
 }
 
@@ -274,15 +275,32 @@ async function startCompare(body, layout) {
   await openRuns(group.runs.map((r) => r.id), layout);
 }
 
-// An obstacle of a snapshot in the scenario format: a mesh goes back to its
-// file, a moved polygon's translation into its points.
-function asScenarioObstacle({ mesh, ...o }) {
-  if (o.shape === 'polygon' && Array.isArray(o.position)) {
-    const [dx, dy] = o.position;
-    o.points = o.points.map(([x, y]) => [x + dx, y + dy]);
-    delete o.position;
+// An obstacle of a snapshot in the scenario format, where the run left it: an
+// obstacle of the scenario keeps its own description (sizes, rpy in the
+// scenario's angle unit, a mesh's file) and takes the snapshot's place; one
+// added during the run is taken as the snapshot has it (rpy converted from
+// radians when the scenario counts in degrees).
+function asScenarioObstacle(o, scenario) {
+  const original = (scenario.obstacles || []).find((x) => x.id === o.id);
+  const { mesh, ...live } = o;
+  if (!original) {
+    if (Array.isArray(live.rpy) && scenario.angle_unit === 'deg') live.rpy = live.rpy.map((r) => (r * 180) / Math.PI);
+    if (live.shape === 'polygon' && Array.isArray(live.position)) {
+      const [dx, dy] = live.position;
+      live.points = live.points.map(([x, y]) => [x + dx, y + dy]);
+      delete live.position;
+    }
+    return live;
   }
-  return o;
+  const moved = structuredClone(original);
+  if ('center' in original && live.center) moved.center = live.center;
+  if ('position' in original && live.position && original.shape !== 'polygon') moved.position = live.position;
+  if ('point' in original && live.point) moved.point = live.point;
+  if (original.shape === 'polygon' && Array.isArray(live.position)) {
+    const [dx, dy] = live.position;
+    moved.points = live.points.map(([x, y]) => [x + dx, y + dy]);
+  }
+  return moved;
 }
 
 // A new live run of the ended run's scenario and method (parameters as they
@@ -294,7 +312,7 @@ async function restartWithScene() {
   const record = await api('GET', `/api/runs/${lane.runId}/record`);
   const scenario = structuredClone(record.scenario);
   if (lane.snapshot && Array.isArray(lane.snapshot.obstacles)) {
-    scenario.obstacles = lane.snapshot.obstacles.map(asScenarioObstacle);
+    scenario.obstacles = lane.snapshot.obstacles.map((o) => asScenarioObstacle(o, record.scenario));
   }
   const body = { scenario, mode: 'live', rate: Number($('rate').value) };
   if (lane.snapshot) { body.method = lane.snapshot.method; body.params = lane.snapshot.params; }
@@ -426,6 +444,7 @@ function endIfEnded(s) {
     $('joystick-section').hidden = true;
     for (const el of document.querySelectorAll('#controls button, #controls select')) el.disabled = true;
     $('restart-scene').disabled = false;
+    buildParams(session);  // its parameters read-only too
     sceneTools.reset();
     app.signals.connection.dispatch(session);
     if (session.compare) showCompareSummary(session).catch(report);

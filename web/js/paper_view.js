@@ -56,10 +56,11 @@ export class Papers {
   }
 
   async show(key) {
+    this.key = key;  // before any await: a run opened meanwhile hides it (key null) and the page stays hidden
     const data = await this.load();
+    if (this.key !== key) return;
     const paper = data.papers.find((p) => p.key === key);
     if (!paper) throw new Error(`no paper "${key}": one of ${PAPER_KEYS.join(', ')}`);
-    this.key = key;
     const page = $('paper-page');
     document.getElementById('center').classList.add('showing-page');
     page.hidden = false;

@@ -101,7 +101,7 @@ function startValues(lane) {
 // Rebuilds the panel from the focused lane's snapshot.
 export function buildParams(session) {
   const lane = session.focusLane;
-  const live = session.kind === 'live';
+  const live = session.kind === 'live' && !session.ended;  // an ended run takes no inputs
   $('params-section').hidden = !lane || !lane.snapshot;
   if (!lane || !lane.snapshot) return;
   const snapshot = lane.snapshot;

@@ -141,8 +141,8 @@ export class ReplayBar {
   // Called at the display rate: advances the playhead at the chosen speed.
   tick(now) {
     if (!this.session || !this.playing) { this.lastTick = null; return; }
-    const lane = this.session.lanes[0];
-    const dt = lane && lane.snapshot ? lane.snapshot.dt : null;
+    const lane = this.session.lanes.find((l) => l.snapshot);  // a lane without frames has none
+    const dt = lane ? lane.snapshot.dt : null;
     if (this.lastTick === null || !dt) { this.lastTick = now; this.head = this.current; return; }
     this.head += (this.speed * (now - this.lastTick)) / 1000 / dt;
     this.lastTick = now;

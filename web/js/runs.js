@@ -54,16 +54,24 @@ export class RunList {
       <div class="actions"><button type="button">Open sweep</button></div>`;
     li.querySelector('button').onclick = () => this.openSweep(sweep.id);
     const details = li.querySelector('details');
-    const load = async () => {
-      const q = new URLSearchParams(filters);
-      q.set('sweep', sweep.name);
-      const runs = await api('GET', `/api/runs?${q}`).catch(() => []);
-      const ul = li.querySelector('.sweep-run-list');
+    const ul = li.querySelector('.sweep-run-list');
+    const show = (runs) => {
       ul.replaceChildren(...runs.map((r) => this.item(r, runs)));
       if (!runs.length) ul.innerHTML = '<li class="muted small">no runs match the filters</li>';
     };
-    details.addEventListener('toggle', () => { if (details.open) load(); });
-    if (open) { details.open = true; load(); }
+    // the last list shown stands until the new one comes (the list refreshes every 2 s)
+    this.sweepRuns = this.sweepRuns || new Map();
+    if (this.sweepRuns.has(sweep.name)) show(this.sweepRuns.get(sweep.name));
+    const load = async () => {
+      const q = new URLSearchParams(filters);
+      q.set('sweep', sweep.name);
+      const runs = await api('GET', `/api/runs?${q}`).catch(() => null);
+      if (!runs) return;
+      this.sweepRuns.set(sweep.name, runs);
+      show(runs);
+    };
+    details.addEventListener('toggle', () => { if (details.open) load(); });  // fired by opening it, by hand or below
+    if (open) details.open = true;
     return li;
   }
 

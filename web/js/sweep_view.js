@@ -31,6 +31,7 @@ export class SweepPage {
   async show(id) {
     this.hide();
     this.id = id;
+    this.token = (this.token || 0) + 1;  // one polling chain per page shown
     this.cell = null;
     document.getElementById('center').classList.add('showing-page');
     $('sweep-page').hidden = false;
@@ -48,18 +49,23 @@ export class SweepPage {
   }
 
   async load() {
-    const id = this.id;
+    const id = this.id, token = this.token;
+    const again = () => { this.timer = setTimeout(() => this.load().catch((e) => app.error(e)), POLL_MS); };
     let status;
     try {
       status = await api('GET', `/api/sweeps/${id}`);
     } catch (e) {
-      if (this.id === id) $('sweep-page').innerHTML = `<p class="bad">${escapeHtml(e.status === 404 ? `There is no sweep #${id} on this server (sweeps are kept while the server runs; their runs stay stored).` : e.message)}</p>`;
+      if (this.token !== token) return;
+      if (e.status === 404 || !this.status) {
+        $('sweep-page').innerHTML = `<p class="bad">${escapeHtml(e.status === 404 ? `There is no sweep #${id} on this server (sweeps are kept while the server runs; their runs stay stored).` : e.message)}</p>`;
+      }
+      if (e.status !== 404) again();  // a failed poll of a sweep on screen tries again
       return;
     }
-    if (this.id !== id) return;
+    if (this.token !== token) return;
     this.status = status;
     this.render();
-    if (status.status === 'running') this.timer = setTimeout(() => this.load().catch((e) => app.error(e)), POLL_MS);
+    if (status.status === 'running') again();
   }
 
   render() {

@@ -19,6 +19,7 @@ export class SweepList {
     this.open = open;  // (id) shows a sweep's page
     this.sweeps = [];
     this.progress = new Map();  // id → {done, total} of running sweeps
+    this.validations = 0;  // the newest server check of the spec wins
     $('new-sweep').onclick = () => this.openDialog();
     $('sweep-cancel').onclick = () => $('sweep-dialog').close();
     $('sweep-spec').oninput = () => this.checkSyntax();
@@ -78,19 +79,35 @@ export class SweepList {
     $('sweep-dialog').showModal();
   }
 
-  // The spec parses as JSON, or the error says where it does not.
+  // The spec parses as JSON, or the error says where it does not; once it
+  // does, the server checks it as a start would (POST /api/sweeps/validate,
+  // a moment after the typing stops) and says what it would run or what is wrong.
   checkSyntax() {
     const text = $('sweep-spec').value;
+    clearTimeout(this.validateTimer);
+    let spec;
     try {
-      JSON.parse(text);
-      $('sweep-syntax').textContent = 'valid JSON; the server checks the rest when you start it';
-      $('sweep-syntax').className = 'small ok';
-      return true;
+      spec = JSON.parse(text);
     } catch (e) {
       $('sweep-syntax').textContent = `not JSON yet: ${e.message}`;
       $('sweep-syntax').className = 'small bad';
       return false;
     }
+    $('sweep-syntax').textContent = 'valid JSON; checking it with the server…';
+    $('sweep-syntax').className = 'small muted';
+    const asked = ++this.validations;
+    this.validateTimer = setTimeout(() => {
+      api('POST', '/api/sweeps/validate', spec).then((v) => {
+        if (asked !== this.validations) return;
+        $('sweep-syntax').textContent = `valid: ${v.total} runs (${v.scenario_entries} scenario entries × ${v.configurations} method configurations, cases included)`;
+        $('sweep-syntax').className = 'small ok';
+      }, (e) => {
+        if (asked !== this.validations) return;
+        $('sweep-syntax').textContent = `the server refuses it: ${describeError(e)}`;
+        $('sweep-syntax').className = 'small bad';
+      });
+    }, 400);
+    return true;
   }
 
   showError(e) {
