@@ -37,11 +37,11 @@ await suite('view3d-tools', [
     await t.page.waitForTimeout(300);
     check(near(await looking(t.page), fitted, 1e-9), 'the fitted view stays put');
     check(!near(fitted, first, 0.05), `Fit keeps looking from where one turned to (${fitted}), not from the first view`);
+    const renders = await t.page.evaluate(() => window.__rrlab.session.lanes[0].view.stats.renders);  // before the click: its draw may come at once
     await t.page.click('.view3d-reset');
     check(near(await looking(t.page), first, 1e-6), 'Reset returns to the first view');
 
     // a click on the gizmo's x bubble: the camera turns to look along -x, from +x
-    const renders = await t.page.evaluate(() => window.__rrlab.session.lanes[0].view.stats.renders);
     await until(() => t.page.evaluate((n) => window.__rrlab.session.lanes[0].view.stats.renders > n, renders), 'a draw after Reset (the gizmo turns with the camera)');
     const bubble = await t.page.evaluate(() => {
       const v = window.__rrlab.session.lanes[0].view;
