@@ -71,8 +71,9 @@ await suite('runs', [
     await t.page.goto(t.base + '/');
     await t.page.waitForSelector('#filter-scenario option[value="01_planar7_obstacles"], #filter-scenario option:text-is("01_planar7_obstacles")', { state: 'attached' });
     await t.page.selectOption('#filter-scenario', '01_planar7_obstacles');
-    await until(async () => (await t.page.locator(`#runs li[data-run="${run.id}"]`).count()) === 1, 'the run under its catalogue name');
-    check((await t.page.locator(`#runs li[data-run="${other.id}"]`).count()) === 0, 'the other scenario\'s run is filtered out');
+    // both before the filter; after it, the one run only (the list refreshes after the choice: wait for that)
+    await until(async () => (await t.page.locator(`#runs li[data-run="${run.id}"]`).count()) === 1 &&
+      (await t.page.locator(`#runs li[data-run="${other.id}"]`).count()) === 0, 'the run under its catalogue name, the other scenario\'s filtered out');
     check((await t.page.textContent(`#runs li[data-run="${run.id}"] .title`)).includes('01_planar7_obstacles'), 'the list names the run by its catalogue name');
     // the replay's header names it the same way
     await t.page.locator(`#runs li[data-run="${run.id}"] button`, { hasText: 'Replay' }).click();
