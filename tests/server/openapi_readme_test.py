@@ -238,10 +238,18 @@ class ExamplesAgainstOpenApi(unittest.TestCase):
         self.assertTrue(rrlab_serve.wait_until(
             lambda: self.call("GET", f"/api/sweeps/{sweep['id']}")[1]["status"] != "running", timeout=120))
         check("GET", "/api/sweeps/{id}", f"/api/sweeps/{sweep['id']}", status=200)
+        swept = check("GET", "/api/sweeps/{id}/runs", f"/api/sweeps/{sweep['id']}/runs", status=200)
+        # a sweep run stores no frames: its re-simulation compares its summary
+        check("POST", "/api/runs/{id}/replay", f"/api/runs/{swept['runs'][0]['run']}/replay", body={"mode": "resimulate"},
+              status=200)
+        check("POST", "/api/sweeps/validate", body={"name": "openapi-check", "methods": ["pinv"], "steps": 20,
+                                                    "scenarios": ["01_planar7_obstacles"],
+                                                    "success": {"max_tracking_error": 0.01}}, status=200)
+        check("POST", "/api/sweeps/validate", body={"name": "x"}, status=422)
         check("POST", "/api/sweeps/{id}/control", f"/api/sweeps/{sweep['id']}/control", body={"action": "stop"},
               status=200)
         check("POST", "/api/sweeps", body={"name": "x"}, status=422)
-        self.assertEqual(len({(v, t) for v, t, _ in checked}), 29)  # every documented operation at least once
+        self.assertEqual(len({(v, t) for v, t, _ in checked}), 31)  # every documented operation at least once
 
     def test_the_schemas_refuse_what_the_server_refuses(self):
         # the check above would pass with empty schemas: a few bodies the server answers 400/422
