@@ -2,6 +2,7 @@
 // the method × family success table with its best cells, the failure modes,
 // step cost, success against difficulty as an inline SVG, and the method
 // configurations as the compare endpoint takes them. Pure: no DOM.
+import { escapeHtml } from './dom.js';
 
 // "dls{lambda=0.1,damping=fixed}" → {name: 'dls', params: {lambda: 0.1, damping: 'fixed'}};
 // a bare name → the name.
@@ -66,12 +67,11 @@ export function difficultySvg(groups, colours, { width = 320, height = 140 } = {
   const w = width - pad.left - pad.right, h = height - pad.top - pad.bottom;
   const sx = (x) => pad.left + (x1 > x0 ? ((x - x0) / (x1 - x0)) * w : w / 2);
   const sy = (r) => pad.top + (1 - r) * h;
-  const esc = (t) => String(t).replace(/[&<>"]/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;' })[c]);
   const lines = withBins.map((g, i) => {
     const points = g.difficulty.bins.filter((b) => b.n > 0).map((b) => [sx((b.low + b.high) / 2), sy(b.successes / b.n), b]);
     const colour = colours[i % colours.length];
     const path = points.map(([x, y], k) => `${k ? 'L' : 'M'}${x.toFixed(1)},${y.toFixed(1)}`).join('');
-    const dots = points.map(([x, y, b]) => `<circle cx="${x.toFixed(1)}" cy="${y.toFixed(1)}" r="2.5" fill="${colour}"><title>${esc(g.config)}: ${b.successes}/${b.n} in [${b.low.toPrecision(3)}, ${b.high.toPrecision(3)}]</title></circle>`).join('');
+    const dots = points.map(([x, y, b]) => `<circle cx="${x.toFixed(1)}" cy="${y.toFixed(1)}" r="2.5" fill="${colour}"><title>${escapeHtml(g.config)}: ${b.successes}/${b.n} in [${b.low.toPrecision(3)}, ${b.high.toPrecision(3)}]</title></circle>`).join('');
     return `<path d="${path}" fill="none" stroke="${colour}" stroke-width="1.5"/>${dots}`;
   }).join('');
   const axes = `<line x1="${pad.left}" y1="${sy(0)}" x2="${pad.left + w}" y2="${sy(0)}" stroke="#90a4ae"/>` +
@@ -80,6 +80,6 @@ export function difficultySvg(groups, colours, { width = 320, height = 140 } = {
     `<text x="${pad.left - 4}" y="${sy(0) + 4}" text-anchor="end" font-size="10">0</text>` +
     `<text x="${pad.left}" y="${height - 14}" font-size="10">${x0.toPrecision(3)}</text>` +
     `<text x="${pad.left + w}" y="${height - 14}" text-anchor="end" font-size="10">${x1.toPrecision(3)}</text>` +
-    `<text x="${pad.left + w / 2}" y="${height - 2}" text-anchor="middle" font-size="10">${esc(measure)}</text>`;
-  return `<svg xmlns="http://www.w3.org/2000/svg" width="${width}" height="${height}" role="img" aria-label="success against ${esc(measure)}">${axes}${lines}</svg>`;
+    `<text x="${pad.left + w / 2}" y="${height - 2}" text-anchor="middle" font-size="10">${escapeHtml(measure)}</text>`;
+  return `<svg xmlns="http://www.w3.org/2000/svg" width="${width}" height="${height}" role="img" aria-label="success against ${escapeHtml(measure)}">${axes}${lines}</svg>`;
 }
