@@ -85,10 +85,16 @@ void multiply_fixed(Eigen::Matrix3d& rot, const Eigen::Matrix3d& m) {
 }  // namespace
 
 void forward_kinematics(const Model& model, const Eigen::VectorXd& q, KinematicsData& data) {
-  assert(q.size() == model.dof());
-  Eigen::Matrix3d rot = model.base.linear();
-  Eigen::Vector3d pos = model.base.translation();
-  for (int j = 0; j < model.dof(); ++j) {
+  forward_kinematics_from(model, q, data, 0);
+}
+
+void forward_kinematics_from(const Model& model, const Eigen::VectorXd& q, KinematicsData& data, int first) {
+  assert(q.size() == model.dof() && first >= 0 && first <= model.dof());
+  // the frame before joint `first`: the base, or the one data holds after joint first − 1
+  const Eigen::Isometry3d& before = first == 0 ? model.base : data.joint_frames[first - 1];
+  Eigen::Matrix3d rot = before.linear();
+  Eigen::Vector3d pos = before.translation();
+  for (int j = first; j < model.dof(); ++j) {
     const Joint& joint = model.joints[j];
     // frame before the motion: T * pre
     pos += rot * joint.pre.translation();

@@ -28,6 +28,10 @@ struct KinematicsData {
 
 // All joint frames and link segments in one pass (no allocation).
 void forward_kinematics(const Model& model, const Eigen::VectorXd& q, KinematicsData& data);
+// The same for a q that differs from the one `data` was last computed for
+// only in joints first.. (the frames before joint `first` are kept): the
+// same numbers as forward_kinematics, for the work of the changed joints.
+void forward_kinematics_from(const Model& model, const Eigen::VectorXd& q, KinematicsData& data, int first);
 
 // 6 x n Jacobian [v; w] of the world point p rigidly attached to `link`;
 // columns of joints beyond the link are zero. `jac` must be 6 x dof.

@@ -68,12 +68,13 @@
 //    joints off their limits), w_dm = 0 (DM pulled options away from
 //    obstacle clearance), block_switch = 0.02.
 #include <algorithm>
-#include <Eigen/LU>
 #include <bitset>
 #include <cmath>
 
 #include "methods/factories.hpp"
+#include "util/extreme_eigenvalues.hpp"
 #include "util/right_inverse.hpp"
+#include "util/small_lu.hpp"
 
 namespace rrlab {
 namespace {
@@ -120,10 +121,10 @@ class DirectSearch final : public Method {
         distances_now_(std::max(1, ctx.model.link_count())),
         point_jacobian_(3, n_),
         square_block_(m_, m_),
-        lu_(m_),
         recovery_inverse_(m_, n_),
         recovery_step_(n_),
-        recovery_q_(n_) {
+        recovery_q_(n_),
+        probe_q_(n_) {
     theta_previous_ = Eigen::VectorXd::Zero(n_);
     joint_range_weights(ctx.model.limits);
     choose_joints();
@@ -146,6 +147,7 @@ class DirectSearch final : public Method {
   void step(const StepInput& in, StepOutput& out) override {
     const Eigen::VectorXd& q = in.state.q;
     if (in.state.step == 0) rule_active_ = false;  // a (re)started run replays bit for bit
+    probe_valid_ = false;
     set_target(in);
     // eq 2: δx at the current configuration
     pose_error(in.kin, error0_);
@@ -230,7 +232,7 @@ class DirectSearch final : public Method {
     if (chosen >= 0 && std::isnan(criteria_(chosen, kDm))) {
       // its DM was not needed to choose it: the diagnostic's, at its kinematics
       theta_ = options_.col(chosen);
-      forward_kinematics(in.model, theta_, probe_);
+      probe_fk(in.model, theta_);
       task_jacobian(in.model, probe_, space_, jacobian_);
       criteria_(chosen, kDm) = dexterity(jacobian_);
     }
@@ -273,7 +275,7 @@ class DirectSearch final : public Method {
     }
     recovery_q_ = in.state.q + scale * recovery_step_;
     recovery_q_ = recovery_q_.cwiseMax(limits.lower).cwiseMin(limits.upper);
-    forward_kinematics(in.model, recovery_q_, probe_);
+    probe_fk(in.model, recovery_q_);
     pose_error(probe_, error_);
     recovery_residual_ = error_.cwiseAbs().maxCoeff();
     return std::isfinite(recovery_residual_) ? recovery_residual_ : kInf;
@@ -286,7 +288,12 @@ class DirectSearch final : public Method {
     const int count = option_count();
     max_iterations_used_ = 0;
     int feasible = 0;
-    for (int j = 0; j < count; ++j) {
+    for (int s = 0; s < count; ++s) {
+      // options in the order where the first perturbed joint changes slowest:
+      // consecutive options share the kinematics of the joints before the
+      // first one they differ in (probe_fk); the selection does not depend on
+      // this order, only on the option's index j
+      const int j = option_of_sequence(s);
       theta_ = q;
       int code = j;
       rhs_ = error0_;
@@ -300,26 +307,25 @@ class DirectSearch final : public Method {
       int it = 0;
       double residual = kInf, previous = kInf;
       while (true) {  // eq 1–5: Newton on the block through the kinematics
-        forward_kinematics(in.model, theta_, probe_);
+        probe_fk(in.model, theta_);
         pose_error(probe_, error_);
         residual = error_.cwiseAbs().maxCoeff();
         if (!(residual < previous) && it > 0) {
           // diverging: keep the last better iterate (infeasible unless it met eq 5)
           theta_ = theta_previous_;
-          forward_kinematics(in.model, theta_, probe_);
+          probe_fk(in.model, theta_);
           residual = previous;
-          task_jacobian(in.model, probe_, space_, jacobian_);
           break;
         }
-        task_jacobian(in.model, probe_, space_, jacobian_);
         if (residual < p(kTolerance) || it >= static_cast<int>(p(kIterations))) break;
         previous = residual;
         theta_previous_ = theta_;
+        task_jacobian(in.model, probe_, space_, jacobian_);
         // eq 3 with J_b at θ (a full Newton step; the block is often poorly conditioned)
         for (int c = 0; c < block_count_; ++c) block_jacobian_.col(c) = jacobian_.col(block_[c]);
         if (block_count_ == m_) {  // the paper's square J_m×m: eq 3 by LU
           lu_.compute(block_jacobian_);
-          block_step_.noalias() = lu_.solve(error_);
+          lu_.solve(error_, block_step_);
           for (int c = 0; c < block_count_; ++c) theta_[block_[c]] += block_step_[c];
         } else {
           option_inverse_.factor_pinv(block_jacobian_);
@@ -336,6 +342,7 @@ class DirectSearch final : public Method {
       // criteria at θ^j (probe_ and jacobian_ hold its kinematics)
       criteria_(j, kJra) = (theta_ - centre_).cwiseAbs2().dot(inv_half_range_);
       criteria_(j, kJvm) = (theta_ - q).squaredNorm();
+      if (feasible_[j] && with_dm) task_jacobian(in.model, probe_, space_, jacobian_);  // J at θ^j, for DM only
       criteria_(j, kDm) = feasible_[j] && with_dm ? dexterity(jacobian_) : kNaN;
       criteria_(j, kObstacle) = -estimated_clearance(q);
     }
@@ -352,9 +359,30 @@ class DirectSearch final : public Method {
     scaled_jacobian_ = jacobian;
     if (space_ == TaskSpace::pose) scaled_jacobian_.topRows(3) /= p(kDmLength);
     jjt_.noalias() = scaled_jacobian_ * scaled_jacobian_.transpose();
-    eigenvalues_.compute(jjt_, Eigen::EigenvaluesOnly);
-    const double lo = eigenvalues_.eigenvalues()[0], hi = eigenvalues_.eigenvalues()[m_ - 1];
+    eigenvalues_.compute(jjt_);  // the two ends of the spectrum only
+    const double lo = eigenvalues_.min(), hi = eigenvalues_.max();
     return lo > 0 ? std::sqrt(hi / lo) : kInf;
+  }
+
+  // probe_ ← the kinematics at theta, recomputed from the first joint where
+  // theta differs from the configuration probe_ holds (bit for bit the same
+  // as a full forward_kinematics).
+  void probe_fk(const Model& model, const Eigen::VectorXd& theta) {
+    int first = 0;
+    if (probe_valid_)
+      while (first < n_ && theta[first] == probe_q_[first]) ++first;
+    if (probe_valid_ && first == n_) return;
+    forward_kinematics_from(model, theta, probe_, first);
+    probe_q_ = theta;
+    probe_valid_ = true;
+  }
+
+  // The option index j of the s-th generated option: s's base-3 digits in
+  // reverse (the first perturbed joint is j's lowest digit, s's highest).
+  int option_of_sequence(int s) const {
+    int j = 0;
+    for (int i = perturbed_count_ - 1; i >= 0; --i) j += (s % 3) * power3_[i], s /= 3;
+    return j;
   }
 
   int option_count() const {
@@ -372,6 +400,7 @@ class DirectSearch final : public Method {
     for (int i = 0; i < n_ && i < 64; ++i)
       if (((mask >> i) & 1) && count < allowed) mask_bits_ |= 1ULL << i, ++count;
     use_joint_set(mask_bits_);
+    for (int i = 0, p3 = 1; i < kMaxPerturbed; ++i, p3 *= 3) power3_[i] = p3;
     // a parameter change may allocate; steady-state steps do not
     block_inverse_ = RightInverse(m_, std::max(1, block_count_));
     option_inverse_ = RightInverse(m_, std::max(1, block_count_));
@@ -412,8 +441,12 @@ class DirectSearch final : public Method {
       int c = 0;
       for (int i = 0; i < n_; ++i)
         if (!((bits >> i) & 1)) alternative_block_.col(c++) = jacobian.col(i);
-      square_block_.noalias() = alternative_block_ * alternative_block_.transpose();
-      lu_.compute(square_block_);
+      if (block_count_ == m_) {
+        lu_.compute(alternative_block_);  // |det J_b|
+      } else {
+        square_block_.noalias() = alternative_block_ * alternative_block_.transpose();
+        lu_.compute(square_block_);  // det(J_b J_bᵀ)
+      }
       const double det = std::abs(lu_.determinant());
       if (det > best || (has_required && !best_has_required)) best = det, best_bits = bits, best_has_required = has_required;
     }
@@ -518,7 +551,7 @@ class DirectSearch final : public Method {
   // at most 6 x 6 (pose): fixed-capacity storage keeps Eigen's small-matrix paths
   using TaskSquare = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6>;
   TaskSquare jjt_;
-  Eigen::SelfAdjointEigenSolver<TaskSquare> eigenvalues_;
+  ExtremeEigenvalues eigenvalues_;
   Eigen::MatrixXd block_jacobian_;
   RightInverse block_inverse_, option_inverse_;
   Eigen::MatrixXd options_, criteria_;
@@ -528,7 +561,7 @@ class DirectSearch final : public Method {
   Eigen::MatrixXd distance_rows_;
   Eigen::VectorXd distances_now_;
   Eigen::MatrixXd point_jacobian_, square_block_;
-  Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
+  SmallLu lu_;
   unsigned long long mask_bits_ = 0, current_bits_ = 0;
   Eigen::MatrixXd alternative_block_;
   Eigen::VectorXd theta_previous_;
@@ -543,6 +576,9 @@ class DirectSearch final : public Method {
   int links_with_distance_ = 0;
   RightInverse recovery_inverse_;
   Eigen::VectorXd recovery_step_, recovery_q_;
+  Eigen::VectorXd probe_q_;  // the configuration probe_ holds when probe_valid_
+  bool probe_valid_ = false;
+  int power3_[kMaxPerturbed] = {};
   double recovery_residual_ = 0;
   int recovery_diag_ = 0;
   int chosen_diag_[kCriteria], weight_diag_[kCriteria];

@@ -1,0 +1,44 @@
+// The smallest and largest eigenvalue of a symmetric matrix of at most 6 x 6
+// (a task's J Jᵀ), without the other eigenvalues: Householder
+// tridiagonalisation, then Newton's method on the characteristic polynomial
+// det(T − xI) from outside the spectrum. For a polynomial whose roots are all
+// real, Newton from above the largest root (from below the smallest) falls
+// monotonically onto it, so every iterate stays a bound and convergence is
+// detected by the step stopping to shrink. Where it does not settle within
+// its iteration budget (a cluster of equal extreme eigenvalues converges
+// only linearly), the full QR eigensolver gives the answer.
+// Allocation-free after construction.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Eigenvalues>
+
+namespace rrlab {
+
+class ExtremeEigenvalues {
+ public:
+  using Matrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6>;
+
+  explicit ExtremeEigenvalues(int size);
+
+  // Eigenvalues of the symmetric `a` (its lower triangle is read); size ≤ 6.
+  void compute(const Matrix& a);
+  double min() const { return min_; }
+  double max() const { return max_; }
+  // Newton iterations of the last compute (both ends), or −1 when the QR fallback answered.
+  int iterations() const { return iterations_; }
+
+ private:
+  // Newton on det(T − xI) from x towards the nearest root on the side of
+  // `direction` (−1: the largest root from above, +1: the smallest from below).
+  // False when it did not settle within the budget.
+  bool newton(double x, double direction, double& root, int& iterations) const;
+
+  Eigen::Tridiagonalization<Matrix> tridiagonal_;
+  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1> diagonal_, off_squared_;
+  Eigen::SelfAdjointEigenSolver<Matrix> fallback_;
+  double min_ = 0, max_ = 0;
+  int iterations_ = 0;
+};
+
+}  // namespace rrlab

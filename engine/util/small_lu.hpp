@@ -1,0 +1,72 @@
+// LU factorisation with partial pivoting of a square matrix of at most 6 x 6
+// (a task-sized block), on the stack: Gaussian elimination, the pivot the
+// largest magnitude in its column. Several times faster than Eigen's
+// PartialPivLU at these sizes, where Eigen's general blocked code dominates.
+// A singular matrix is factored all the same (a zero pivot): solve() then
+// returns non-finite values, as PartialPivLU's would be.
+#pragma once
+
+#include <Eigen/Core>
+#include <cmath>
+#include <utility>
+
+namespace rrlab {
+
+class SmallLu {
+ public:
+  static constexpr int kMax = 6;
+
+  // Factors the n x n matrix a (n ≤ 6).
+  template <typename Matrix>
+  void compute(const Matrix& a) {
+    n_ = int(a.rows());
+    for (int r = 0; r < n_; ++r)
+      for (int c = 0; c < n_; ++c) lu_[r][c] = a(r, c);
+    sign_ = 1;
+    for (int k = 0; k < n_; ++k) {
+      int pivot = k;
+      for (int r = k + 1; r < n_; ++r)
+        if (std::abs(lu_[r][k]) > std::abs(lu_[pivot][k])) pivot = r;
+      perm_[k] = pivot;
+      if (pivot != k) {
+        std::swap(lu_[k], lu_[pivot]);
+        sign_ = -sign_;
+      }
+      const double inverse = 1.0 / lu_[k][k];
+      for (int r = k + 1; r < n_; ++r) {
+        const double l = lu_[r][k] * inverse;
+        lu_[r][k] = l;
+        for (int c = k + 1; c < n_; ++c) lu_[r][c] -= l * lu_[k][c];
+      }
+    }
+  }
+
+  // x = A⁻¹ b (x and b may be the same vector).
+  template <typename In, typename Out>
+  void solve(const In& b, Out& x) const {
+    double y[kMax];
+    for (int r = 0; r < n_; ++r) y[r] = b[r];
+    for (int k = 0; k < n_; ++k) std::swap(y[k], y[perm_[k]]);  // the row swaps, in order
+    for (int r = 1; r < n_; ++r)
+      for (int c = 0; c < r; ++c) y[r] -= lu_[r][c] * y[c];  // L y = P b (unit diagonal)
+    for (int r = n_ - 1; r >= 0; --r) {
+      for (int c = r + 1; c < n_; ++c) y[r] -= lu_[r][c] * y[c];
+      y[r] /= lu_[r][r];  // U x = y
+    }
+    for (int r = 0; r < n_; ++r) x[r] = y[r];
+  }
+
+  double determinant() const {
+    double d = sign_;
+    for (int k = 0; k < n_; ++k) d *= lu_[k][k];
+    return d;
+  }
+
+ private:
+  double lu_[kMax][kMax] = {};
+  int perm_[kMax] = {};
+  int n_ = 0;
+  double sign_ = 1;
+};
+
+}  // namespace rrlab
