@@ -31,6 +31,7 @@ AvoidanceManipulability::AvoidanceManipulability(const Model& model, TaskSpace s
       jacobian3_(3, model.dof()),
       unit_(model.dof()),
       column_(model.dof()) {
+  for (int r = 0; r < 4; ++r) ball_volume_[r] = unit_ball_volume(r);
   const int points = std::max(0, model.link_count() - 1);
   point_jacobians_.assign(points, Eigen::MatrixXd::Zero(rows_, n_));
   matrices_.assign(points, Eigen::MatrixXd::Zero(rows_, n_));
@@ -61,8 +62,9 @@ AvoidanceManipulability::AvoidanceManipulability(const Model& model, TaskSpace s
 
 double AvoidanceManipulability::compute(const Model& model, const KinematicsData& kin,
                                         const Eigen::MatrixXd& hand_jacobian) {
-  // I − J_n⁺J_n column by column (the null space of the hand task, eq. 2)
   hand_inverse_.factor_pinv(hand_jacobian);
+  if (!directions_ && point_count() > 0 && ellipsoids_[0].volume_rank > 0) return compute_volumes(model, kin);
+  // I − J_n⁺J_n column by column (the null space of the hand task, eq. 2)
   for (int j = 0; j < n_; ++j) {
     unit_.setZero();
     unit_[j] = 1.0;
@@ -80,6 +82,43 @@ double AvoidanceManipulability::compute(const Model& model, const KinematicsData
     decompose(i);
     // Zhang eq. 21: ¹E = Σ ¹V_i a_i with a_i = 1 m^(−r_i): a number without unit
     amsi_ += ellipsoids_[i].volume;
+  }
+  return amsi_;
+}
+
+double AvoidanceManipulability::compute_volumes(const Model& model, const KinematicsData& kin) {
+  // ¹M_i row by row: its rows are the rows of J_i projected onto the hand's
+  // null space, (I − J_n⁺J_n) J_iᵀ (the projector is symmetric) — m projections
+  // per point instead of the n x n projector and its product
+  amsi_ = 0;
+  for (int i = 0; i < point_count(); ++i) {
+    const Eigen::Vector3d point = kin.link_end.col(i);
+    point_jacobian_linear(model, kin, i, point, jacobian3_);
+    point_jacobians_[i] = jacobian3_.topRows(rows_);
+    for (int r = 0; r < rows_; ++r) {
+      unit_ = point_jacobians_[i].row(r).transpose();
+      hand_inverse_.null_project(unit_, column_);
+      matrices_[i].row(r) = column_.transpose();
+    }
+    AvoidanceEllipsoid& e = ellipsoids_[i];
+    e.centre = point;
+    // Zhang eq. 18, 20: ¹V_i = c · σ_1 ⋯ σ_r with r the generic rank, whose
+    // other σ are 0: σ_1² ⋯ σ_r² is then e_r, the r-th elementary symmetric
+    // function of the eigenvalues of ¹M_i ¹M_iᵀ — the sum of its principal
+    // r x r minors (trace, 2 x 2 minors, determinant); no eigen-decomposition
+    Eigen::Matrix3d mmt = Eigen::Matrix3d::Zero();
+    mmt.topLeftCorner(rows_, rows_).noalias() = matrices_[i] * matrices_[i].transpose();
+    double product = 0;
+    switch (e.volume_rank) {
+      case 1: product = mmt.trace(); break;
+      case 2:
+        product = mmt(0, 0) * mmt(1, 1) - mmt(0, 1) * mmt(1, 0) + mmt(0, 0) * mmt(2, 2) - mmt(0, 2) * mmt(2, 0) +
+                  mmt(1, 1) * mmt(2, 2) - mmt(1, 2) * mmt(2, 1);
+        break;
+      case 3: product = mmt.determinant(); break;
+    }
+    e.volume = ball_volume_[e.volume_rank] * std::sqrt(std::max(product, 0.0));
+    amsi_ += e.volume;
   }
   return amsi_;
 }

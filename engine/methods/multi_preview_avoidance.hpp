@@ -35,9 +35,10 @@ class AvoidanceManipulability {
  public:
   // Link points are the tips of every link but the last (the paper's
   // intermediate links i = 1..n−1); m = 2 rows for planar models, else 3.
-  // Without `directions` the ellipsoids keep their semi-axis lengths but not
-  // their directions (the GA's imaginary manipulators score AMSI only): the
-  // same eigenvalues, bit for bit, for less work.
+  // Without `directions` (the GA's imaginary manipulators score AMSI only)
+  // an ellipsoid keeps its centre and volume but neither semi-axes nor rank:
+  // the volumes come from ¹M_i ¹M_iᵀ's principal minors, without an
+  // eigen-decomposition (the same volumes to rounding, ~1e-15 relative).
   AvoidanceManipulability(const Model& model, TaskSpace space, bool directions = true);
 
   // Avoidance matrices and ellipsoids at a configuration whose kinematics and
@@ -54,6 +55,7 @@ class AvoidanceManipulability {
 
  private:
   void decompose(int i);
+  double compute_volumes(const Model& model, const KinematicsData& kin);  // without directions
 
   int n_, rows_;
   bool directions_;
@@ -64,6 +66,7 @@ class AvoidanceManipulability {
   std::vector<AvoidanceEllipsoid> ellipsoids_;
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig_;
   double amsi_ = 0;
+  double ball_volume_[4] = {};  // c_r of eq. 19 for r = 0..3
 };
 
 // Zhang eq. 12–17, plural avoidance tasks: after avoidance tasks were realised

@@ -15,7 +15,8 @@ constexpr double kMissPenalty = 100.0;     // fitness lost per metre (radian) th
 constexpr double kBlend = 0.25;            // BLX-α crossover: u ∈ [−α, 1 + α]
 constexpr double kWorst = -1e300;
 
-double wrap_angle(double a) { return std::remainder(a, 2.0 * M_PI); }  // (−π, π]
+// (−π, π]; remainder returns an angle within [−π, π] unchanged, so it is skipped there
+double wrap_angle(double a) { return std::abs(a) <= M_PI ? a : std::remainder(a, 2.0 * M_PI); }
 }  // namespace
 
 JointBox::JointBox(const Model& model) : lower(model.dof()), upper(model.dof()), circular(model.dof()) {
@@ -49,7 +50,10 @@ ImaginaryManipulator::ImaginaryManipulator(const Model& model, TaskSpace space)
       error_(task_rows(space)),
       step_(model.dof()),
       q_(model.dof()),
-      avoidance_(model, space, false) {}  // fitness needs AMSI, not the ellipsoids' directions
+      avoidance_(model, space, false) {  // fitness needs AMSI, not the ellipsoids' directions
+  if (PlanarArm::applies(model, space)) planar_ = std::make_unique<PlanarArm>(model);
+  for (int i = 0; i < avoidance_.point_count(); ++i) ranks_.push_back(avoidance_.ellipsoid(i).volume_rank);
+}
 
 ImaginaryManipulator::~ImaginaryManipulator() = default;
 
@@ -77,7 +81,10 @@ void ImaginaryManipulator::set_scene(const Scene& scene, double ahead) {
     collision_ = std::make_unique<CollisionWorld>(model_, scene_);
     distances_.resize(model_.link_count(), int(scene_.obstacles.size()));
     fingerprint_ = fingerprint;
+    planar_obstacles_built_ = planar_ && planar_obstacles_.build(scene_);
   }
+  // a planar arm scores its potential in its plane where every obstacle allows
+  planar_obstacles_placed_ = planar_obstacles_built_ && planar_obstacles_.place(scene, ahead);
   for (size_t k = 0; k < scene.obstacles.size(); ++k) {
     const Obstacle& now = scene.obstacles[k];
     Obstacle& later = scene_.obstacles[k];
@@ -108,7 +115,17 @@ Evaluation ImaginaryManipulator::evaluate(Eigen::Ref<Eigen::VectorXd> q, const P
   // position"); for any chain we get there by Newton steps from the gene
   q_ = q;
   double residual = 0;
-  for (int it = 0;; ++it) {
+  if (planar_) {  // the same iteration in closed form
+    for (int it = 0;; ++it) {
+      planar_->kinematics(q_);
+      residual = planar_->hand_error(target.position);
+      if (residual < kNewtonTolerance || it == kNewtonIterations) break;
+      planar_->newton_step(kNewtonDamping, step_);
+      q_ += step_;
+      box_.confine(q_);
+    }
+  }
+  for (int it = 0; !planar_; ++it) {
     forward_kinematics(model_, q_, kin_);
     residual = hand_error(target);
     if (residual < kNewtonTolerance || it == kNewtonIterations) break;
@@ -119,7 +136,7 @@ Evaluation ImaginaryManipulator::evaluate(Eigen::Ref<Eigen::VectorXd> q, const P
     box_.confine(q_);
   }
   q = q_;
-  Evaluation e = score_current(target);  // kin_ is already at q_
+  Evaluation e = score_current(target);  // the kinematics are already at q_
   e.residual = residual;
   e.fitness = e.amsip - kMissPenalty * residual;
   if (!std::isfinite(e.fitness)) e.fitness = kWorst;
@@ -128,17 +145,28 @@ Evaluation ImaginaryManipulator::evaluate(Eigen::Ref<Eigen::VectorXd> q, const P
 
 Evaluation ImaginaryManipulator::score(const Eigen::VectorXd& q, const PreviewTarget& target) {
   q_ = q;
-  forward_kinematics(model_, q_, kin_);
+  if (planar_)
+    planar_->kinematics(q_);
+  else
+    forward_kinematics(model_, q_, kin_);
   return score_current(target);
 }
 
 Evaluation ImaginaryManipulator::score_current(const PreviewTarget& target) {
   ++evaluations_;
-  task_jacobian(model_, kin_, space_, hand_jacobian_);
   Evaluation e;
-  e.residual = hand_error(target);
-  e.amsi = avoidance_.compute(model_, kin_, hand_jacobian_);  // eq. 21
-  if (collision_) {
+  if (planar_) {
+    e.residual = planar_->hand_error(target.position);
+    e.amsi = planar_->amsi(ranks_);  // eq. 21
+  } else {
+    task_jacobian(model_, kin_, space_, hand_jacobian_);
+    e.residual = hand_error(target);
+    e.amsi = avoidance_.compute(model_, kin_, hand_jacobian_);  // eq. 21
+  }
+  if (planar_obstacles_placed_) {
+    e.potential = -height_ * planar_obstacles_.band_sum(planar_->joints(), planar_->radii(), width_);
+  } else if (collision_) {
+    if (planar_) planar_->write_links(kin_);  // the segments the collision world reads
     // U counts only pairs nearer than the band's width: the others need no exact distance
     collision_->compute_near(kin_, distances_, width_);
     e.potential = obstacle_potential(distances_, width_, height_);

@@ -13,8 +13,10 @@
 #include <vector>
 
 #include "collision/collision_world.hpp"
+#include "collision/planar_obstacles.hpp"
 #include "collision/scene.hpp"
 #include "methods/multi_preview_avoidance.hpp"
+#include "methods/multi_preview_planar.hpp"
 #include "task/task.hpp"
 #include "util/right_inverse.hpp"
 #include "util/rng.hpp"
@@ -79,6 +81,10 @@ class ImaginaryManipulator {
   RightInverse newton_;
   Eigen::VectorXd error_, step_, q_;
   AvoidanceManipulability avoidance_;
+  std::unique_ptr<PlanarArm> planar_;  // the closed-form path of planar chains, else null
+  std::vector<int> ranks_;             // generic rank of each link point's avoidance matrix
+  PlanarObstacles planar_obstacles_;   // the obstacles in the plane of a planar arm
+  bool planar_obstacles_built_ = false, planar_obstacles_placed_ = false;
   Scene scene_;
   std::unique_ptr<CollisionWorld> collision_;
   std::uint64_t fingerprint_ = 0;
