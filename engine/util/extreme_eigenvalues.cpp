@@ -54,7 +54,14 @@ void ExtremeEigenvalues::compute(const Matrix& a) {
   if (definite) lower = 0;
   double lo = 0, hi = 0;
   int it_lo = 0, it_hi = 0;
-  if (!newton(upper, -1.0, hi, it_hi) || !newton(lower, +1.0, lo, it_lo)) {
+  // each end checked by Sturm counts (backward stable, unlike p(x) near a
+  // double root, which it resolves only to √ε): exactly one side of
+  // x ± δ, δ a few ε of T's scale (1), holds the end
+  const double delta = 16 * kEps * std::max(1.0, std::max(std::abs(upper), std::abs(lower)));
+  const bool settled = newton(upper, -1.0, hi, it_hi) && newton(lower, +1.0, lo, it_lo) &&
+                       count_below(hi + delta) == n && count_below(hi - delta) < n &&
+                       count_below(lo - delta) == 0 && count_below(lo + delta) > 0;
+  if (!settled) {
     fallback_.compute(a, Eigen::EigenvaluesOnly);
     min_ = fallback_.eigenvalues()[0], max_ = fallback_.eigenvalues()[n - 1];
     iterations_ = -1;
@@ -62,6 +69,19 @@ void ExtremeEigenvalues::compute(const Matrix& a) {
   }
   min_ = lo * scale, max_ = hi * scale;
   iterations_ = it_lo + it_hi;
+}
+
+int ExtremeEigenvalues::count_below(double x) const {
+  // the negative pivots of the LDLᵀ of T − xI (Sylvester's law of inertia)
+  const int n = int(diagonal_.size());
+  int count = 0;
+  double pivot = 1;
+  for (int k = 0; k < n; ++k) {
+    pivot = diagonal_[k] - x - (k > 0 ? off_squared_[k - 1] / pivot : 0.0);
+    if (pivot == 0) pivot = -kEps * kEps;  // a zero pivot counts as just negative (the usual convention)
+    count += pivot < 0;
+  }
+  return count;
 }
 
 bool ExtremeEigenvalues::newton(double x, double direction, double& root, int& iterations) const {

@@ -4,9 +4,11 @@
 // det(T − xI) from outside the spectrum. For a polynomial whose roots are all
 // real, Newton from above the largest root (from below the smallest) falls
 // monotonically onto it, so every iterate stays a bound and convergence is
-// detected by the step stopping to shrink. Where it does not settle within
-// its iteration budget (a cluster of equal extreme eigenvalues converges
-// only linearly), the full QR eigensolver gives the answer.
+// detected by the step stopping to shrink; Sturm counts then confirm each
+// end to a few ε of the matrix's scale, the accuracy QR has. Where that
+// fails (a cluster of nearly equal extreme eigenvalues, which p(x) resolves
+// only to √ε) or the iteration does not settle, the full QR eigensolver
+// gives the answer.
 // Allocation-free after construction.
 #pragma once
 
@@ -33,6 +35,7 @@ class ExtremeEigenvalues {
   // `direction` (−1: the largest root from above, +1: the smallest from below).
   // False when it did not settle within the budget.
   bool newton(double x, double direction, double& root, int& iterations) const;
+  int count_below(double x) const;  // eigenvalues of T (scaled) below x
 
   Eigen::Tridiagonalization<Matrix> tridiagonal_;
   Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1> diagonal_, off_squared_;
