@@ -358,7 +358,8 @@ class DirectSearch final : public Method {
   double dexterity(const Eigen::MatrixXd& jacobian) {
     scaled_jacobian_ = jacobian;
     if (space_ == TaskSpace::pose) scaled_jacobian_.topRows(3) /= p(kDmLength);
-    jjt_.noalias() = scaled_jacobian_ * scaled_jacobian_.transpose();
+    for (int r = 0; r < m_; ++r)  // J Jᵀ by rows' dot products: at m ≤ 6 a GEMM costs more than it computes
+      for (int c = 0; c <= r; ++c) jjt_(r, c) = jjt_(c, r) = scaled_jacobian_.row(r).dot(scaled_jacobian_.row(c));
     eigenvalues_.compute(jjt_);  // the two ends of the spectrum only
     const double lo = eigenvalues_.min(), hi = eigenvalues_.max();
     return lo > 0 ? std::sqrt(hi / lo) : kInf;
