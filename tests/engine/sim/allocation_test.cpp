@@ -109,6 +109,29 @@ TEST(NoAllocation, DirectSearchWithBlockSwitch) {
   EXPECT_EQ(allocations_in_steps(sim, 50), 0);
 }
 
+// The GA's closed-form planar arm and its 2D obstacle distances (Zhang's
+// object, plus a moving ball and a box), and direct_search on the same arm
+TEST(NoAllocation, PlanarMultiPreviewAndDirectSearch) {
+  Scenario sc = load_scenario_file(test::source_path("scenarios/31_zhang_multi_preview.json"));
+  Obstacle ball;
+  ball.id = "ball";
+  ball.shape = ShapeKind::sphere;
+  ball.radius = 0.1;
+  ball.position = ball.position0 = Eigen::Vector3d(-1.0, 1.0, 0.0);
+  ball.velocity = Eigen::Vector3d(0.01, 0, 0);
+  Obstacle box;
+  box.id = "box";
+  box.shape = ShapeKind::box;
+  box.size = Eigen::Vector3d(0.2, 0.3, 1.0);
+  box.position = box.position0 = Eigen::Vector3d(-0.5, -1.0, 0.0);
+  sc.scene.obstacles.push_back(ball);
+  sc.scene.obstacles.push_back(box);
+  Simulator preview(sc);
+  EXPECT_EQ(allocations_in_steps(preview, 50), 0);
+  Simulator search(sc, "direct_search");
+  EXPECT_EQ(allocations_in_steps(search, 50), 0);
+}
+
 TEST(NoAllocation, CounterSeesAllocations) {
   g_allocations = 0;
   g_counting = true;
