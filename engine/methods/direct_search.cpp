@@ -68,7 +68,9 @@
 //    joints off their limits), w_dm = 0 (DM pulled options away from
 //    obstacle clearance), block_switch = 0.02.
 #include <algorithm>
+#include <bit>
 #include <bitset>
+#include <cstdint>
 #include <cmath>
 
 #include "methods/factories.hpp"
@@ -125,6 +127,7 @@ class DirectSearch final : public Method {
         recovery_step_(n_),
         recovery_q_(n_),
         probe_q_(n_) {
+    block_.assign(n_, 0);
     theta_previous_ = Eigen::VectorXd::Zero(n_);
     joint_range_weights(ctx.model.limits);
     choose_joints();
@@ -370,8 +373,9 @@ class DirectSearch final : public Method {
   // as a full forward_kinematics).
   void probe_fk(const Model& model, const Eigen::VectorXd& theta) {
     int first = 0;
-    if (probe_valid_)
-      while (first < n_ && theta[first] == probe_q_[first]) ++first;
+    if (probe_valid_)  // the same bits (== would take −0 for +0, whose sines differ in sign)
+      while (first < n_ && std::bit_cast<std::uint64_t>(theta[first]) == std::bit_cast<std::uint64_t>(probe_q_[first]))
+        ++first;
     if (probe_valid_ && first == n_) return;
     forward_kinematics_from(model, theta, probe_, first);
     probe_q_ = theta;
@@ -448,7 +452,8 @@ class DirectSearch final : public Method {
         square_block_.noalias() = alternative_block_ * alternative_block_.transpose();
         lu_.compute(square_block_);  // det(J_b J_bᵀ)
       }
-      const double det = std::abs(lu_.determinant());
+      double det = std::abs(lu_.determinant());
+      if (!std::isfinite(det)) det = 0;  // a block of non-finite entries is no candidate
       if (det > best || (has_required && !best_has_required)) best = det, best_bits = bits, best_has_required = has_required;
     }
     return best_bits;
@@ -572,7 +577,8 @@ class DirectSearch final : public Method {
   Eigen::Vector3d target_position_ = Eigen::Vector3d::Zero();
   Eigen::Matrix3d target_orientation_ = Eigen::Matrix3d::Identity();
   int perturbed_[kMaxPerturbed] = {}, perturbed_count_ = 0;
-  int block_[64] = {}, block_count_ = 0;
+  std::vector<int> block_;  // the non-perturbed joints (n entries reserved)
+  int block_count_ = 0;
   bool rule_active_ = false, has_distances_ = false;
   int links_with_distance_ = 0;
   RightInverse recovery_inverse_;

@@ -65,7 +65,6 @@ class ImaginaryManipulator {
   Evaluation score(const Eigen::VectorXd& q, const PreviewTarget& target);
 
   const JointBox& box() const { return box_; }
-  const AvoidanceManipulability& avoidance() const { return avoidance_; }
   long evaluations() const { return evaluations_; }
 
  private:

@@ -58,7 +58,7 @@ void ExtremeEigenvalues::compute(const Matrix& a) {
   // double root, which it resolves only to √ε): exactly one side of
   // x ± δ, δ a few ε of T's scale (1), holds the end
   const double delta = 16 * kEps * std::max(1.0, std::max(std::abs(upper), std::abs(lower)));
-  const bool settled = newton(upper, -1.0, hi, it_hi) && newton(lower, +1.0, lo, it_lo) &&
+  const bool settled = laguerre(upper, -1.0, hi, it_hi) && laguerre(lower, +1.0, lo, it_lo) &&
                        count_below(hi + delta) == n && count_below(hi - delta) < n &&
                        count_below(lo - delta) == 0 && count_below(lo + delta) > 0;
   if (!settled) {
@@ -84,9 +84,9 @@ int ExtremeEigenvalues::count_below(double x) const {
   return count;
 }
 
-bool ExtremeEigenvalues::newton(double x, double direction, double& root, int& iterations) const {
-  // Laguerre's iteration (Newton's of higher order: exact for (x − c)ⁿ, so
-  // it reaches a root across a large gap at once) on p(x) = det(T − xI),
+bool ExtremeEigenvalues::laguerre(double x, double direction, double& root, int& iterations) const {
+  // Laguerre's iteration (exact for (x − c)ⁿ, so it reaches a root across a
+  // large gap at once; cubic near a simple root) on p(x) = det(T − xI),
   // with p, p', p'' by the three-term recurrence of the leading minors
   const int n = int(diagonal_.size());
   for (iterations = 0; iterations < kBudget; ++iterations) {

@@ -1,9 +1,9 @@
 // The smallest and largest eigenvalue of a symmetric matrix of at most 6 x 6
 // (a task's J Jᵀ), without the other eigenvalues: Householder
-// tridiagonalisation, then Newton's method on the characteristic polynomial
-// det(T − xI) from outside the spectrum. For a polynomial whose roots are all
-// real, Newton from above the largest root (from below the smallest) falls
-// monotonically onto it, so every iterate stays a bound and convergence is
+// tridiagonalisation, then Laguerre's method on the characteristic
+// polynomial det(T − xI) from outside the spectrum. For a polynomial whose
+// roots are all real, Laguerre from above the largest root (from below the
+// smallest) falls monotonically onto it, so every iterate stays a bound and convergence is
 // detected by the step stopping to shrink; Sturm counts then confirm each
 // end to a few ε of the matrix's scale, the accuracy QR has. Where that
 // fails (a cluster of nearly equal extreme eigenvalues, which p(x) resolves
@@ -27,14 +27,14 @@ class ExtremeEigenvalues {
   void compute(const Matrix& a);
   double min() const { return min_; }
   double max() const { return max_; }
-  // Newton iterations of the last compute (both ends), or −1 when the QR fallback answered.
+  // Laguerre iterations of the last compute (both ends), or −1 when the QR fallback answered.
   int iterations() const { return iterations_; }
 
  private:
-  // Newton on det(T − xI) from x towards the nearest root on the side of
+  // Laguerre on det(T − xI) from x towards the nearest root on the side of
   // `direction` (−1: the largest root from above, +1: the smallest from below).
   // False when it did not settle within the budget.
-  bool newton(double x, double direction, double& root, int& iterations) const;
+  bool laguerre(double x, double direction, double& root, int& iterations) const;
   int count_below(double x) const;  // eigenvalues of T (scaled) below x
 
   Eigen::Tridiagonalization<Matrix> tridiagonal_;

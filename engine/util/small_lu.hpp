@@ -2,11 +2,13 @@
 // (a task-sized block), on the stack: Gaussian elimination, the pivot the
 // largest magnitude in its column. Several times faster than Eigen's
 // PartialPivLU at these sizes, where Eigen's general blocked code dominates.
-// A singular matrix is factored all the same (a zero pivot): solve() then
-// returns non-finite values, as PartialPivLU's would be.
+// A singular matrix is factored all the same: a zero pivot column is left
+// as it is (as PartialPivLU does), determinant() is then 0 and solve()
+// returns non-finite values.
 #pragma once
 
 #include <Eigen/Core>
+#include <cassert>
 #include <cmath>
 #include <utility>
 
@@ -20,6 +22,7 @@ class SmallLu {
   template <typename Matrix>
   void compute(const Matrix& a) {
     n_ = int(a.rows());
+    assert(n_ <= kMax && a.cols() == n_);
     for (int r = 0; r < n_; ++r)
       for (int c = 0; c < n_; ++c) lu_[r][c] = a(r, c);
     sign_ = 1;
@@ -32,6 +35,7 @@ class SmallLu {
         std::swap(lu_[k], lu_[pivot]);
         sign_ = -sign_;
       }
+      if (lu_[k][k] == 0) continue;  // nothing to eliminate with: a singular matrix
       const double inverse = 1.0 / lu_[k][k];
       for (int r = k + 1; r < n_; ++r) {
         const double l = lu_[r][k] * inverse;

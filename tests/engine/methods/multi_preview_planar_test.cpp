@@ -66,6 +66,51 @@ TEST(PlanarArm, KinematicsNewtonStepAndAmsiMatchTheGeneralCode) {
   }
 }
 
+// The GA's evaluator end to end: a planar arm (closed form, 2D distances)
+// against the same arm with its base turned by 2π, which the closed form
+// refuses (the rotation is not the identity bit for bit) and the general
+// kinematics and collision world score: the same fitness, hand error and
+// projected genes, also for genes that end inside the obstacles.
+TEST(ImaginaryManipulator, PlanarClosedFormScoresAsTheGeneralPath) {
+  const Model planar = make_planar({{0.5, 0.03}, {0.45, 0.02}, {0.4, 0.02}, {0.3, 0.01}}, {0.1, -0.2});
+  Model general = planar;
+  general.base.linear() = Eigen::AngleAxisd(2 * M_PI, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  ASSERT_TRUE(PlanarArm::applies(planar, TaskSpace::xy));
+  ASSERT_FALSE(PlanarArm::applies(general, TaskSpace::xy));
+  Scene scene;
+  Obstacle wall;
+  wall.id = "object";
+  wall.shape = ShapeKind::polygon;
+  wall.points = {{0.3, 0.3}, {1.2, 0.3}, {1.2, 0.5}, {0.6, 0.5}, {0.6, 1.1}, {0.3, 1.1}};
+  Obstacle ball;
+  ball.id = "ball";
+  ball.shape = ShapeKind::sphere;
+  ball.radius = 0.15;
+  ball.position = ball.position0 = Eigen::Vector3d(-0.4, 0.6, 0.05);
+  ball.velocity = Eigen::Vector3d(0.05, 0, 0);
+  scene.obstacles = {wall, ball};
+  ImaginaryManipulator fast(planar, TaskSpace::xy), slow(general, TaskSpace::xy);
+  for (ImaginaryManipulator* arm : {&fast, &slow}) {
+    arm->set_scene(scene, 2.0);
+    arm->set_potential(0.2, 10.0);
+  }
+  int touching = 0;
+  for (unsigned seed = 1; seed <= 200; ++seed) {
+    PreviewTarget target;
+    const Eigen::VectorXd reach = test::random_q(2, seed + 1000);
+    target.position = Eigen::Vector3d(0.1 + 0.8 * std::cos(reach[0]), -0.2 + 0.8 * std::sin(reach[0]), 0);
+    Eigen::VectorXd a = test::random_q(4, seed), b = a;
+    const Evaluation ea = fast.evaluate(a, target), eb = slow.evaluate(b, target);
+    EXPECT_LT((a - b).norm(), 1e-9) << seed;
+    EXPECT_NEAR(ea.residual, eb.residual, 1e-9) << seed;
+    EXPECT_NEAR(ea.amsi, eb.amsi, 1e-7 * (1 + std::abs(eb.amsi))) << seed;
+    EXPECT_NEAR(ea.potential, eb.potential, 1e-7 * (1 + std::abs(eb.potential))) << seed;
+    EXPECT_NEAR(ea.fitness, eb.fitness, 1e-6 * (1 + std::abs(eb.fitness))) << seed;
+    touching += eb.potential < 0;
+  }
+  EXPECT_GT(touching, 20) << "genes near and inside the obstacles must be among the cases";
+}
+
 TEST(AvoidanceManipulability, VolumesWithoutDirectionsMatchTheEigenDecomposition) {
   // the GA's evaluator on spatial arms: AMSI from principal minors
   for (ModelKind kind : {ModelKind::dh, ModelKind::urdf, ModelKind::spatial_xz, ModelKind::planar}) {

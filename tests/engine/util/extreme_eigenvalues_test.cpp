@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/QR>
+#include <limits>
 #include <random>
 
 namespace rrlab {
@@ -80,6 +81,19 @@ TEST(ExtremeEigenvalues, DiagonalSingularAndTinyMatrices) {
   single.compute(one);
   EXPECT_EQ(single.min(), 7.0);
   EXPECT_EQ(single.max(), 7.0);
+}
+
+TEST(ExtremeEigenvalues, IndefiniteAndNonFiniteInput) {
+  Matrix indefinite(3, 3);
+  indefinite << -1, 0.5, 0, 0.5, 2, 0.3, 0, 0.3, 0.5;  // one negative eigenvalue: the smallest from Gershgorin's bound
+  expect_matches_qr(indefinite, "indefinite");
+  ExtremeEigenvalues extreme(3);
+  extreme.compute(indefinite);
+  EXPECT_GE(extreme.iterations(), 0) << "Laguerre's path, not the fallback";
+  Matrix broken = indefinite;
+  broken(1, 1) = std::numeric_limits<double>::quiet_NaN();
+  extreme.compute(broken);  // no hang, no throw: whatever QR makes of it
+  EXPECT_EQ(extreme.iterations(), -1);
 }
 
 }  // namespace
