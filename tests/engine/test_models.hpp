@@ -84,4 +84,16 @@ inline std::string read_source_file(const std::string& relative) {
   return text.str();
 }
 
+// A ball obstacle at `centre` moving at `velocity`.
+inline Obstacle moving_ball(const std::string& id, const Eigen::Vector3d& centre, double radius,
+                            const Eigen::Vector3d& velocity) {
+  Obstacle ball;
+  ball.id = id;
+  ball.shape = ShapeKind::sphere;
+  ball.radius = radius;
+  ball.position = ball.position0 = centre;
+  ball.velocity = velocity;
+  return ball;
+}
+
 }  // namespace rrlab::test

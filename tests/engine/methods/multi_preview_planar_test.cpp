@@ -82,13 +82,7 @@ TEST(ImaginaryManipulator, PlanarClosedFormScoresAsTheGeneralPath) {
   wall.id = "object";
   wall.shape = ShapeKind::polygon;
   wall.points = {{0.3, 0.3}, {1.2, 0.3}, {1.2, 0.5}, {0.6, 0.5}, {0.6, 1.1}, {0.3, 1.1}};
-  Obstacle ball;
-  ball.id = "ball";
-  ball.shape = ShapeKind::sphere;
-  ball.radius = 0.15;
-  ball.position = ball.position0 = Eigen::Vector3d(-0.4, 0.6, 0.05);
-  ball.velocity = Eigen::Vector3d(0.05, 0, 0);
-  scene.obstacles = {wall, ball};
+  scene.obstacles = {wall, test::moving_ball("ball", {-0.4, 0.6, 0.05}, 0.15, {0.05, 0, 0})};
   ImaginaryManipulator fast(planar, TaskSpace::xy), slow(general, TaskSpace::xy);
   for (ImaginaryManipulator* arm : {&fast, &slow}) {
     arm->set_scene(scene, 2.0);

@@ -113,18 +113,12 @@ TEST(NoAllocation, DirectSearchWithBlockSwitch) {
 // object, plus a moving ball and a box), and direct_search on the same arm
 TEST(NoAllocation, PlanarMultiPreviewAndDirectSearch) {
   Scenario sc = load_scenario_file(test::source_path("scenarios/31_zhang_multi_preview.json"));
-  Obstacle ball;
-  ball.id = "ball";
-  ball.shape = ShapeKind::sphere;
-  ball.radius = 0.1;
-  ball.position = ball.position0 = Eigen::Vector3d(-1.0, 1.0, 0.0);
-  ball.velocity = Eigen::Vector3d(0.01, 0, 0);
   Obstacle box;
   box.id = "box";
   box.shape = ShapeKind::box;
   box.size = Eigen::Vector3d(0.2, 0.3, 1.0);
   box.position = box.position0 = Eigen::Vector3d(-0.5, -1.0, 0.0);
-  sc.scene.obstacles.push_back(ball);
+  sc.scene.obstacles.push_back(test::moving_ball("ball", {-1.0, 1.0, 0.0}, 0.1, {0.01, 0, 0}));
   sc.scene.obstacles.push_back(box);
   Simulator preview(sc);
   EXPECT_EQ(allocations_in_steps(preview, 50), 0);
