@@ -149,7 +149,7 @@ double PlanarObstacles::part_bound(const Part& part, const Vector2d& a, const Ve
   return bound;
 }
 
-double PlanarObstacles::segment_distance(int k, const Vector2d& a, const Vector2d& b) const {
+double PlanarObstacles::segment_distance(int k, const Vector2d& a, const Vector2d& b, double cutoff) const {
   const Shape& shape = shapes_[size_t(k)];
   if (shape.round) {
     const double z = shape.centre.z();
@@ -157,8 +157,9 @@ double PlanarObstacles::segment_distance(int k, const Vector2d& a, const Vector2
   }
   double distance = kInf;
   for (const Part& part : shape.parts)
-    // a part whose sides keep the segment farther than the nearest so far cannot be nearer
-    if (part_bound(part, a, b) < distance) distance = std::min(distance, part_distance(shape, part, a, b));
+    // a part whose sides keep the segment beyond the cutoff, or farther than
+    // the nearest so far, cannot be the nearest within the cutoff
+    if (part_bound(part, a, b) < std::min(distance, cutoff)) distance = std::min(distance, part_distance(shape, part, a, b));
   return distance;
 }
 
@@ -169,15 +170,9 @@ double PlanarObstacles::band_sum(const std::vector<Vector2d>& joints, const std:
     const Vector2d& a = joints[l];
     const Vector2d& b = joints[l + 1];
     for (size_t k = 0; k < shapes_.size(); ++k) {
-      const Shape& shape = shapes_[k];
-      if (!shape.round) {
-        // a side whose plane has the whole segment more than the band outside
-        // proves the part out of reach: no exact distance for it
-        double bound = kInf;
-        for (const Part& part : shape.parts) bound = std::min(bound, part_bound(part, a, b));
-        if (bound - radii[l] >= width) continue;
-      }
-      const double band = 1.0 - (segment_distance(int(k), a, b) - radii[l]) / width;
+      // a part whose side plane has the whole segment beyond the band needs
+      // no exact distance: with every part so, the distance is ∞ (band 0)
+      const double band = 1.0 - (segment_distance(int(k), a, b, width + radii[l]) - radii[l]) / width;
       if (band > 0) sum += band * band;
     }
   }

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <limits>
 #include <vector>
 
 #include "collision/scene.hpp"
@@ -32,8 +33,11 @@ class PlanarObstacles {
   // obstacle: the sum in Zhang's AMSIP potential U = −h Σ (obstacle_potential).
   double band_sum(const std::vector<Eigen::Vector2d>& joints, const std::vector<double>& radii, double width) const;
 
-  // Signed distance of the segment a-b (in z = 0, no radius) to obstacle k.
-  double segment_distance(int k, const Eigen::Vector2d& a, const Eigen::Vector2d& b) const;
+  // Signed distance of the segment a-b (in z = 0, no radius) to obstacle k;
+  // exact where it is below `cutoff`, else some value at least the cutoff (∞
+  // when no part of a prism comes within it).
+  double segment_distance(int k, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                          double cutoff = std::numeric_limits<double>::infinity()) const;
 
  private:
   struct Part {  // a convex polygon, counter-clockwise

@@ -95,7 +95,15 @@ void ImaginaryManipulator::set_scene(const Scene& scene, double ahead) {
   collision_->sync(scene_, false);
 }
 
+void ImaginaryManipulator::kinematics() {
+  if (planar_)
+    planar_->kinematics(q_);
+  else
+    forward_kinematics(model_, q_, kin_);
+}
+
 double ImaginaryManipulator::hand_error(const PreviewTarget& target) {
+  if (planar_) return planar_->hand_error(target.position);
   const Eigen::Isometry3d& hand = kin_.end_effector();
   const Eigen::Vector3d position_error = target.position - hand.translation();
   switch (space_) {
@@ -115,23 +123,17 @@ Evaluation ImaginaryManipulator::evaluate(Eigen::Ref<Eigen::VectorXd> q, const P
   // position"); for any chain we get there by Newton steps from the gene
   q_ = q;
   double residual = 0;
-  if (planar_) {  // the same iteration in closed form
-    for (int it = 0;; ++it) {
-      planar_->kinematics(q_);
-      residual = planar_->hand_error(target.position);
-      if (residual < kNewtonTolerance || it == kNewtonIterations) break;
-      planar_->newton_step(kNewtonDamping, step_);
-      q_ += step_;
-      box_.confine(q_);
-    }
-  }
-  for (int it = 0; !planar_; ++it) {
-    forward_kinematics(model_, q_, kin_);
+  for (int it = 0;; ++it) {
+    kinematics();
     residual = hand_error(target);
     if (residual < kNewtonTolerance || it == kNewtonIterations) break;
-    task_jacobian(model_, kin_, space_, hand_jacobian_);
-    newton_.factor_dls(hand_jacobian_, kNewtonDamping);
-    newton_.apply(error_, step_);
+    if (planar_) {  // the same damped step in closed form
+      planar_->newton_step(kNewtonDamping, step_);
+    } else {
+      task_jacobian(model_, kin_, space_, hand_jacobian_);
+      newton_.factor_dls(hand_jacobian_, kNewtonDamping);
+      newton_.apply(error_, step_);
+    }
     q_ += step_;
     box_.confine(q_);
   }
@@ -145,22 +147,18 @@ Evaluation ImaginaryManipulator::evaluate(Eigen::Ref<Eigen::VectorXd> q, const P
 
 Evaluation ImaginaryManipulator::score(const Eigen::VectorXd& q, const PreviewTarget& target) {
   q_ = q;
-  if (planar_)
-    planar_->kinematics(q_);
-  else
-    forward_kinematics(model_, q_, kin_);
+  kinematics();
   return score_current(target);
 }
 
 Evaluation ImaginaryManipulator::score_current(const PreviewTarget& target) {
   ++evaluations_;
   Evaluation e;
+  e.residual = hand_error(target);
   if (planar_) {
-    e.residual = planar_->hand_error(target.position);
     e.amsi = planar_->amsi(ranks_);  // eq. 21
   } else {
     task_jacobian(model_, kin_, space_, hand_jacobian_);
-    e.residual = hand_error(target);
     e.amsi = avoidance_.compute(model_, kin_, hand_jacobian_);  // eq. 21
   }
   if (planar_obstacles_placed_) {

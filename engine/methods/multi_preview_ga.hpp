@@ -68,7 +68,8 @@ class ImaginaryManipulator {
   long evaluations() const { return evaluations_; }
 
  private:
-  double hand_error(const PreviewTarget& target);  // fills error_ at kin_, returns its norm
+  void kinematics();  // at q_: the closed form's for a planar arm, else kin_
+  double hand_error(const PreviewTarget& target);  // at the last kinematics(): fills error_, returns its norm
   Evaluation score_current(const PreviewTarget& target);  // at kin_ (forward kinematics done)
   static std::uint64_t geometry_fingerprint(const Scene& scene);
 
