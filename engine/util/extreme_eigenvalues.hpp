@@ -31,14 +31,6 @@ class ExtremeEigenvalues {
   int iterations() const { return iterations_; }
 
  private:
-  // Laguerre on det(T − xI) from x towards the nearest root on the side of
-  // `direction` (−1: the largest root from above, +1: the smallest from below).
-  // False when it did not settle within the budget.
-  bool laguerre(double x, double direction, double& root, int& iterations) const;
-  int count_below(double x) const;  // eigenvalues of T (scaled) below x
-
-  Eigen::Tridiagonalization<Matrix> tridiagonal_;
-  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1> diagonal_, off_squared_;
   Eigen::SelfAdjointEigenSolver<Matrix> fallback_;
   double min_ = 0, max_ = 0;
   int iterations_ = 0;

@@ -25,23 +25,13 @@ class SmallLu {
     assert(n_ <= kMax && a.cols() == n_);
     for (int r = 0; r < n_; ++r)
       for (int c = 0; c < n_; ++c) lu_[r][c] = a(r, c);
-    sign_ = 1;
-    for (int k = 0; k < n_; ++k) {
-      int pivot = k;
-      for (int r = k + 1; r < n_; ++r)
-        if (std::abs(lu_[r][k]) > std::abs(lu_[pivot][k])) pivot = r;
-      perm_[k] = pivot;
-      if (pivot != k) {
-        std::swap(lu_[k], lu_[pivot]);
-        sign_ = -sign_;
-      }
-      if (lu_[k][k] == 0) continue;  // nothing to eliminate with: a singular matrix
-      const double inverse = 1.0 / lu_[k][k];
-      for (int r = k + 1; r < n_; ++r) {
-        const double l = lu_[r][k] * inverse;
-        lu_[r][k] = l;
-        for (int c = k + 1; c < n_; ++c) lu_[r][c] -= l * lu_[k][c];
-      }
+    switch (n_) {  // fixed sizes unroll: the same operations in the same order
+      case 1: factor<1>(); break;
+      case 2: factor<2>(); break;
+      case 3: factor<3>(); break;
+      case 4: factor<4>(); break;
+      case 5: factor<5>(); break;
+      case 6: factor<6>(); break;
     }
   }
 
@@ -50,12 +40,13 @@ class SmallLu {
   void solve(const In& b, Out& x) const {
     double y[kMax];
     for (int r = 0; r < n_; ++r) y[r] = b[r];
-    for (int k = 0; k < n_; ++k) std::swap(y[k], y[perm_[k]]);  // the row swaps, in order
-    for (int r = 1; r < n_; ++r)
-      for (int c = 0; c < r; ++c) y[r] -= lu_[r][c] * y[c];  // L y = P b (unit diagonal)
-    for (int r = n_ - 1; r >= 0; --r) {
-      for (int c = r + 1; c < n_; ++c) y[r] -= lu_[r][c] * y[c];
-      y[r] /= lu_[r][r];  // U x = y
+    switch (n_) {
+      case 1: substitute<1>(y); break;
+      case 2: substitute<2>(y); break;
+      case 3: substitute<3>(y); break;
+      case 4: substitute<4>(y); break;
+      case 5: substitute<5>(y); break;
+      case 6: substitute<6>(y); break;
     }
     for (int r = 0; r < n_; ++r) x[r] = y[r];
   }
@@ -67,6 +58,41 @@ class SmallLu {
   }
 
  private:
+  // Gaussian elimination with partial pivoting on lu_ (N x N).
+  template <int N>
+  void factor() {
+    sign_ = 1;
+    for (int k = 0; k < N; ++k) {
+      int pivot = k;
+      for (int r = k + 1; r < N; ++r)
+        if (std::abs(lu_[r][k]) > std::abs(lu_[pivot][k])) pivot = r;
+      perm_[k] = pivot;
+      if (pivot != k) {
+        std::swap(lu_[k], lu_[pivot]);
+        sign_ = -sign_;
+      }
+      if (lu_[k][k] == 0) continue;  // nothing to eliminate with: a singular matrix
+      const double inverse = 1.0 / lu_[k][k];
+      for (int r = k + 1; r < N; ++r) {
+        const double l = lu_[r][k] * inverse;
+        lu_[r][k] = l;
+        for (int c = k + 1; c < N; ++c) lu_[r][c] -= l * lu_[k][c];
+      }
+    }
+  }
+
+  // y ← A⁻¹ y: the row swaps, L y = P b (unit diagonal), U x = y.
+  template <int N>
+  void substitute(double* y) const {
+    for (int k = 0; k < N; ++k) std::swap(y[k], y[perm_[k]]);
+    for (int r = 1; r < N; ++r)
+      for (int c = 0; c < r; ++c) y[r] -= lu_[r][c] * y[c];
+    for (int r = N - 1; r >= 0; --r) {
+      for (int c = r + 1; c < N; ++c) y[r] -= lu_[r][c] * y[c];
+      y[r] /= lu_[r][r];
+    }
+  }
+
   double lu_[kMax][kMax] = {};
   int perm_[kMax] = {};
   int n_ = 0;
