@@ -43,15 +43,13 @@ Eigen::Matrix3d axis_rotation(const Eigen::Vector3d& axis, double angle) {
   return r;
 }
 
-// rot ← rot · R(axis, angle). About a coordinate axis e_k (planar, DH and
-// most URDF joints) R has c on e_i, e_j, ±s off the diagonal, c + (1 − c) on
-// e_k and zeros elsewhere (Rodrigues with two zero components): two columns
-// mixed instead of a 3 x 3 product, the same numbers since the zeros add
-// nothing. Any other axis takes the product.
-void rotate_about(Eigen::Matrix3d& rot, const Eigen::Vector3d& axis, double angle) {
-  int k = -1;
-  for (int d = 0; d < 3; ++d)
-    if (axis[d] == 1.0 && axis[(d + 1) % 3] == 0.0 && axis[(d + 2) % 3] == 0.0) k = d;
+// rot ← rot · R(axis, angle); k: the plan's axis (e_k, or −1). About a
+// coordinate axis e_k (planar, DH and most URDF joints) R has c on e_i,
+// e_j, ±s off the diagonal, c + (1 − c) on e_k and zeros elsewhere
+// (Rodrigues with two zero components): two columns mixed instead of a
+// 3 x 3 product, the same numbers since the zeros add nothing. Any other
+// axis takes the product.
+void rotate_about(Eigen::Matrix3d& rot, const Eigen::Vector3d& axis, int k, double angle) {
   if (k < 0) {
     rot = rot * axis_rotation(axis, angle);
     return;
@@ -67,20 +65,19 @@ void rotate_about(Eigen::Matrix3d& rot, const Eigen::Vector3d& axis, double angl
 }
 
 // rot ← rot · m for a fixed joint rotation m (a URDF origin's rpy, a DH
-// twist): identity, or about a coordinate axis e_k (m e_k = e_k, e_kᵀ m = e_kᵀ),
-// mixes at most two columns; the zeros a full product would add change
-// nothing.
-void multiply_fixed(Eigen::Matrix3d& rot, const Eigen::Matrix3d& m) {
-  if (m == Eigen::Matrix3d::Identity()) return;
-  for (int k = 0; k < 3; ++k) {
-    const int i = (k + 1) % 3, j = (k + 2) % 3;
-    if (m(k, k) != 1.0 || m(i, k) != 0.0 || m(j, k) != 0.0 || m(k, i) != 0.0 || m(k, j) != 0.0) continue;
-    const Eigen::Vector3d ri = rot.col(i), rj = rot.col(j);
-    rot.col(i) = ri * m(i, i) + rj * m(j, i);
-    rot.col(j) = ri * m(i, j) + rj * m(j, j);
+// twist) of the plan's kind: the identity changes nothing; about a
+// coordinate axis e_k (m e_k = e_k, e_kᵀ m = e_kᵀ) it mixes two columns;
+// the zeros a full product would add change nothing.
+void multiply_fixed(Eigen::Matrix3d& rot, const Eigen::Matrix3d& m, int kind) {
+  if (kind == JointPlan::kIdentity) return;
+  if (kind == JointPlan::kAnyRotation) {
+    rot = rot * m;
     return;
   }
-  rot = rot * m;
+  const int k = kind, i = (k + 1) % 3, j = (k + 2) % 3;
+  const Eigen::Vector3d ri = rot.col(i), rj = rot.col(j);
+  rot.col(i) = ri * m(i, i) + rj * m(j, i);
+  rot.col(j) = ri * m(i, j) + rj * m(j, j);
 }
 }  // namespace
 
@@ -94,20 +91,22 @@ void forward_kinematics_from(const Model& model, const Eigen::VectorXd& q, Kinem
   const Eigen::Isometry3d& before = first == 0 ? model.base : data.joint_frames[first - 1];
   Eigen::Matrix3d rot = before.linear();
   Eigen::Vector3d pos = before.translation();
+  const bool planned = model.joint_plans.size() == model.joints.size();
   for (int j = first; j < model.dof(); ++j) {
     const Joint& joint = model.joints[j];
+    const JointPlan plan = planned ? model.joint_plans[j] : JointPlan::of(joint);
     // frame before the motion: T * pre
-    pos += rot * joint.pre.translation();
-    multiply_fixed(rot, joint.pre.linear());
+    if (plan.pre_translation) pos += rot * joint.pre.translation();
+    multiply_fixed(rot, joint.pre.linear(), plan.pre_rotation);
     data.axis_points.col(j) = pos;
     data.axis_dirs.col(j) = rot * joint.axis;
     if (joint.type == JointType::revolute) {
-      rotate_about(rot, joint.axis, q[j]);
+      rotate_about(rot, joint.axis, plan.axis, q[j]);
     } else {
       pos += data.axis_dirs.col(j) * q[j];
     }
     pos += rot * joint.post.translation();
-    multiply_fixed(rot, joint.post.linear());
+    multiply_fixed(rot, joint.post.linear(), plan.post_rotation);
     data.joint_frames[j].linear() = rot;
     data.joint_frames[j].translation() = pos;
   }

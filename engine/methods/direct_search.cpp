@@ -104,7 +104,6 @@ class DirectSearch final : public Method {
         space_(ctx.space),
         probe_(ctx.model),
         jacobian_(m_, n_),
-        scaled_jacobian_(m_, n_),
         jjt_(m_, m_),
         eigenvalues_(m_),
         block_jacobian_(m_, n_),
@@ -359,10 +358,20 @@ class DirectSearch final : public Method {
 
   // DM = σmax/σmin with the position rows of pose tasks divided by the characteristic length L.
   double dexterity(const Eigen::MatrixXd& jacobian) {
-    scaled_jacobian_ = jacobian;
-    if (space_ == TaskSpace::pose) scaled_jacobian_.topRows(3) /= p(kDmLength);
-    for (int r = 0; r < m_; ++r)  // J Jᵀ by rows' dot products: at m ≤ 6 a GEMM costs more than it computes
-      for (int c = 0; c <= r; ++c) jjt_(r, c) = jjt_(c, r) = scaled_jacobian_.row(r).dot(scaled_jacobian_.row(c));
+    // J Jᵀ of the scaled J, a column at a time (contiguous, no scaled copy):
+    // each entry sums over the columns in order, as the rows' dot products do
+    double jjt[6][6] = {};
+    const double length = p(kDmLength);
+    for (int k = 0; k < n_; ++k) {
+      double col[6];
+      for (int r = 0; r < m_; ++r) col[r] = jacobian(r, k);
+      if (space_ == TaskSpace::pose)
+        for (int r = 0; r < 3; ++r) col[r] /= length;
+      for (int r = 0; r < m_; ++r)
+        for (int c = 0; c <= r; ++c) jjt[r][c] += col[r] * col[c];
+    }
+    for (int r = 0; r < m_; ++r)
+      for (int c = 0; c <= r; ++c) jjt_(r, c) = jjt_(c, r) = jjt[r][c];
     eigenvalues_.compute(jjt_);  // the two ends of the spectrum only
     const double lo = eigenvalues_.min(), hi = eigenvalues_.max();
     return lo > 0 ? std::sqrt(hi / lo) : kInf;
@@ -553,7 +562,7 @@ class DirectSearch final : public Method {
   int n_, m_;
   TaskSpace space_;
   KinematicsData probe_;
-  Eigen::MatrixXd jacobian_, scaled_jacobian_;
+  Eigen::MatrixXd jacobian_;
   // at most 6 x 6 (pose): fixed-capacity storage keeps Eigen's small-matrix paths
   using TaskSquare = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6>;
   TaskSquare jjt_;

@@ -43,6 +43,33 @@ JointLimits unbounded_limits(int dof) {
   return l;
 }
 
+namespace {
+// kIdentity, k when m turns about e_k (m e_k = e_k, e_kᵀ m = e_kᵀ), else kAnyRotation
+int rotation_kind(const Eigen::Matrix3d& m) {
+  if (m == Eigen::Matrix3d::Identity()) return JointPlan::kIdentity;
+  for (int k = 0; k < 3; ++k) {
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    if (m(k, k) == 1.0 && m(i, k) == 0.0 && m(j, k) == 0.0 && m(k, i) == 0.0 && m(k, j) == 0.0) return k;
+  }
+  return JointPlan::kAnyRotation;
+}
+}  // namespace
+
+JointPlan JointPlan::of(const Joint& joint) {
+  JointPlan plan;
+  plan.pre_rotation = rotation_kind(joint.pre.linear());
+  plan.post_rotation = rotation_kind(joint.post.linear());
+  for (int d = 0; d < 3; ++d)
+    if (joint.axis[d] == 1.0 && joint.axis[(d + 1) % 3] == 0.0 && joint.axis[(d + 2) % 3] == 0.0) plan.axis = d;
+  plan.pre_translation = !joint.pre.translation().isZero(0);
+  return plan;
+}
+
+void Model::plan_joints() {
+  joint_plans.clear();
+  for (const Joint& joint : joints) joint_plans.push_back(JointPlan::of(joint));
+}
+
 double Model::reach() const {
   double r = 0;
   for (const Joint& j : joints) r += j.pre.translation().norm() + j.post.translation().norm();
@@ -60,6 +87,7 @@ Model make_planar(const std::vector<PlanarLinkSpec>& links, const Eigen::Vector2
     m.links.push_back({m.dof() - 1, l.radius});
   }
   m.limits = unbounded_limits(m.dof());
+  m.plan_joints();
   return m;
 }
 
@@ -81,6 +109,7 @@ Model make_spatial_xz(const std::vector<PlanarLinkSpec>& links, const Eigen::Vec
     m.links.push_back({m.dof() - 1, l.radius});
   }
   m.limits = unbounded_limits(m.dof());
+  m.plan_joints();
   return m;
 }
 
@@ -109,6 +138,7 @@ Model make_dh(const std::vector<DhLinkSpec>& links, const Eigen::Isometry3d& bas
     m.links.push_back({m.dof() - 1, l.radius});
   }
   m.limits = unbounded_limits(m.dof());
+  m.plan_joints();
   return m;
 }
 
@@ -126,6 +156,7 @@ Model make_chain(const Eigen::Isometry3d& base, const std::vector<ChainJointSpec
     m.links.push_back({m.dof() - 1, joints[k].radius});
   }
   m.limits = unbounded_limits(m.dof());
+  m.plan_joints();
   return m;
 }
 

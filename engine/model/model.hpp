@@ -29,6 +29,18 @@ struct Joint {
   Eigen::Isometry3d post = Eigen::Isometry3d::Identity();
 };
 
+// What forward kinematics can skip in a joint's fixed parts, found once
+// (Model::plan_joints): a rotation that is the identity, or about a
+// coordinate axis (two columns mixed instead of a 3 x 3 product), a zero
+// translation. The same numbers as the full products, whose zeros add nothing.
+struct JointPlan {
+  static constexpr int kIdentity = -2, kAnyRotation = -1;
+  int pre_rotation = kAnyRotation, post_rotation = kAnyRotation;  // kIdentity, k (about e_k) or kAnyRotation
+  int axis = -1;                 // k when the axis is e_k, else −1
+  bool pre_translation = true;   // false: zero
+  static JointPlan of(const Joint& joint);
+};
+
 // A link is the segment from the end of the previous link (or the base) to the
 // origin of the frame after joint `last_joint`; a capsule of `radius`.
 // A URDF link with a collision mesh carries it (vertices in the frame after
@@ -55,7 +67,12 @@ struct Model {
   std::vector<Link> links;
   JointLimits limits;
 
+  // one per joint, set by the builders (plan_joints); when its size is not
+  // dof() (a model assembled by hand) kinematics classifies each joint as it goes
+  std::vector<JointPlan> joint_plans;
+
   int dof() const { return static_cast<int>(joints.size()); }
+  void plan_joints();
   int link_count() const { return static_cast<int>(links.size()); }
   // Upper bound of the reach from the base, for scaling and sanity checks.
   double reach() const;
