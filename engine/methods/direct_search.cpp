@@ -324,12 +324,12 @@ class DirectSearch final : public Method {
         theta_previous_ = theta_;
         task_jacobian(in.model, probe_, space_, jacobian_);
         // eq 3 with J_b at θ (a full Newton step; the block is often poorly conditioned)
-        for (int c = 0; c < block_count_; ++c) block_jacobian_.col(c) = jacobian_.col(block_[c]);
         if (block_count_ == m_) {  // the paper's square J_m×m: eq 3 by LU
-          lu_.compute(block_jacobian_);
+          lu_.compute_columns(jacobian_, block_.data());
           lu_.solve(error_, block_step_);
           for (int c = 0; c < block_count_; ++c) theta_[block_[c]] += block_step_[c];
         } else {
+          for (int c = 0; c < block_count_; ++c) block_jacobian_.col(c) = jacobian_.col(block_[c]);
           option_inverse_.factor_pinv(block_jacobian_);
           apply_block_step(option_inverse_, error_);
         }

@@ -25,14 +25,18 @@ class SmallLu {
     assert(n_ <= kMax && a.cols() == n_);
     for (int r = 0; r < n_; ++r)
       for (int c = 0; c < n_; ++c) lu_[r][c] = a(r, c);
-    switch (n_) {  // fixed sizes unroll: the same operations in the same order
-      case 1: factor<1>(); break;
-      case 2: factor<2>(); break;
-      case 3: factor<3>(); break;
-      case 4: factor<4>(); break;
-      case 5: factor<5>(); break;
-      case 6: factor<6>(); break;
-    }
+    factor();
+  }
+
+  // Factors the square matrix of a's columns cols[0..rows − 1] (a block of a
+  // Jacobian, without copying it out first).
+  template <typename Matrix>
+  void compute_columns(const Matrix& a, const int* cols) {
+    n_ = int(a.rows());
+    assert(n_ <= kMax);
+    for (int c = 0; c < n_; ++c)
+      for (int r = 0; r < n_; ++r) lu_[r][c] = a(r, cols[c]);
+    factor();
   }
 
   // x = A⁻¹ b (x and b may be the same vector).
@@ -58,6 +62,17 @@ class SmallLu {
   }
 
  private:
+  void factor() {
+    switch (n_) {  // fixed sizes unroll: the same operations in the same order
+      case 1: factor<1>(); break;
+      case 2: factor<2>(); break;
+      case 3: factor<3>(); break;
+      case 4: factor<4>(); break;
+      case 5: factor<5>(); break;
+      case 6: factor<6>(); break;
+    }
+  }
+
   // Gaussian elimination with partial pivoting on lu_ (N x N).
   template <int N>
   void factor() {
