@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstring>
+
 #include <Eigen/SVD>
 #include <kdl/chain.hpp>
 #include <kdl/chainfksolverpos_recursive.hpp>
@@ -151,6 +153,51 @@ TEST(JacobianConditioning, SingularArmHasInfiniteConditionNumber) {
   cond.compute(jac);
   EXPECT_NEAR(cond.manipulability(), 0.0, 1e-12);
   EXPECT_GT(cond.condition_number(), 1e6);
+}
+
+// The joint plans the builders store (Model::plan_joints) skip only what adds
+// nothing: the frames are bit for bit those of a model classified joint by
+// joint as kinematics goes (no plans), from the base and from any joint.
+// Planar (rotations about z, zero pre-transforms), spatial_xz (about x and
+// z), DH with prismatic joints and offsets (general post rotations), and a
+// general chain (arbitrary axes and origins), plus a DH arm with zero offsets
+// (twists about x: two columns mixed).
+TEST(ForwardKinematics, JointPlansGiveTheSameFramesBitForBit) {
+  std::vector<Model> models;
+  for (ModelKind kind : {ModelKind::planar, ModelKind::spatial_xz, ModelKind::dh, ModelKind::urdf})
+    for (unsigned seed = 1; seed <= 3; ++seed) models.push_back(test::random_model(kind, 7, seed));
+  models.push_back(make_dh(test::iiwa_dh(), Eigen::Isometry3d::Identity()));
+  const auto same_bits = [](const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
+    return a.size() == b.size() && std::memcmp(a.data(), b.data(), sizeof(double) * a.size()) == 0;
+  };
+  int axis_joints = 0, plans_checked = 0;
+  for (const Model& planned : models) {
+    ASSERT_EQ(planned.joint_plans.size(), planned.joints.size());
+    for (const JointPlan& plan : planned.joint_plans) axis_joints += plan.axis >= 0;
+    Model unplanned = planned;
+    unplanned.joint_plans.clear();
+    KinematicsData a(planned), b(unplanned);
+    for (unsigned seed = 0; seed < 20; ++seed) {
+      const Eigen::VectorXd q = test::random_q(planned.dof(), seed);
+      const int first = int(seed % planned.dof());
+      // from the base, then again from joint `first` after moving the joints from there on
+      forward_kinematics(planned, q, a);
+      forward_kinematics(unplanned, q, b);
+      Eigen::VectorXd moved = q;
+      for (int j = first; j < planned.dof(); ++j) moved[j] += 0.1 * (j + 1);
+      forward_kinematics_from(planned, moved, a, first);
+      forward_kinematics_from(unplanned, moved, b, first);
+      for (int j = 0; j < planned.dof(); ++j) {
+        ASSERT_TRUE(same_bits(a.joint_frames[j].matrix(), b.joint_frames[j].matrix())) << "joint " << j;
+      }
+      ASSERT_TRUE(same_bits(a.axis_points, b.axis_points));
+      ASSERT_TRUE(same_bits(a.axis_dirs, b.axis_dirs));
+      ASSERT_TRUE(same_bits(a.link_end, b.link_end));
+      ++plans_checked;
+    }
+  }
+  EXPECT_EQ(plans_checked, 20 * int(models.size()));
+  EXPECT_GT(axis_joints, 50);  // most joints turn about a coordinate axis
 }
 
 }  // namespace
