@@ -149,23 +149,34 @@ void point_jacobian_linear(const Model& model, const KinematicsData& data, int l
   jac.rightCols(model.dof() - last - 1).setZero();
 }
 
+namespace {
+// Column j of the end-effector Jacobian in the rows of `space`.
+void task_jacobian_column(const Model& model, const KinematicsData& data, const Eigen::Vector3d& p, int rows, int j,
+                          Eigen::Ref<Eigen::MatrixXd> jac) {
+  const Eigen::Vector3d axis = data.axis_dirs.col(j);
+  const bool revolute = model.joints[j].type == JointType::revolute;
+  const Eigen::Vector3d lin = revolute ? Eigen::Vector3d(axis.cross(p - data.axis_points.col(j))) : axis;
+  if (rows == 2) {
+    jac.col(j) = lin.head<2>();
+  } else {
+    jac.col(j).head<3>() = lin;
+    if (rows == 6) jac.col(j).tail<3>() = revolute ? axis : Eigen::Vector3d::Zero();
+  }
+}
+}  // namespace
+
 void task_jacobian(const Model& model, const KinematicsData& data, TaskSpace space,
                    Eigen::Ref<Eigen::MatrixXd> jac) {
+  assert(jac.rows() == task_rows(space) && jac.cols() == model.dof());
   const Eigen::Vector3d p = data.end_effector().translation();
-  const int n = model.dof();
-  assert(jac.rows() == task_rows(space) && jac.cols() == n);
-  const int rows = task_rows(space);
-  for (int j = 0; j < n; ++j) {
-    const Eigen::Vector3d axis = data.axis_dirs.col(j);
-    const bool revolute = model.joints[j].type == JointType::revolute;
-    const Eigen::Vector3d lin = revolute ? Eigen::Vector3d(axis.cross(p - data.axis_points.col(j))) : axis;
-    if (rows == 2) {
-      jac.col(j) = lin.head<2>();
-    } else {
-      jac.col(j).head<3>() = lin;
-      if (rows == 6) jac.col(j).tail<3>() = revolute ? axis : Eigen::Vector3d::Zero();
-    }
-  }
+  for (int j = 0; j < model.dof(); ++j) task_jacobian_column(model, data, p, task_rows(space), j, jac);
+}
+
+void task_jacobian_columns(const Model& model, const KinematicsData& data, TaskSpace space, const int* columns,
+                           int count, Eigen::Ref<Eigen::MatrixXd> jac) {
+  assert(jac.rows() == task_rows(space) && jac.cols() == model.dof());
+  const Eigen::Vector3d p = data.end_effector().translation();
+  for (int c = 0; c < count; ++c) task_jacobian_column(model, data, p, task_rows(space), columns[c], jac);
 }
 
 JacobianConditioning::JacobianConditioning(int rows, int /*cols*/)

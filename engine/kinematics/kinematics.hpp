@@ -43,6 +43,9 @@ void point_jacobian_linear(const Model& model, const KinematicsData& data, int l
 // Rows of the end-effector Jacobian for a task space (m x n, m = task_rows).
 void task_jacobian(const Model& model, const KinematicsData& data, TaskSpace space,
                    Eigen::Ref<Eigen::MatrixXd> jac);
+// Only the columns columns[0..count) of task_jacobian; the others are left as they are.
+void task_jacobian_columns(const Model& model, const KinematicsData& data, TaskSpace space, const int* columns,
+                           int count, Eigen::Ref<Eigen::MatrixXd> jac);
 
 // Singular values of an m x n Jacobian (m <= n) from the eigenvalues of J Jᵀ;
 // preallocated for one m.

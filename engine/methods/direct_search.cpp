@@ -322,7 +322,7 @@ class DirectSearch final : public Method {
         if (residual < p(kTolerance) || it >= static_cast<int>(p(kIterations))) break;
         previous = residual;
         theta_previous_ = theta_;
-        task_jacobian(in.model, probe_, space_, jacobian_);
+        task_jacobian_columns(in.model, probe_, space_, block_.data(), block_count_, jacobian_);  // J_b at θ
         // eq 3 with J_b at θ (a full Newton step; the block is often poorly conditioned)
         if (block_count_ == m_) {  // the paper's square J_m×m: eq 3 by LU
           lu_.compute_columns(jacobian_, block_.data());
@@ -358,23 +358,33 @@ class DirectSearch final : public Method {
 
   // DM = σmax/σmin with the position rows of pose tasks divided by the characteristic length L.
   double dexterity(const Eigen::MatrixXd& jacobian) {
-    // J Jᵀ of the scaled J, a column at a time (contiguous, no scaled copy):
-    // each entry sums over the columns in order, as the rows' dot products do
-    double jjt[6][6] = {};
-    const double length = p(kDmLength);
-    for (int k = 0; k < n_; ++k) {
-      double col[6];
-      for (int r = 0; r < m_; ++r) col[r] = jacobian(r, k);
-      if (space_ == TaskSpace::pose)
-        for (int r = 0; r < 3; ++r) col[r] /= length;
-      for (int r = 0; r < m_; ++r)
-        for (int c = 0; c <= r; ++c) jjt[r][c] += col[r] * col[c];
+    switch (m_) {  // a fixed size unrolls J Jᵀ's loops (the same sums in the same order)
+      case 2: gram<2>(jacobian); break;
+      case 3: gram<3>(jacobian); break;
+      default: gram<6>(jacobian); break;
     }
-    for (int r = 0; r < m_; ++r)
-      for (int c = 0; c <= r; ++c) jjt_(r, c) = jjt_(c, r) = jjt[r][c];
     eigenvalues_.compute(jjt_);  // the two ends of the spectrum only
     const double lo = eigenvalues_.min(), hi = eigenvalues_.max();
     return lo > 0 ? std::sqrt(hi / lo) : kInf;
+  }
+
+  // jjt_ ← J̃ J̃ᵀ (M = m_ rows; J̃: the position rows of a pose task divided by
+  // L), a column at a time (contiguous, no scaled copy): each entry sums over
+  // the columns in order, as the rows' dot products do.
+  template <int M>
+  void gram(const Eigen::MatrixXd& jacobian) {
+    double jjt[M][M] = {};
+    const double length = p(kDmLength);
+    for (int k = 0; k < n_; ++k) {
+      double col[M];
+      for (int r = 0; r < M; ++r) col[r] = jacobian(r, k);
+      if (M == 6)  // pose: the position rows in units of L
+        for (int r = 0; r < 3; ++r) col[r] /= length;
+      for (int r = 0; r < M; ++r)
+        for (int c = 0; c <= r; ++c) jjt[r][c] += col[r] * col[c];
+    }
+    for (int r = 0; r < M; ++r)
+      for (int c = 0; c <= r; ++c) jjt_(r, c) = jjt_(c, r) = jjt[r][c];
   }
 
   // probe_ ← the kinematics at theta, recomputed from the first joint where
