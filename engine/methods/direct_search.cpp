@@ -85,6 +85,7 @@ enum { kJra, kJvm, kDm, kObstacle, kCriteria };
 
 constexpr int kMaxPerturbed = 6;
 constexpr int kMaxOptions = 729;  // 3^6
+constexpr int kPower3[kMaxPerturbed] = {1, 3, 9, 27, 81, 243};
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();  // a criterion not computed
 
@@ -405,7 +406,7 @@ class DirectSearch final : public Method {
   // reverse (the first perturbed joint is j's lowest digit, s's highest).
   int option_of_sequence(int s) const {
     int j = 0;
-    for (int i = perturbed_count_ - 1; i >= 0; --i) j += (s % 3) * power3_[i], s /= 3;
+    for (int i = perturbed_count_ - 1; i >= 0; --i) j += (s % 3) * kPower3[i], s /= 3;
     return j;
   }
 
@@ -424,7 +425,6 @@ class DirectSearch final : public Method {
     for (int i = 0; i < n_ && i < 64; ++i)
       if (((mask >> i) & 1) && count < allowed) mask_bits_ |= 1ULL << i, ++count;
     use_joint_set(mask_bits_);
-    for (int i = 0, p3 = 1; i < kMaxPerturbed; ++i, p3 *= 3) power3_[i] = p3;
     // a parameter change may allocate; steady-state steps do not
     block_inverse_ = RightInverse(m_, std::max(1, block_count_));
     option_inverse_ = RightInverse(m_, std::max(1, block_count_));
@@ -573,9 +573,7 @@ class DirectSearch final : public Method {
   TaskSpace space_;
   KinematicsData probe_;
   Eigen::MatrixXd jacobian_;
-  // at most 6 x 6 (pose): fixed-capacity storage keeps Eigen's small-matrix paths
-  using TaskSquare = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6>;
-  TaskSquare jjt_;
+  ExtremeEigenvalues::Matrix jjt_;  // at most 6 x 6 (pose), fixed capacity
   ExtremeEigenvalues eigenvalues_;
   Eigen::MatrixXd block_jacobian_;
   RightInverse block_inverse_, option_inverse_;
@@ -604,7 +602,6 @@ class DirectSearch final : public Method {
   Eigen::VectorXd recovery_step_, recovery_q_;
   Eigen::VectorXd probe_q_;  // the configuration probe_ holds when probe_valid_
   bool probe_valid_ = false;
-  int power3_[kMaxPerturbed] = {};
   double recovery_residual_ = 0;
   int recovery_diag_ = 0;
   int chosen_diag_[kCriteria], weight_diag_[kCriteria];

@@ -1,11 +1,13 @@
 // The smallest and largest eigenvalue of a symmetric matrix of at most 6 x 6
 // (a task's J Jᵀ), without the other eigenvalues: Householder
 // tridiagonalisation, then Laguerre's method on the characteristic
-// polynomial det(T − xI) from outside the spectrum. For a polynomial whose
-// roots are all real, Laguerre from above the largest root (from below the
-// smallest) falls monotonically onto it, so every iterate stays a bound and convergence is
-// detected by the step stopping to shrink; Sturm counts then confirm each
-// end to a few ε of the matrix's scale, the accuracy QR has. Where that
+// polynomial det(T − xI) from outside the spectrum, both ends in one loop.
+// For a polynomial whose roots are all real, Laguerre from above the
+// largest root (from below the smallest) falls monotonically onto it, so
+// every iterate stays a bound; it stops at a step below 1e-5 of the iterate
+// (cubic convergence leaves about its cube). Sturm counts then confirm each
+// end to a few ε of the matrix's scale, the accuracy QR has; an end they do
+// not confirm iterates on until rounding stops the steps. Where that
 // fails (a cluster of nearly equal extreme eigenvalues, which p(x) resolves
 // only to √ε) or the iteration does not settle, the full QR eigensolver
 // gives the answer.
