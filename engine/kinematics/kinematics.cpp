@@ -85,7 +85,8 @@ void forward_kinematics(const Model& model, const Eigen::VectorXd& q, Kinematics
   forward_kinematics_from(model, q, data, 0);
 }
 
-void forward_kinematics_from(const Model& model, const Eigen::VectorXd& q, KinematicsData& data, int first) {
+void forward_kinematics_from(const Model& model, const Eigen::VectorXd& q, KinematicsData& data, int first,
+                             bool link_segments) {
   assert(q.size() == model.dof() && first >= 0 && first <= model.dof());
   // the frame before joint `first`: the base, or the one data holds after joint first − 1
   const Eigen::Isometry3d& before = first == 0 ? model.base : data.joint_frames[first - 1];
@@ -110,6 +111,7 @@ void forward_kinematics_from(const Model& model, const Eigen::VectorXd& q, Kinem
     data.joint_frames[j].linear() = rot;
     data.joint_frames[j].translation() = pos;
   }
+  if (!link_segments) return;
   Eigen::Vector3d start = model.base.translation();
   for (int i = 0; i < model.link_count(); ++i) {
     data.link_start.col(i) = start;

@@ -31,7 +31,10 @@ void forward_kinematics(const Model& model, const Eigen::VectorXd& q, Kinematics
 // The same for a q that differs from the one `data` was last computed for
 // only in joints first.. (the frames before joint `first` are kept): the
 // same numbers as forward_kinematics, for the work of the changed joints.
-void forward_kinematics_from(const Model& model, const Eigen::VectorXd& q, KinematicsData& data, int first);
+// Without link_segments the link segments are left as they are (a caller
+// that needs only frames and axes, such as an iteration on the end-effector).
+void forward_kinematics_from(const Model& model, const Eigen::VectorXd& q, KinematicsData& data, int first,
+                             bool link_segments = true);
 
 // 6 x n Jacobian [v; w] of the world point p rigidly attached to `link`;
 // columns of joints beyond the link are zero. `jac` must be 6 x dof.

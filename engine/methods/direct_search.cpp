@@ -20,7 +20,10 @@
 //    configuration, the Newton iterations J_b at the option (full Newton:
 //    quadratic convergence even where the block is poorly conditioned); an
 //    option whose residual grows keeps its last better iterate (infeasible
-//    unless that met eq 5).
+//    unless that met eq 5). Where the first iteration cut the residual
+//    100-fold, the second reuses its LU (a chord step: J_b moved by about
+//    that iteration's small step, so it contracts as much again); one that
+//    does not cut it 10-fold is undone and replaced by the full step.
 //  - the perturbed joints are the set bits of `perturb_mask` (bit i−1:
 //    joint i), at most n − m of them and at most 6 (729 options); default
 //    joints 1, 2, 3, 5 as in the paper's 81-option example.
@@ -88,6 +91,9 @@ constexpr int kMaxOptions = 729;  // 3^6
 constexpr int kPower3[kMaxPerturbed] = {1, 3, 9, 27, 81, 243};
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();  // a criterion not computed
+// chord step: taken after a first Newton step that cut the residual by at
+// least kChordStart, kept when it cuts it by at least kChordContraction
+constexpr double kChordStart = 1e-2, kChordContraction = 1e-1;
 
 class DirectSearch final : public Method {
   // Parameters by name (Method::slot).
@@ -117,6 +123,7 @@ class DirectSearch final : public Method {
         theta_(n_),
         error_(m_),
         error0_(m_),
+        error_previous_(m_),
         rhs_(m_),
         delta_theta_(n_),
         distance_rows_(std::max(1, ctx.model.link_count()), n_),
@@ -291,6 +298,15 @@ class DirectSearch final : public Method {
     const int count = option_count();
     max_iterations_used_ = 0;
     int feasible = 0;
+    // eq 3 with eq 6 is linear in δθ_p: J_b⁺(δx − J_p δθ_p) = J_b⁺δx −
+    // Σ_i δθ_i J_b⁺ J_p,i, so its 1 + k products are formed once here
+    // instead of once per option
+    block_inverse_.apply(error0_, base_step_);
+    for (int i = 0; i < perturbed_count_; ++i) {
+      rhs_ = in.task_jacobian.col(perturbed_[i]);
+      block_inverse_.apply(rhs_, block_step_);
+      compensation_.col(i) = block_step_;
+    }
     for (int s = 0; s < count; ++s) {
       // options in the order where the first perturbed joint changes slowest:
       // consecutive options share the kinematics of the joints before the
@@ -299,20 +315,37 @@ class DirectSearch final : public Method {
       const int j = option_of_sequence(s);
       theta_ = q;
       int code = j;
-      rhs_ = error0_;
+      double d[kMaxPerturbed];
       for (int i = 0; i < perturbed_count_; ++i) {
-        const double d = (code % 3 - 1) * p(kDelta);  // −Δ, 0, +Δ
+        d[i] = (code % 3 - 1) * p(kDelta);  // −Δ, 0, +Δ
         code /= 3;
-        theta_[perturbed_[i]] += d;
-        rhs_.noalias() -= in.task_jacobian.col(perturbed_[i]) * d;  // eq 6: −J_p δθ_p
+        theta_[perturbed_[i]] += d[i];
       }
-      apply_block_step(block_inverse_, rhs_);  // eq 3 with eq 6, J_b at the current configuration
+      for (int c = 0; c < block_count_; ++c) {  // eq 3 with eq 6, J_b at the current configuration
+        double step = base_step_[c];
+        for (int i = 0; i < perturbed_count_; ++i) step -= d[i] * compensation_(c, i);  // eq 6: −J_p δθ_p
+        theta_[block_[c]] += step;
+      }
       int it = 0;
-      double residual = kInf, previous = kInf;
+      double residual = kInf, previous = kInf, before_previous = kInf;
+      bool chord = false, chord_failed = false;
       while (true) {  // eq 1–5: Newton on the block through the kinematics
         probe_fk(in.model, theta_);
         pose_error(probe_, error_);
         residual = error_.cwiseAbs().maxCoeff();
+        if (chord) {
+          chord = false;
+          if (!(residual < p(kTolerance)) && !(residual <= kChordContraction * previous)) {
+            // the chord step fell short of what Newton does there: back to
+            // its start, and on with full Newton steps as without it
+            theta_ = theta_previous_;
+            probe_fk(in.model, theta_);
+            error_ = error_previous_;
+            residual = previous, previous = before_previous;
+            --it;
+            chord_failed = true;
+          }
+        }
         if (!(residual < previous) && it > 0) {
           // diverging: keep the last better iterate (infeasible unless it met eq 5)
           theta_ = theta_previous_;
@@ -321,17 +354,26 @@ class DirectSearch final : public Method {
           break;
         }
         if (residual < p(kTolerance) || it >= static_cast<int>(p(kIterations))) break;
+        // the second step reuses the first's factors (a chord step) where the
+        // first contracted as Newton does inside its quadratic region: J_b
+        // moved by about the first step, so the chord contracts by as much
+        // again (and the kinematics' Jacobian and the LU are saved)
+        chord = it == 1 && !chord_failed && residual <= kChordStart * previous;
+        before_previous = previous;
         previous = residual;
         theta_previous_ = theta_;
-        task_jacobian_columns(in.model, probe_, space_, block_.data(), block_count_, jacobian_);  // J_b at θ
+        if (chord) error_previous_ = error_;
+        if (!chord) task_jacobian_columns(in.model, probe_, space_, block_.data(), block_count_, jacobian_);  // J_b at θ
         // eq 3 with J_b at θ (a full Newton step; the block is often poorly conditioned)
         if (block_count_ == m_) {  // the paper's square J_m×m: eq 3 by LU
-          lu_.compute_columns(jacobian_, block_.data());
+          if (!chord) lu_.compute_columns(jacobian_, block_.data());
           lu_.solve(error_, block_step_);
           for (int c = 0; c < block_count_; ++c) theta_[block_[c]] += block_step_[c];
         } else {
-          for (int c = 0; c < block_count_; ++c) block_jacobian_.col(c) = jacobian_.col(block_[c]);
-          option_inverse_.factor_pinv(block_jacobian_);
+          if (!chord) {
+            for (int c = 0; c < block_count_; ++c) block_jacobian_.col(c) = jacobian_.col(block_[c]);
+            option_inverse_.factor_pinv(block_jacobian_);
+          }
           apply_block_step(option_inverse_, error_);
         }
         ++it;
@@ -370,25 +412,28 @@ class DirectSearch final : public Method {
   }
 
   // jjt_ ← J̃ J̃ᵀ (M = m_ rows; J̃: the position rows of a pose task divided by
-  // L), a column at a time (contiguous, no scaled copy): each entry sums over
-  // the columns in order, as the rows' dot products do.
+  // L), a column at a time (contiguous, no scaled copy); L's scaling is
+  // applied to the sums (1/L² on position × position, 1/L on mixed entries),
+  // which keeps divisions out of the loop.
   template <int M>
   void gram(const Eigen::MatrixXd& jacobian) {
     double jjt[M][M] = {};
-    const double length = p(kDmLength);
     for (int k = 0; k < n_; ++k) {
-      double col[M];
-      for (int r = 0; r < M; ++r) col[r] = jacobian(r, k);
-      if (M == 6)  // pose: the position rows in units of L
-        for (int r = 0; r < 3; ++r) col[r] /= length;
+      const double* col = jacobian.col(k).data();
       for (int r = 0; r < M; ++r)
         for (int c = 0; c <= r; ++c) jjt[r][c] += col[r] * col[c];
+    }
+    if (M == 6) {  // pose: the position rows in units of L
+      const double inverse = 1.0 / p(kDmLength), inverse2 = inverse * inverse;
+      for (int r = 0; r < 6; ++r)
+        for (int c = 0; c <= r && c < 3; ++c) jjt[r][c] *= r < 3 ? inverse2 : inverse;
     }
     for (int r = 0; r < M; ++r)
       for (int c = 0; c <= r; ++c) jjt_(r, c) = jjt_(c, r) = jjt[r][c];
   }
 
-  // probe_ ← the kinematics at theta, recomputed from the first joint where
+  // probe_ ← the kinematics at theta (frames and axes; its link segments are
+  // never read), recomputed from the first joint where
   // theta differs from the configuration probe_ holds (bit for bit the same
   // as a full forward_kinematics).
   void probe_fk(const Model& model, const Eigen::VectorXd& theta) {
@@ -397,7 +442,7 @@ class DirectSearch final : public Method {
       while (first < n_ && std::bit_cast<std::uint64_t>(theta[first]) == std::bit_cast<std::uint64_t>(probe_q_[first]))
         ++first;
     if (probe_valid_ && first == n_) return;
-    forward_kinematics_from(model, theta, probe_, first);
+    forward_kinematics_from(model, theta, probe_, first, false);  // frames and axes only: no link segments
     probe_q_ = theta;
     probe_valid_ = true;
   }
@@ -430,6 +475,8 @@ class DirectSearch final : public Method {
     option_inverse_ = RightInverse(m_, std::max(1, block_count_));
     block_jacobian_ = Eigen::MatrixXd::Zero(m_, std::max(1, block_count_));
     block_step_ = Eigen::VectorXd::Zero(std::max(1, block_count_));
+    base_step_ = Eigen::VectorXd::Zero(std::max(1, block_count_));
+    compensation_ = Eigen::MatrixXd::Zero(std::max(1, block_count_), kMaxPerturbed);
     alternative_block_ = Eigen::MatrixXd::Zero(m_, std::max(1, block_count_));
     // every other set of as many perturbed joints, for the block switch
     alternatives_.clear();
@@ -531,7 +578,7 @@ class DirectSearch final : public Method {
       case TaskSpace::xyz: e = dp; break;
       case TaskSpace::pose:
         e.head<3>() = dp;
-        e.tail<3>() = orientation_error(target_orientation_, kin.end_effector().linear());
+        e.tail<3>() = orientation_error_from_skew(target_orientation_, kin.end_effector().linear());
         break;
     }
   }
@@ -580,7 +627,8 @@ class DirectSearch final : public Method {
   Eigen::MatrixXd options_, criteria_;
   Eigen::VectorXd residual_;
   Eigen::Matrix<bool, Eigen::Dynamic, 1> feasible_;
-  Eigen::VectorXd theta_, error_, error0_, rhs_, delta_theta_, block_step_;
+  Eigen::VectorXd theta_, error_, error0_, error_previous_, rhs_, delta_theta_, block_step_, base_step_;
+  Eigen::MatrixXd compensation_;  // column i: J_b⁺ J_p,i at the current configuration
   Eigen::MatrixXd distance_rows_;
   Eigen::VectorXd distances_now_;
   Eigen::MatrixXd point_jacobian_, square_block_;

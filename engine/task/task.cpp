@@ -1,6 +1,7 @@
 #include "task/task.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace rrlab {
 
@@ -15,6 +16,17 @@ TaskRef::TaskRef(TaskSpace s)
 Eigen::Vector3d orientation_error(const Eigen::Matrix3d& desired, const Eigen::Matrix3d& actual) {
   const Eigen::AngleAxisd aa(Eigen::Matrix3d(desired * actual.transpose()));
   return aa.axis() * aa.angle();
+}
+
+Eigen::Vector3d orientation_error_from_skew(const Eigen::Matrix3d& desired, const Eigen::Matrix3d& actual) {
+  const Eigen::Matrix3d r = desired * actual.transpose();
+  const Eigen::Vector3d v(0.5 * (r(2, 1) - r(1, 2)), 0.5 * (r(0, 2) - r(2, 0)), 0.5 * (r(1, 0) - r(0, 1)));
+  const double cos_angle = 0.5 * (r.trace() - 1.0), s2 = v.squaredNorm();
+  if (!(cos_angle > 0)) return orientation_error(desired, actual);  // past 90° (or not finite)
+  // θ/sin θ = 1 + s²/6 + 3s⁴/40 + O(s⁶) (θ = asin s): the next term is below ε for s < 1e-4
+  if (s2 < 1e-8) return v * (1.0 + s2 * (1.0 / 6.0 + s2 * (3.0 / 40.0)));
+  const double s = std::sqrt(s2);
+  return v * (std::atan2(s, cos_angle) / s);
 }
 
 Task::Task(const TaskSpec& spec, const Eigen::Isometry3d& initial_ee, double duration, double dt)

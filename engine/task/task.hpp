@@ -65,5 +65,11 @@ class Task {
 
 // Rotation vector (axis · angle) of R_desired · R_actualᵀ.
 Eigen::Vector3d orientation_error(const Eigen::Matrix3d& desired, const Eigen::Matrix3d& actual);
+// The same rotation vector from the skew part of R = R_desired · R_actualᵀ,
+// sin θ · axis, without the quaternion: θ/sin θ by its series for sin θ
+// below 1e-4 (no atan2; an iteration's errors near convergence), by atan2
+// up to 90°, and beyond 90° (where sin θ loses the angle) orientation_error
+// itself. Both are accurate to a few ε absolute; they differ in rounding.
+Eigen::Vector3d orientation_error_from_skew(const Eigen::Matrix3d& desired, const Eigen::Matrix3d& actual);
 
 }  // namespace rrlab

@@ -14,16 +14,20 @@ constexpr double kEps = std::numeric_limits<double>::epsilon();
 constexpr double kEarlyStep = 1e-5;
 
 // T = QᵀAQ tridiagonal for the n x n symmetric a (its lower triangle) by
-// Householder reflections H_k = I − β v vᵀ (Golub & Van Loan, Matrix
-// Computations, Algorithm 8.3.1) on a dense copy; N fixed, so the loops
-// unroll: at n ≤ 6 Eigen's blocked Tridiagonalization costs several times more.
+// Householder reflections H_k = I − β u uᵀ (Golub & Van Loan, Matrix
+// Computations, Algorithm 8.3.1) on a copy of the lower triangle; N fixed,
+// so the loops unroll: at n ≤ 6 Eigen's blocked Tridiagonalization costs
+// several times more. u is left unnormalised (u = x + sign(x₀)‖x‖e₁, so
+// uᵀu = 2‖x‖(‖x‖ + |x₀|) needs no division) and A u is formed while β's
+// division runs: the reflections are a chain of dependent steps, and these
+// are its longest links.
 template <int N>
 void tridiagonalise(const ExtremeEigenvalues::Matrix& a, double* diagonal, double* sub) {
-  double t[N][N];
-  for (int r = 0; r < N; ++r)
-    for (int c = 0; c <= r; ++c) t[r][c] = t[c][r] = a(r, c);
+  double t[N][N];  // the lower triangle: t[i][j], j ≤ i
+  for (int c = 0; c < N; ++c)
+    for (int r = c; r < N; ++r) t[r][c] = a(r, c);
   for (int k = 0; k + 2 < N; ++k) {
-    // v, β with H x = μ e₁ for x = t[k+1..N−1][k], v₀ = 1
+    // u, β with H x = −sign(x₀) μ e₁ for x = t[k+1..N−1][k]
     double sigma = 0;
     for (int i = k + 2; i < N; ++i) sigma += t[i][k] * t[i][k];
     const double x0 = t[k + 1][k];
@@ -32,24 +36,23 @@ void tridiagonalise(const ExtremeEigenvalues::Matrix& a, double* diagonal, doubl
       continue;
     }
     const double mu = std::sqrt(x0 * x0 + sigma);
-    const double v0 = x0 <= 0 ? x0 - mu : -sigma / (x0 + mu);
-    const double beta = 2 * v0 * v0 / (sigma + v0 * v0);
-    double v[N], p[N];
-    v[k + 1] = 1;
-    for (int i = k + 2; i < N; ++i) v[i] = t[i][k] / v0;
-    // p = β A v, w = p − (β pᵀv / 2) v, A ← A − v wᵀ − w vᵀ on the trailing block
-    double pv = 0;
+    const double beta = 1.0 / (mu * (mu + std::abs(x0)));
+    double u[N], p[N];
+    u[k + 1] = x0 >= 0 ? x0 + mu : x0 - mu;
+    for (int i = k + 2; i < N; ++i) u[i] = t[i][k];
+    // p = β A u, w = p − (β pᵀu / 2) u, A ← A − u wᵀ − w uᵀ on the trailing block
     for (int i = k + 1; i < N; ++i) {
       double sum = 0;
-      for (int j = k + 1; j < N; ++j) sum += t[i][j] * v[j];
-      p[i] = beta * sum;
-      pv += p[i] * v[i];
+      for (int j = k + 1; j < N; ++j) sum += (j <= i ? t[i][j] : t[j][i]) * u[j];
+      p[i] = sum;
     }
-    const double half = 0.5 * beta * pv;
-    for (int i = k + 1; i < N; ++i) p[i] -= half * v[i];
-    for (int i = k + 1; i < N; ++i)
-      for (int j = k + 1; j <= i; ++j) t[i][j] = t[j][i] = t[i][j] - v[i] * p[j] - p[i] * v[j];
-    sub[k] = mu;
+    double pu = 0;
+    for (int i = k + 1; i < N; ++i) p[i] *= beta, pu += p[i] * u[i];
+    const double half = 0.5 * beta * pu;
+    for (int i = k + 1; i < N; ++i) p[i] -= half * u[i];
+    for (int j = k + 1; j < N; ++j)
+      for (int i = j; i < N; ++i) t[i][j] = t[i][j] - u[i] * p[j] - p[i] * u[j];
+    sub[k] = x0 >= 0 ? -mu : mu;
   }
   sub[N - 2] = t[N - 1][N - 2];
   for (int k = 0; k < N; ++k) diagonal[k] = t[k][k];

@@ -43,7 +43,7 @@ class SmallLu {
   template <typename In, typename Out>
   void solve(const In& b, Out& x) const {
     double y[kMax];
-    for (int r = 0; r < n_; ++r) y[r] = b[r];
+    for (int r = 0; r < n_; ++r) y[r] = b[order_[r]];  // P b
     switch (n_) {
       case 1: substitute<1>(y); break;
       case 2: substitute<2>(y); break;
@@ -77,17 +77,19 @@ class SmallLu {
   template <int N>
   void factor() {
     sign_ = 1;
+    for (int k = 0; k < N; ++k) order_[k] = k;
     for (int k = 0; k < N; ++k) {
       int pivot = k;
       for (int r = k + 1; r < N; ++r)
         if (std::abs(lu_[r][k]) > std::abs(lu_[pivot][k])) pivot = r;
-      perm_[k] = pivot;
       if (pivot != k) {
         std::swap(lu_[k], lu_[pivot]);
+        std::swap(order_[k], order_[pivot]);
         sign_ = -sign_;
       }
-      if (lu_[k][k] == 0) continue;  // nothing to eliminate with: a singular matrix
       const double inverse = 1.0 / lu_[k][k];
+      inverse_diagonal_[k] = inverse;  // ±inf for a zero pivot, as a division by it gives
+      if (lu_[k][k] == 0) continue;  // nothing to eliminate with: a singular matrix
       for (int r = k + 1; r < N; ++r) {
         const double l = lu_[r][k] * inverse;
         lu_[r][k] = l;
@@ -96,20 +98,22 @@ class SmallLu {
     }
   }
 
-  // y ← A⁻¹ y: the row swaps, L y = P b (unit diagonal), U x = y.
+  // y ← A⁻¹ y for y = P b: L y = P b (unit diagonal), U x = y. The back
+  // substitution multiplies by the pivots' reciprocals: a division on each
+  // link of its dependent chain would cost several times more.
   template <int N>
   void substitute(double* y) const {
-    for (int k = 0; k < N; ++k) std::swap(y[k], y[perm_[k]]);
     for (int r = 1; r < N; ++r)
       for (int c = 0; c < r; ++c) y[r] -= lu_[r][c] * y[c];
     for (int r = N - 1; r >= 0; --r) {
       for (int c = r + 1; c < N; ++c) y[r] -= lu_[r][c] * y[c];
-      y[r] /= lu_[r][r];
+      y[r] *= inverse_diagonal_[r];
     }
   }
 
   double lu_[kMax][kMax] = {};
-  int perm_[kMax] = {};
+  double inverse_diagonal_[kMax] = {};
+  int order_[kMax] = {};  // row r of P A is row order_[r] of A
   int n_ = 0;
   double sign_ = 1;
 };

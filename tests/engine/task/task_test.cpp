@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <random>
+
 namespace rrlab {
 namespace {
 
@@ -54,6 +57,33 @@ TEST(Task, JoystickIntegratesVelocityCommands) {
   TaskRef ref(TaskSpace::xy);
   task.reference(1.0, ee, ref);
   EXPECT_NEAR(ref.xdot_ff[0], 0.5, 1e-12);
+}
+
+TEST(Task, OrientationErrorFromSkewMatchesTheQuaternionRoute) {
+  // seeded rotations R_desired, and R_actual = R_desired turned back by an
+  // angle from 1e-12 rad to π about a random axis: the series (< 1e-4), the
+  // atan2 (< 90°) and the quaternion route (beyond) give the same rotation
+  // vector to a few ε of its angle's scale
+  std::mt19937 rng(11);
+  std::normal_distribution<double> gauss;
+  const auto random_axis = [&] { return Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng)).normalized(); };
+  int cases = 0;
+  for (double angle : {0.0, 1e-12, 1e-9, 3e-7, 1e-5, 9.9e-5, 1.01e-4, 1e-3, 0.1, 1.0, 1.5, 1.5707, 1.5709, 2.5, 3.14159}) {
+    for (int k = 0; k < 40; ++k, ++cases) {
+      const Eigen::Matrix3d desired = Eigen::AngleAxisd(3.0 * gauss(rng), random_axis()).toRotationMatrix();
+      const Eigen::Vector3d axis = random_axis();
+      const Eigen::Matrix3d actual = Eigen::AngleAxisd(-angle, axis).toRotationMatrix() * desired;
+      const Eigen::Vector3d reference = orientation_error(desired, actual);
+      const Eigen::Vector3d skew = orientation_error_from_skew(desired, actual);
+      EXPECT_LT((skew - reference).norm(), 8e-16 * std::max(1.0, angle)) << "angle " << angle;
+      EXPECT_LT((skew - angle * axis).norm(), 4e-15) << "angle " << angle;
+    }
+  }
+  EXPECT_EQ(cases, 600);
+  EXPECT_EQ(orientation_error_from_skew(Eigen::Matrix3d::Identity(), Eigen::Matrix3d::Identity()),
+            Eigen::Vector3d::Zero());
+  const Eigen::Matrix3d broken = Eigen::Matrix3d::Constant(std::nan(""));
+  EXPECT_FALSE(orientation_error_from_skew(Eigen::Matrix3d::Identity(), broken).allFinite());
 }
 
 }  // namespace
