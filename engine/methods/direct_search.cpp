@@ -20,10 +20,10 @@
 //    configuration, the Newton iterations J_b at the option (full Newton:
 //    quadratic convergence even where the block is poorly conditioned); an
 //    option whose residual grows keeps its last better iterate (infeasible
-//    unless that met eq 5). Where the first iteration cut the residual
-//    100-fold, the second reuses its LU (a chord step: J_b moved by about
-//    that iteration's small step, so it contracts as much again); one that
-//    does not cut it 10-fold is undone and replaced by the full step.
+//    unless that met eq 5). After an iteration that cut the residual
+//    100-fold, the next reuses the last LU (a chord step: J_b moved by about
+//    those small steps, so it contracts as much again); one that does not
+//    cut it 10-fold is undone and replaced by the full step.
 //  - the perturbed joints are the set bits of `perturb_mask` (bit i−1:
 //    joint i), at most n − m of them and at most 6 (729 options); default
 //    joints 1, 2, 3, 5 as in the paper's 81-option example.
@@ -354,11 +354,11 @@ class DirectSearch final : public Method {
           break;
         }
         if (residual < p(kTolerance) || it >= static_cast<int>(p(kIterations))) break;
-        // the second step reuses the first's factors (a chord step) where the
-        // first contracted as Newton does inside its quadratic region: J_b
-        // moved by about the first step, so the chord contracts by as much
-        // again (and the kinematics' Jacobian and the LU are saved)
-        chord = it == 1 && !chord_failed && residual <= kChordStart * previous;
+        // a step after one that cut the residual 100-fold reuses the last
+        // factors (a chord step): inside Newton's quadratic region J_b has
+        // moved by about those small steps, so the chord contracts by as
+        // much again (and the kinematics' Jacobian and the LU are saved)
+        chord = it >= 1 && !chord_failed && residual <= kChordStart * previous;
         before_previous = previous;
         previous = residual;
         theta_previous_ = theta_;
@@ -509,12 +509,13 @@ class DirectSearch final : public Method {
     for (unsigned long long bits : alternatives_) {
       const bool has_required = (bits & required) == required;
       if (best_has_required && !has_required) continue;
-      int c = 0;
+      int columns[64], c = 0;
       for (int i = 0; i < n_; ++i)
-        if (!((bits >> i) & 1)) alternative_block_.col(c++) = jacobian.col(i);
+        if (!((bits >> i) & 1)) columns[c++] = i;
       if (block_count_ == m_) {
-        lu_.compute(alternative_block_);  // |det J_b|
+        lu_.compute_columns(jacobian, columns);  // |det J_b|, in place
       } else {
+        for (int k = 0; k < c; ++k) alternative_block_.col(k) = jacobian.col(columns[k]);
         square_block_.noalias() = alternative_block_ * alternative_block_.transpose();
         lu_.compute(square_block_);  // det(J_b J_bᵀ)
       }
