@@ -200,5 +200,28 @@ TEST(ForwardKinematics, JointPlansGiveTheSameFramesBitForBit) {
   EXPECT_GT(axis_joints, 50);  // most joints turn about a coordinate axis
 }
 
+TEST(ForwardKinematics, WithoutLinkSegmentsTheFramesAreTheSameAndTheSegmentsUntouched) {
+  // an iteration that reads only frames and axes (direct_search's options)
+  // skips the link segments: frames and axes bit for bit as with them, the
+  // segments left as the last full call made them
+  const Model model = test::random_model(ModelKind::dh, 7, 2);
+  KinematicsData with(model), without(model);
+  const Eigen::VectorXd q0 = test::random_q(model.dof(), 1), q1 = test::random_q(model.dof(), 2);
+  forward_kinematics(model, q0, without);
+  const Eigen::Matrix3Xd start0 = without.link_start, end0 = without.link_end;
+  for (int first : {0, 3}) {
+    forward_kinematics(model, q0, with);
+    forward_kinematics_from(model, q1, with, first);
+    forward_kinematics(model, q0, without);
+    forward_kinematics_from(model, q1, without, first, false);
+    for (int j = 0; j < model.dof(); ++j) EXPECT_EQ(with.joint_frames[j].matrix(), without.joint_frames[j].matrix());
+    EXPECT_EQ(with.axis_points, without.axis_points);
+    EXPECT_EQ(with.axis_dirs, without.axis_dirs);
+    EXPECT_EQ(without.link_start, start0);
+    EXPECT_EQ(without.link_end, end0);
+    EXPECT_NE(with.link_end, end0);  // q1's segments differ from q0's
+  }
+}
+
 }  // namespace
 }  // namespace rrlab
