@@ -91,7 +91,7 @@ constexpr int kMaxOptions = 729;  // 3^6
 constexpr int kPower3[kMaxPerturbed] = {1, 3, 9, 27, 81, 243};
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();  // a criterion not computed
-// chord step: taken after a first Newton step that cut the residual by at
+// chord step: taken after a Newton iteration that cut the residual by at
 // least kChordStart, kept when it cuts it by at least kChordContraction
 constexpr double kChordStart = 1e-2, kChordContraction = 1e-1;
 
