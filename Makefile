@@ -16,9 +16,9 @@ SANITIZE_FLAGS = -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEB
 # Dockerfile, docs and Slurm checks (they test no C++ of rrlab's), and the
 # long paper reproductions (suites named ...Paper: the same code runs under
 # the sanitizers in the methods' unit tests, in a fraction of the time) and
-# the checks over many generated cases (...AtScale: the witnesses of
-# thousands, a method's defaults on tens; the same checks run on a few cases
-# per family under the sanitizers), and the re-run of a slice of the committed
+# the checks over many generated cases (...AtScale: 80 witnesses per family
+# here and 1,000 under make test-scale, a method's defaults on tens; the same
+# checks run on a few cases per family under the sanitizers), and the re-run of a slice of the committed
 # benchmark and reproduction sweeps (their rows are the Release build's), and
 # the Python package (PythonPackage: its module is built in Release only).
 # Every other test (unit, HTTP, command line, Python client) runs against the
@@ -29,7 +29,7 @@ RELEASE_TARGETS = rrlab rrlab_engine_tests rrlab_soak rrlab_bench rrlab_server_l
 TIMED = ./scripts/timed
 
 .PHONY: deps deps-serve configure configure-sanitize build serve demo test test-release-part test-sanitize \
-        test-sanitize-part test-release test-web bench clean fuzz test-tsan python
+        test-sanitize-part test-release test-web test-scale bench clean fuzz test-tsan python
 
 deps:
 	./scripts/install-deps
@@ -83,6 +83,14 @@ configure-sanitize:
 test-release: deps
 	$(MAKE) build
 	ctest --test-dir $(BUILD) --output-on-failure --parallel $(JOBS)
+
+# The long suites at full scale, outside CI (docs/testing.md, "What runs
+# where"): the ...AtScale suites with every generated case (RRLAB_TEST_SCALE=full:
+# 1,000 witnesses per family, 200 per URDF family) instead of make test's sample.
+test-scale: deps
+	$(MAKE) configure
+	$(TIMED) "release build" cmake --build $(BUILD) --parallel $(JOBS) --target rrlab_engine_tests
+	$(TIMED) "scale tests" env RRLAB_TEST_SCALE=full ctest --test-dir $(BUILD) --output-on-failure --parallel $(JOBS) -R 'AtScale\.'
 
 # The browser tests alone.
 test-web: deps

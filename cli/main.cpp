@@ -58,6 +58,21 @@ int main(int argc, char** argv) {
   serve_cmd->add_option("--max-scenarios", serve.quotas.max_scenarios,
                         "scenarios stored over REST (default 1000; beyond: 507)")
       ->check(CLI::Range(std::int64_t(0), std::int64_t(1'000'000)));
+  serve_cmd->add_option("--max-live-per-address", serve.quotas.max_live_per_address,
+                        "live runs or compare groups one address may hold (default 16; a new one ends the address's "
+                        "oldest unwatched one, or is refused with 429 when every one is watched)")
+      ->check(CLI::Range(1, 65536));
+  serve_cmd->add_option("--live-reserve-bytes", serve.quotas.live_reserve_bytes,
+                        "bytes of --max-total-bytes a live run reserves ahead of what it has stored (default 16777216 "
+                        "= 16 MiB)")
+      ->check(CLI::Range(std::int64_t(1), std::int64_t(1) << 50));
+  serve_cmd->add_option("--abandon-unwatched-s", serve.quotas.abandon_unwatched_s,
+                        "a live run with no WebSocket client and no REST call for it this long after its start ends "
+                        "as abandoned (default 30)")
+      ->check(CLI::Range(1, 86400 * 365));
+  serve_cmd->add_option("--abandon-idle-s", serve.quotas.abandon_idle_s,
+                        "a live run with no viewer and no input for this long ends as abandoned (default 600)")
+      ->check(CLI::Range(1, 86400 * 365));
   serve_cmd->add_option("--test-db-max-pages", serve.test_db_max_pages,
                         "TESTS ONLY: cap the database file at this many pages (PRAGMA max_page_count) to simulate a "
                         "full disk")

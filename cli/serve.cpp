@@ -9,6 +9,7 @@
 
 #include "cli.hpp"
 #include "net/sessions.hpp"
+#include "app/sweep_jobs.hpp"
 #include "storage/disk_reserve.hpp"
 #include "storage/frame_writer.hpp"
 #include "storage/migrations.hpp"
@@ -71,6 +72,7 @@ int serve(const ServeOptions& options) {
     for (int i = 1; i < options.threads; ++i) pool.emplace_back([&] { ioc.run(); });
     ioc.run();
     for (auto& t : pool) t.join();
+    runs.sweeps().interrupt();  // a report being built on a worker is abandoned: the pool joins at once
     state->workers.stop();   // no scenario is built, nor a run started or deleted, once the manager stops
     state->exports.stop();   // no export worker may read the store once it goes
     runs.stop_all();

@@ -81,8 +81,15 @@ int sweep(const SweepOptions& options) {
                                    {"stored", outcome.stored},
                                    {"failed", outcome.failures.size()},
                                    {"interrupted", outcome.interrupted}};
-    std::cout << result.dump() << '\n';
+    nlohmann::json shown = result;
+    if (!outcome.storage_stopped.empty()) shown["stopped"] = outcome.storage_stopped;
+    std::cout << shown.dump() << '\n';
     for (const std::string& failure : outcome.failures) std::cerr << "rrlab: sweep: run failed: " << failure << '\n';
+    if (!outcome.storage_stopped.empty()) {
+      std::cerr << "rrlab: sweep stopped: " << outcome.storage_stopped << " (" << outcome.already_stored + outcome.stored
+                << " of " << outcome.cases << " runs stored); free room, then run the same command again to resume\n";
+      return 1;
+    }
     if (outcome.interrupted) {
       std::cerr << "rrlab: sweep interrupted: " << outcome.already_stored + outcome.stored << " of " << outcome.cases
                 << " runs stored; run the same command again to resume\n";

@@ -22,6 +22,20 @@ struct Quotas {
   // 64-joint, 256-obstacle, 1e7-step run is 1.6e11, about 80 minutes).
   double max_run_cost = 2e10;
   std::int64_t max_scenarios = 1000;  // --max-scenarios: scenarios stored over REST
+  // Live runs (server only): an address holds at most this many live runs or
+  // compare groups (a group counts once; client names share their address's
+  // count); a new one beyond ends the address's oldest unwatched one, or is
+  // refused (429) when every one is watched. --max-live-per-address
+  int max_live_per_address = 16;
+  // A live lane reserves of --max-total-bytes what it has stored plus at most
+  // this many bytes ahead, not its whole duration's frames, so that runs that
+  // store nothing never fill the quota. --live-reserve-bytes
+  std::int64_t live_reserve_bytes = 16ll << 20;
+  // A live run with no WebSocket client and no REST call for it for this long
+  // after its start ends as abandoned (stored frames kept). --abandon-unwatched-s
+  int abandon_unwatched_s = 30;
+  // ... and later on, with no viewer and no input for this long. --abandon-idle-s
+  int abandon_idle_s = 600;
 };
 
 }  // namespace rrlab

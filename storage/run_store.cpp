@@ -239,12 +239,16 @@ void RunStore::add_frames(const std::vector<std::pair<std::int64_t, StoredFrame>
   });
 }
 
+// A write that meets a full disk gets the reserve back a step at a time
+// until it fits (or none is left): a delete takes only the room it needs.
 void RunStore::with_reserve(const std::function<void()>& write) {
-  try {
-    recording_faults(write);
-  } catch (const StorageError& e) {
-    if (e.fault() != StorageFault::full || !reserve_->release()) throw;
-    recording_faults(write);
+  for (;;) {
+    try {
+      recording_faults(write);
+      return;
+    } catch (const StorageError& e) {
+      if (e.fault() != StorageFault::full || !reserve_->release()) throw;
+    }
   }
 }
 

@@ -153,8 +153,20 @@ class RunStore {
   // (row.sweep, row.key) is stored already.
   std::optional<std::int64_t> add_sweep_run(const FinishedRun& run, const SweepRunRow& row);
   std::vector<std::string> sweep_keys(const std::string& sweep);
-  // Every sweep's runs, or one sweep's, ordered by sweep then key.
-  std::vector<SweepRunEntry> sweep_runs(const std::optional<std::string>& sweep);
+  // Every sweep's runs, or one sweep's, ordered by sweep then key. `cancel`
+  // set while reading (a server shutting down): returns what it has read.
+  std::vector<SweepRunEntry> sweep_runs(const std::optional<std::string>& sweep,
+                                        const std::atomic<bool>* cancel = nullptr);
+
+  // One page of a sweep's runs (ordered by key) matching the filter, and how
+  // many match: read in SQL, so a page costs its own rows only.
+  struct SweepRunFilter {
+    std::optional<std::string> family;  // the report's family: a generator family, or a file's scenario key
+    std::optional<std::string> config, failure_mode;
+    std::optional<bool> success;
+  };
+  std::vector<SweepRunEntry> sweep_runs_page(const std::string& sweep, const SweepRunFilter& filter,
+                                             std::int64_t limit, std::int64_t offset, std::int64_t& total);
 
   std::string integrity_check();  // "ok" when sound
 

@@ -76,27 +76,67 @@ std::vector<std::string> RunStore::sweep_keys(const std::string& sweep) {
   return out;
 }
 
-std::vector<SweepRunEntry> RunStore::sweep_runs(const std::optional<std::string>& sweep) {
+namespace {
+
+// The columns every sweep-run read selects, in SweepRunEntry's order.
+constexpr const char* kSweepRunColumns =
+    "SELECT w.sweep, w.key, w.scenario_key, w.config_key, w.family, w.success, w.run_id, r.seed, r.summary, "
+    "w.failure_mode, w.failure_t, json_extract(r.scenario, '$.witness.difficulty'), r.frames "
+    "FROM sweep_runs w JOIN runs r ON r.id = w.run_id ";
+
+SweepRunEntry sweep_run_entry(Statement& s) {
+  SweepRunEntry e;
+  e.row = {s.column_text(0), s.column_text(1), s.column_text(2), s.column_text(3), s.column_text(4),
+           s.column_int(5) != 0};
+  e.run_id = s.column_int(6);
+  e.seed = std::uint64_t(s.column_int(7));
+  if (!s.is_null(8)) e.summary_json = s.column_text(8);
+  if (!s.is_null(9)) e.row.failure_mode = s.column_text(9);
+  if (!s.is_null(10)) e.row.failure_t = s.column_double(10);
+  if (!s.is_null(11)) e.difficulty_json = s.column_text(11);
+  e.frames = s.column_int(12);
+  return e;
+}
+
+// ?1 sweep, ?2 family (as reported: a file's runs by scenario key), ?3 config, ?4 success, ?5 failure mode
+constexpr const char* kSweepRunFilter =
+    "WHERE w.sweep = ?1 AND (?2 IS NULL OR (CASE WHEN w.family = 'file' THEN w.scenario_key ELSE w.family END) = ?2) "
+    "AND (?3 IS NULL OR w.config_key = ?3) AND (?4 IS NULL OR w.success = ?4) AND (?5 IS NULL OR w.failure_mode = ?5) ";
+
+void bind_filter(Statement& s, const std::string& sweep, const RunStore::SweepRunFilter& f) {
+  s.bind(1, sweep);
+  if (f.family) s.bind(2, *f.family); else s.bind_null(2);
+  if (f.config) s.bind(3, *f.config); else s.bind_null(3);
+  if (f.success) s.bind(4, std::int64_t(*f.success ? 1 : 0)); else s.bind_null(4);
+  if (f.failure_mode) s.bind(5, *f.failure_mode); else s.bind_null(5);
+}
+
+}  // namespace
+
+std::vector<SweepRunEntry> RunStore::sweep_runs(const std::optional<std::string>& sweep, const std::atomic<bool>* cancel) {
   std::lock_guard lock(read_mutex_);
-  Statement s = read_db_->prepare(
-      "SELECT w.sweep, w.key, w.scenario_key, w.config_key, w.family, w.success, w.run_id, r.seed, r.summary, "
-      "w.failure_mode, w.failure_t, json_extract(r.scenario, '$.witness.difficulty'), r.frames "
-      "FROM sweep_runs w JOIN runs r ON r.id = w.run_id WHERE (?1 IS NULL OR w.sweep = ?1) ORDER BY w.sweep, w.key");
+  Statement s = read_db_->prepare(std::string(kSweepRunColumns) +
+                                  "WHERE (?1 IS NULL OR w.sweep = ?1) ORDER BY w.sweep, w.key");
   if (sweep) s.bind(1, *sweep); else s.bind_null(1);
   std::vector<SweepRunEntry> out;
   while (s.step()) {
-    SweepRunEntry e;
-    e.row = {s.column_text(0), s.column_text(1), s.column_text(2), s.column_text(3), s.column_text(4),
-             s.column_int(5) != 0};
-    e.run_id = s.column_int(6);
-    e.seed = std::uint64_t(s.column_int(7));
-    if (!s.is_null(8)) e.summary_json = s.column_text(8);
-    if (!s.is_null(9)) e.row.failure_mode = s.column_text(9);
-    if (!s.is_null(10)) e.row.failure_t = s.column_double(10);
-    if (!s.is_null(11)) e.difficulty_json = s.column_text(11);
-    e.frames = s.column_int(12);
-    out.push_back(std::move(e));
+    if (cancel && (out.size() & 255) == 0 && cancel->load()) break;
+    out.push_back(sweep_run_entry(s));
   }
+  return out;
+}
+
+std::vector<SweepRunEntry> RunStore::sweep_runs_page(const std::string& sweep, const SweepRunFilter& filter,
+                                                     std::int64_t limit, std::int64_t offset, std::int64_t& total) {
+  std::lock_guard lock(read_mutex_);
+  Statement count = read_db_->prepare(std::string("SELECT COUNT(*) FROM sweep_runs w ") + kSweepRunFilter);
+  bind_filter(count, sweep, filter);
+  total = count.step() ? count.column_int(0) : 0;
+  Statement s = read_db_->prepare(std::string(kSweepRunColumns) + kSweepRunFilter + "ORDER BY w.key LIMIT ?6 OFFSET ?7");
+  bind_filter(s, sweep, filter);
+  s.bind(6, limit).bind(7, offset);
+  std::vector<SweepRunEntry> out;
+  while (s.step()) out.push_back(sweep_run_entry(s));
   return out;
 }
 

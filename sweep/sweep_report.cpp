@@ -118,6 +118,8 @@ void difficulty_bins(const std::map<GroupKey, std::vector<const RunFacts*>>& gro
     std::vector<const RunFacts*>& family = families[{std::get<0>(key), std::get<2>(key)}];
     family.insert(family.end(), runs.begin(), runs.end());
   }
+  std::map<std::pair<std::string, std::string>, std::vector<GroupStats*>> family_groups;
+  for (GroupStats& g : stats) family_groups[{g.sweep, g.family}].push_back(&g);
   for (const auto& [where, runs] : families) {
     const bool obstacles = std::any_of(runs.begin(), runs.end(), [](const RunFacts* f) { return std::isfinite(f->clearance); });
     const auto measure = [obstacles](const RunFacts* f) { return obstacles ? f->clearance : f->limit_margin; };
@@ -129,8 +131,8 @@ void difficulty_bins(const std::map<GroupKey, std::vector<const RunFacts*>>& gro
     for (int k = 0; k <= kDifficultyBins; ++k) edges.push_back(quantile(values, double(k) / kDifficultyBins));
     edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
     if (edges.size() < 2) continue;
-    for (GroupStats& g : stats) {
-      if (g.sweep != where.first || g.family != where.second) continue;
+    for (GroupStats* group : family_groups[where]) {
+      GroupStats& g = *group;
       g.difficulty_measure = obstacles ? "clearance" : "limit_margin";
       g.by_difficulty.clear();
       for (size_t k = 0; k + 1 < edges.size(); ++k) g.by_difficulty.push_back({edges[k], edges[k + 1], 0, 0});
@@ -159,25 +161,31 @@ std::vector<double> step_p50s(const std::vector<const RunFacts*>& runs) {
 }
 
 
+// Each group's step time against pinv's on the same sweep and family: one
+// pass to find pinv's groups, one to divide (linear in the groups).
 void step_ratios(const std::map<GroupKey, std::vector<const RunFacts*>>& groups, std::vector<GroupStats>& stats) {
+  std::map<std::pair<std::string, std::string>, double> pinv_means;  // (sweep, family) -> pinv's mean
+  for (const auto& [key, runs] : groups)
+    if (is_pinv(std::get<1>(key)))
+      pinv_means[{std::get<0>(key), std::get<2>(key)}] = shifted_geometric_mean(step_p50s(runs), kStepTimeShift);
   for (GroupStats& g : stats) {
-    for (const auto& [key, runs] : groups) {
-      if (std::get<0>(key) != g.sweep || std::get<2>(key) != g.family || !is_pinv(std::get<1>(key))) continue;
-      const double pinv = shifted_geometric_mean(step_p50s(runs), kStepTimeShift);
-      const double own = shifted_geometric_mean(step_p50s(groups.at({g.sweep, g.config_key, g.family})), kStepTimeShift);
-      if (pinv > 0) g.step_ratio_to_pinv = own / pinv;
-    }
+    const auto pinv = pinv_means.find({g.sweep, g.family});
+    if (pinv == pinv_means.end() || !(pinv->second > 0)) continue;
+    g.step_ratio_to_pinv =
+        shifted_geometric_mean(step_p50s(groups.at({g.sweep, g.config_key, g.family})), kStepTimeShift) / pinv->second;
   }
 }
 
+// A sweep's cases (scenario key and seed), each with its runs by configuration.
 using CaseRuns = std::map<std::pair<std::string, std::uint64_t>, std::map<std::string, const RunFacts*>>;
 
+// `cases`: the family's cases only (a case belongs to one family).
 FamilyComparison compare_on_family(const CaseRuns& cases, const std::string& sweep, const std::string& family,
                                    const std::string& config, const std::string& reference, const char* role) {
   FamilyComparison c{sweep, family, config, reference, role, 0, {}, 1};
   for (const auto& [case_key, runs] : cases) {
     const auto a = runs.find(config), b = runs.find(reference);
-    if (a == runs.end() || b == runs.end() || report_family(a->second->entry->row) != family) continue;
+    if (a == runs.end() || b == runs.end()) continue;
     ++c.cases;
     tally(c.success, int(a->second->entry->row.success) - int(b->second->entry->row.success));
   }
@@ -194,8 +202,10 @@ bool better(const GroupStats& x, const GroupStats& y) {
 }
 
 // Per sweep and family: every configuration against pinv and against the
-// best, and the configurations not significantly worse than the best.
-void compare_within_families(std::map<std::string, CaseRuns>& cases, SweepReport& report) {
+// best, and the configurations not significantly worse than the best
+// (`cases`: (sweep, family) -> the family's cases). Two comparisons per
+// configuration, each over the family's cases: linear in the runs.
+void compare_within_families(std::map<std::pair<std::string, std::string>, CaseRuns>& cases, SweepReport& report) {
   std::map<std::pair<std::string, std::string>, std::vector<size_t>> families;  // (sweep, family) -> groups
   for (size_t i = 0; i < report.groups.size(); ++i)
     families[{report.groups[i].sweep, report.groups[i].family}].push_back(i);
@@ -215,12 +225,12 @@ void compare_within_families(std::map<std::string, CaseRuns>& cases, SweepReport
     for (size_t i : order) {
       const std::string& config = report.groups[i].config_key;
       if (!pinv.empty() && config != pinv)
-        report.comparisons.push_back(compare_on_family(cases[sweep], sweep, family, config, pinv, "pinv"));
+        report.comparisons.push_back(compare_on_family(cases[where], sweep, family, config, pinv, "pinv"));
       if (config == best) {
         verdict.contenders.push_back(i);
         continue;
       }
-      const FamilyComparison against_best = compare_on_family(cases[sweep], sweep, family, config, best, "best");
+      const FamilyComparison against_best = compare_on_family(cases[where], sweep, family, config, best, "best");
       report.comparisons.push_back(against_best);
       const bool worse = against_best.success.losses > against_best.success.wins && against_best.mcnemar_p < kSignificance;
       if (!worse) verdict.contenders.push_back(i);
@@ -230,21 +240,26 @@ void compare_within_families(std::map<std::string, CaseRuns>& cases, SweepReport
 }
 }  // namespace
 
-SweepReport build_report(const std::vector<storage::SweepRunEntry>& entries) {
+SweepReport build_report(const std::vector<storage::SweepRunEntry>& entries, const std::atomic<bool>* cancel) {
   std::vector<RunFacts> facts;
   facts.reserve(entries.size());
-  for (const storage::SweepRunEntry& e : entries) facts.push_back(facts_of(e));
+  for (const storage::SweepRunEntry& e : entries) {
+    if (cancel && (facts.size() & 255) == 0 && cancel->load()) return {};
+    facts.push_back(facts_of(e));
+  }
 
   SweepReport report;
   std::map<GroupKey, std::vector<const RunFacts*>> groups;
   std::map<std::string, std::map<std::string, std::vector<const RunFacts*>>> by_config;  // sweep -> config -> runs
-  // sweep -> (scenario key, seed) -> config -> run
-  std::map<std::string, std::map<std::pair<std::string, std::uint64_t>, std::map<std::string, const RunFacts*>>> cases;
+  std::map<std::string, CaseRuns> cases;                                   // sweep -> its cases
+  std::map<std::pair<std::string, std::string>, CaseRuns> family_cases;   // (sweep, family) -> its cases
   for (const RunFacts& f : facts) {
     const storage::SweepRunRow& row = f.entry->row;
-    groups[{row.sweep, row.config_key, report_family(row)}].push_back(&f);
+    const std::string family = report_family(row);
+    groups[{row.sweep, row.config_key, family}].push_back(&f);
     by_config[row.sweep][row.config_key].push_back(&f);
     cases[row.sweep][{row.scenario_key, f.entry->seed}][row.config_key] = &f;
+    family_cases[{row.sweep, family}][{row.scenario_key, f.entry->seed}][row.config_key] = &f;
   }
   for (const auto& [key, runs] : groups) report.groups.push_back(group_stats(runs));
   step_ratios(groups, report.groups);
@@ -265,6 +280,11 @@ SweepReport build_report(const std::vector<storage::SweepRunEntry>& entries) {
     });
     report.ranking.insert(report.ranking.end(), ranking.begin(), ranking.end());
 
+    // every two configurations: quadratic, so only for a sweep of a few
+    if (configs.size() > kMaxPairedConfigs) {
+      report.pairs_omitted[sweep] = configs.size();
+      continue;
+    }
     for (auto a = configs.begin(); a != configs.end(); ++a) {
       for (auto b = std::next(a); b != configs.end(); ++b) {
         PairedComparison pair{sweep, a->first, b->first, 0, {}, {}};
@@ -279,7 +299,7 @@ SweepReport build_report(const std::vector<storage::SweepRunEntry>& entries) {
       }
     }
   }
-  compare_within_families(cases, report);
+  compare_within_families(family_cases, report);
   return report;
 }
 

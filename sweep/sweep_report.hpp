@@ -8,7 +8,10 @@
 //    median over runs of each run's step_us.p50, and of each run's step_us.p99;
 //  - paired comparisons of every two configurations of a sweep on the same
 //    cases (same scenario key and seed): wins/losses/ties on success, and on
-//    min distance (larger wins; within 1e-9 is a tie);
+//    min distance (larger wins; within 1e-9 is a tie); only for a sweep of at
+//    most kMaxPairedConfigs configurations (their number grows with the
+//    square: a larger sweep has each configuration against pinv and its
+//    family's best instead, below);
 //  - a ranking of each sweep's configurations by success rate, then median
 //    max tracking error;
 //  - per group also the failed runs' first failure modes (collision,
@@ -26,6 +29,7 @@
 //    quartiles of the witness's clearance (or limit margin).
 #pragma once
 
+#include <atomic>
 #include <limits>
 #include <map>
 #include <optional>
@@ -89,6 +93,9 @@ struct FamilyVerdict {
 };
 
 inline constexpr double kSignificance = 0.05;
+// Every two configurations are paired only up to this many in a sweep (32: at
+// most 496 pairs); the report grows linearly in configurations x families.
+inline constexpr size_t kMaxPairedConfigs = 32;
 inline constexpr double kStepTimeShift = 1.0;  // µs
 
 struct RankEntry {
@@ -100,7 +107,8 @@ struct RankEntry {
 struct SweepReport {
   std::vector<std::string> sweeps;
   std::vector<GroupStats> groups;       // by sweep, configuration, family
-  std::vector<PairedComparison> pairs;  // by sweep, then a, b
+  std::vector<PairedComparison> pairs;  // by sweep, then a, b (sweeps of at most kMaxPairedConfigs)
+  std::map<std::string, size_t> pairs_omitted;  // sweep -> its configurations, where pairs were left out
   std::vector<RankEntry> ranking;       // by sweep, best first
   std::vector<FamilyComparison> comparisons;  // by sweep, family, then configuration (the family's best first)
   std::vector<FamilyVerdict> verdicts;        // by sweep, family
@@ -108,8 +116,10 @@ struct SweepReport {
 
 inline constexpr double kDistanceTie = 1e-9;
 
-// Throws std::runtime_error on a stored summary that is not JSON.
-SweepReport build_report(const std::vector<storage::SweepRunEntry>& runs);
+// Throws std::runtime_error on a stored summary that is not JSON. Linear in
+// the runs (but for the pairs of a sweep of at most kMaxPairedConfigs
+// configurations). `cancel` set while building: returns an incomplete report.
+SweepReport build_report(const std::vector<storage::SweepRunEntry>& runs, const std::atomic<bool>* cancel = nullptr);
 
 // The family a run is reported under: its generator family, or for scenario
 // files each file on its own ("file:NAME"), so a sweep over paper scenarios

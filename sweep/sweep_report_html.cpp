@@ -188,8 +188,12 @@ void write_report_html(std::ostream& out, const SweepReport& report) {
           << "</td><td class=\"n\">" << percent(r.success_rate) << "</td><td class=\"n\">"
           << short_number(r.median_max_tracking_error) << "</td></tr>\n";
     }
-    out << "</table>\n<h3>Paired comparisons</h3>\n<table><tr><th>A</th><th>B</th><th>cases</th>"
-           "<th>success W/L/T</th><th>min distance W/L/T</th></tr>\n";
+    out << "</table>\n<h3>Paired comparisons</h3>\n";
+    if (const std::string omitted = pairs_omitted_text(report, sweep); !omitted.empty()) {
+      out << "<p>" << escape(omitted) << "</p>\n";
+      continue;
+    }
+    out << "<table><tr><th>A</th><th>B</th><th>cases</th><th>success W/L/T</th><th>min distance W/L/T</th></tr>\n";
     for (const PairedComparison& p : report.pairs) {
       if (p.sweep != sweep) continue;
       out << "<tr><td>" << escape(p.a) << "</td><td>" << escape(p.b) << "</td><td class=\"n\">" << p.cases

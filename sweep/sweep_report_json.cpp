@@ -1,6 +1,9 @@
 #include "sweep/sweep_report_json.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <map>
+#include <numeric>
 
 namespace rrlab::sweep {
 
@@ -10,12 +13,49 @@ nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : 
 
 nlohmann::json tally(const WinLossTie& t) { return {{"wins", t.wins}, {"losses", t.losses}, {"ties", t.ties}}; }
 
+// Each configuration's place in its sweep's ranking (0: the best).
+using Ranks = std::map<std::pair<std::string, std::string>, size_t>;
+
+Ranks ranks_of(const SweepReport& report) {
+  Ranks ranks;
+  std::map<std::string, size_t> next;
+  for (const RankEntry& r : report.ranking) ranks[{r.sweep, r.config_key}] = next[r.sweep]++;
+  return ranks;
+}
+
+// Which of `count` rows to show: all up to `max_rows`, else the best-ranked
+// (`rank_of(i)`; ties in table order), in table order.
+template <typename RankOf>
+std::vector<size_t> rows_to_show(size_t count, size_t max_rows, RankOf rank_of) {
+  std::vector<size_t> rows(count);
+  std::iota(rows.begin(), rows.end(), size_t{0});
+  if (count <= max_rows) return rows;
+  std::stable_sort(rows.begin(), rows.end(), [&](size_t a, size_t b) { return rank_of(a) < rank_of(b); });
+  rows.resize(max_rows);
+  std::sort(rows.begin(), rows.end());
+  return rows;
+}
+
 }  // namespace
 
-nlohmann::json report_json(const SweepReport& report) {
+nlohmann::json report_json(const SweepReport& report, size_t max_rows) {
+  const Ranks ranks = ranks_of(report);
+  const auto rank = [&](const std::string& sweep, const std::string& config) {
+    const auto it = ranks.find({sweep, config});
+    return it == ranks.end() ? ranks.size() : it->second;
+  };
+  nlohmann::json truncated = nlohmann::json::object();
+  const auto note_cut = [&](const char* table, size_t total, size_t shown) {
+    if (shown < total) truncated[table] = {{"total", total}, {"shown", shown}};
+  };
   nlohmann::json groups = nlohmann::json::array(), pairs = nlohmann::json::array(),
                  ranking = nlohmann::json::array();
-  for (const GroupStats& g : report.groups) {
+  const std::vector<size_t> group_rows = rows_to_show(report.groups.size(), max_rows, [&](size_t i) {
+    return rank(report.groups[i].sweep, report.groups[i].config_key);
+  });
+  note_cut("groups", report.groups.size(), group_rows.size());
+  for (size_t row : group_rows) {
+    const GroupStats& g = report.groups[row];
     nlohmann::json bins = nlohmann::json::array();
     for (const DifficultyBin& b : g.by_difficulty)
       bins.push_back({{"low", number(b.low)}, {"high", number(b.high)}, {"n", b.n}, {"successes", b.successes}});
@@ -38,21 +78,38 @@ nlohmann::json report_json(const SweepReport& report) {
                       {"difficulty", {{"measure", g.difficulty_measure.empty() ? nlohmann::json() : nlohmann::json(g.difficulty_measure)},
                                       {"bins", bins}}}});
   }
-  for (const PairedComparison& p : report.pairs)
+  const std::vector<size_t> pair_rows = rows_to_show(report.pairs.size(), max_rows, [&](size_t i) {
+    return std::min(rank(report.pairs[i].sweep, report.pairs[i].a), rank(report.pairs[i].sweep, report.pairs[i].b));
+  });
+  note_cut("pairs", report.pairs.size(), pair_rows.size());
+  for (size_t row : pair_rows) {
+    const PairedComparison& p = report.pairs[row];
     pairs.push_back({{"sweep", p.sweep},
                      {"a", p.a},
                      {"b", p.b},
                      {"cases", p.cases},
                      {"success", tally(p.success)},
                      {"min_distance", tally(p.min_distance)}});
-  for (const RankEntry& r : report.ranking)
+  }
+  const std::vector<size_t> rank_rows = rows_to_show(report.ranking.size(), max_rows, [&](size_t i) {
+    return rank(report.ranking[i].sweep, report.ranking[i].config_key);
+  });
+  note_cut("ranking", report.ranking.size(), rank_rows.size());
+  for (size_t row : rank_rows) {
+    const RankEntry& r = report.ranking[row];
     ranking.push_back({{"sweep", r.sweep},
                        {"config", r.config_key},
                        {"n", r.n},
                        {"success_rate", number(r.success_rate)},
                        {"median_max_tracking_error", number(r.median_max_tracking_error)}});
+  }
   nlohmann::json comparisons = nlohmann::json::array(), verdicts = nlohmann::json::array();
-  for (const FamilyComparison& c : report.comparisons)
+  const std::vector<size_t> comparison_rows = rows_to_show(report.comparisons.size(), max_rows, [&](size_t i) {
+    return rank(report.comparisons[i].sweep, report.comparisons[i].config_key);
+  });
+  note_cut("comparisons", report.comparisons.size(), comparison_rows.size());
+  for (size_t row : comparison_rows) {
+    const FamilyComparison& c = report.comparisons[row];
     comparisons.push_back({{"sweep", c.sweep},
                            {"family", c.family},
                            {"config", c.config_key},
@@ -61,13 +118,26 @@ nlohmann::json report_json(const SweepReport& report) {
                            {"cases", c.cases},
                            {"success", tally(c.success)},
                            {"mcnemar_p", number(c.mcnemar_p)}});
+  }
   for (const FamilyVerdict& v : report.verdicts) {
     nlohmann::json contenders = nlohmann::json::array();
-    for (size_t i : v.contenders) contenders.push_back(report.groups[i].config_key);
-    verdicts.push_back({{"sweep", v.sweep}, {"family", v.family}, {"best", v.best}, {"not_worse", contenders}});
+    for (size_t k = 0; k < v.contenders.size() && k < kMaxVerdictNames; ++k)
+      contenders.push_back(report.groups[v.contenders[k]].config_key);
+    nlohmann::json verdict = {{"sweep", v.sweep}, {"family", v.family}, {"best", v.best}, {"not_worse", contenders}};
+    if (v.contenders.size() > kMaxVerdictNames) verdict["not_worse_total"] = v.contenders.size();
+    verdicts.push_back(std::move(verdict));
   }
-  return {{"sweeps", report.sweeps}, {"groups", groups},           {"pairs", pairs},
-          {"ranking", ranking},      {"comparisons", comparisons}, {"verdicts", verdicts}};
+  nlohmann::json out = {{"sweeps", report.sweeps}, {"groups", groups},           {"pairs", pairs},
+                        {"ranking", ranking},      {"comparisons", comparisons}, {"verdicts", verdicts}};
+  nlohmann::json omitted = nlohmann::json::object();
+  for (const auto& [sweep, configs] : report.pairs_omitted) omitted[sweep] = configs;
+  if (!omitted.empty()) out["pairs_omitted"] = {{"configurations", omitted}, {"max_paired", kMaxPairedConfigs}};
+  if (!truncated.empty()) {
+    truncated["max_rows"] = max_rows;
+    truncated["note"] = "rows of the best-ranked configurations are shown; every run is in GET /api/sweeps/{id}/runs";
+    out["truncated"] = std::move(truncated);
+  }
+  return out;
 }
 
 }  // namespace rrlab::sweep

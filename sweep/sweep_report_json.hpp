@@ -8,6 +8,14 @@
 
 namespace rrlab::sweep {
 
-nlohmann::json report_json(const SweepReport& report);
+// At most this many rows per table (groups, comparisons, ranking, pairs) and
+// names per verdict: a sweep of 100,000 configurations still answers in a
+// few MB. Rows are kept best-ranked first (each sweep's ranking); a cut
+// table is named under "truncated" with its total and the rows shown, and
+// every run stays readable through GET /api/sweeps/{id}/runs.
+inline constexpr size_t kMaxReportRows = 5000;
+inline constexpr size_t kMaxVerdictNames = 200;
+
+nlohmann::json report_json(const SweepReport& report, size_t max_rows = kMaxReportRows);
 
 }  // namespace rrlab::sweep

@@ -57,6 +57,15 @@ std::string contenders_text(const SweepReport& report, const FamilyVerdict& verd
   return list;
 }
 
+std::string pairs_omitted_text(const SweepReport& report, const std::string& sweep) {
+  const auto omitted = report.pairs_omitted.find(sweep);
+  if (omitted == report.pairs_omitted.end()) return "";
+  return "Left out: this sweep has " + std::to_string(omitted->second) + " configurations, more than the " +
+         std::to_string(kMaxPairedConfigs) +
+         " whose every pair is compared (their number grows with the square); each configuration is paired with "
+         "pinv and with its family's best above.";
+}
+
 std::string p_value(double p) {
   char buf[40];
   if (p < 1e-4)
@@ -125,8 +134,12 @@ void write_report_markdown(std::ostream& out, const SweepReport& report) {
           << short_number(r.median_max_tracking_error) << " |\n";
     }
     out << "\n### Paired comparisons\n\nOn the same cases (scenario and seed): A's wins/losses/ties against B, on "
-           "success, and on min distance (larger wins, ties within 1e-9).\n\n"
-        << "| A | B | cases | success W/L/T | min distance W/L/T |\n|---|---|---:|---|---|\n";
+           "success, and on min distance (larger wins, ties within 1e-9).\n\n";
+    if (const std::string omitted = pairs_omitted_text(report, sweep); !omitted.empty()) {
+      out << omitted << "\n";
+      continue;
+    }
+    out << "| A | B | cases | success W/L/T | min distance W/L/T |\n|---|---|---:|---|---|\n";
     for (const PairedComparison& p : report.pairs) {
       if (p.sweep != sweep) continue;
       out << "| " << cell(p.a) << " | " << cell(p.b) << " | " << p.cases << " | " << wlt(p.success) << " | "

@@ -18,6 +18,8 @@ std::string percent(double share);
 std::string failure_modes_text(const GroupStats& g);
 // "a (95.0%, 8 µs, 4×); b (...)": a verdict's contenders with success and step time.
 std::string contenders_text(const SweepReport& report, const FamilyVerdict& verdict);
+// Why a sweep's table of every two configurations is left out ("" when it is not).
+std::string pairs_omitted_text(const SweepReport& report, const std::string& sweep);
 // A p-value with 4 decimals, or in exponent form below 1e-4.
 std::string p_value(double p);
 

@@ -8,6 +8,7 @@
 
 #include "methods/method.hpp"
 #include "sim/simulator.hpp"
+#include "storage/database.hpp"
 #include "sweep/sweep_case.hpp"
 #include "sweep/sweep_progress.hpp"
 
@@ -37,8 +38,9 @@ RunnerOutcome run_sweep(const SweepSpec& spec, const std::vector<SweepCase>& cas
   if (options.progress) progress.emplace(*options.progress, options.progress_terminal, cases.size(), outcome.already_stored);
 
   std::atomic<size_t> next{0}, stored{0};
+  std::atomic<bool> storage_failed{false};
   std::mutex failures_mutex;
-  const auto stopping = [&] { return options.stop && options.stop->load(); };
+  const auto stopping = [&] { return storage_failed || (options.stop && options.stop->load()); };
   const auto worker = [&] {
     while (!stopping()) {
       const size_t i = next++;
@@ -48,6 +50,17 @@ RunnerOutcome run_sweep(const SweepSpec& spec, const std::vector<SweepCase>& cas
         if (store.add_sweep_run(result.run, result.row)) ++stored;
       } catch (const RunInterrupted&) {
         return;  // not stored: a resumed sweep runs it again
+      } catch (const storage::StorageError& e) {
+        // a full disk or a read-only file: every later run would fail the same way, so the
+        // sweep stops here (not a failure of this run: a resumed sweep runs it again)
+        std::lock_guard lock(failures_mutex);
+        if (!e.write_fault()) {
+          outcome.failures.push_back(todo[i].key + ": " + e.what());
+        } else {
+          if (!storage_failed.exchange(true))
+            outcome.storage_stopped = e.fault() == storage::StorageFault::full ? "disk full" : "database read-only";
+          return;
+        }
       } catch (const ParamError& e) {
         std::lock_guard lock(failures_mutex);
         outcome.failures.push_back(todo[i].key + ": method.params." + e.what());

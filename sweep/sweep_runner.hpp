@@ -30,6 +30,10 @@ struct RunnerOutcome {
   size_t stored = 0;          // run and stored now
   std::vector<std::string> failures;  // "KEY: message", runs that could not be built or run
   bool interrupted = false;   // stopped before every case was stored
+  // Set when a run could not be stored for lack of room ("disk full") or a
+  // read-only database ("database read-only"): the sweep stopped at that run
+  // (interrupted; what was stored stays, and a later invocation resumes).
+  std::string storage_stopped;
 };
 
 RunnerOutcome run_sweep(const SweepSpec& spec, const std::vector<SweepCase>& cases, storage::RunStore& store,

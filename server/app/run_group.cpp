@@ -16,6 +16,8 @@ namespace rrlab::server {
 
 using nlohmann::json;
 using Clock = std::chrono::steady_clock;
+// How often a live run checks whether anyone still uses it (a paused one wakes for it).
+constexpr auto kIdleCheckPeriod = std::chrono::seconds(1);
 
 // ---- a lane as a WebSocket frame source ----
 
@@ -50,6 +52,7 @@ class RunGroup::LaneSource final : public FrameSource {
   Subscribers& subscribers() override { return *group_->lanes_[size_t(lane_)].subscribers; }
 
   MessageReply handle_message(const json& message) override {
+    group_->touch();
     std::shared_ptr<storage::Completion> pending;
     json reply = socket_reply([&]() -> json {
       JsonObject obj(message, "");
@@ -281,8 +284,11 @@ void RunGroup::loop() {
   std::uint64_t generation = pacing_generation_;
   const auto publish_period = std::chrono::duration<double>(1.0 / options_.display_hz);
   while (true) {
-    wake_.wait(lock, [&] { return stop_requested_ || !paused_ || step_requests_ > 0 || all_done(); });
+    // a paused run wakes now and then to see whether anyone still uses it
+    wake_.wait_for(lock, kIdleCheckPeriod, [&] { return stop_requested_ || !paused_ || step_requests_ > 0 || all_done(); });
+    check_abandoned();
     if (stop_requested_ || all_done()) break;
+    if (paused_ && step_requests_ == 0) continue;
     const bool single = paused_;
     if (single) --step_requests_;
     if (generation != pacing_generation_) {
@@ -340,6 +346,48 @@ void RunGroup::loop() {
   const bool stopped = stop_requested_ && !all_done();
   lock.unlock();
   finish(!failure_.empty() ? "failed" : stopped ? "stopped" : "completed");
+}
+
+// ---- runs nobody uses ----
+
+void RunGroup::touch() {
+  touched_ = true;
+  last_activity_ = Clock::now().time_since_epoch().count();
+}
+
+bool RunGroup::watched() {
+  for (Lane& lane : lanes_)
+    if (lane.subscribers->size() > 0) return true;
+  return false;
+}
+
+void RunGroup::check_abandoned() {
+  if (options_.mode != "live" || stop_requested_) return;
+  const auto now = Clock::now();
+  if (now < next_idle_check_) return;
+  next_idle_check_ = now + kIdleCheckPeriod;
+  if (watched()) {
+    touch();
+    return;
+  }
+  bool ever_watched = false;
+  for (Lane& lane : lanes_) ever_watched = ever_watched || lane.subscribers->ever_added();
+  const auto last = Clock::time_point(Clock::duration(last_activity_.load()));
+  const bool unused_since_start = !touched_ && !ever_watched && now - started_at_ >= options_.abandon_unwatched;
+  if (unused_since_start || now - last >= options_.abandon_idle) {
+    ended_ = "abandoned";
+    stop_requested_ = true;
+  }
+}
+
+void RunGroup::supersede() {
+  {
+    auto lock = lock_for_input();
+    if (stop_requested_ || finished_) return;
+    ended_ = "superseded";
+    stop_requested_ = true;
+  }
+  wake_.notify_all();
 }
 
 void RunGroup::finish(const std::string& requested_status) {
@@ -429,6 +477,7 @@ json RunGroup::summary_locked(Lane& lane) {
   s["run"] = lane.run_id;
   s["frames_stored"] = lane.frames_stored;
   if (!lane.storage_stopped.empty()) s["storage_stopped"] = lane.storage_stopped;
+  if (!ended_.empty()) s["ended"] = ended_;
   if (!failure_.empty()) s["failure"] = failure_;
   return s;
 }

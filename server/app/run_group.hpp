@@ -97,6 +97,10 @@ struct GroupOptions {
   std::optional<long> steps;   // default: the scenario's duration / dt
   std::optional<std::int64_t> source_run;
   bool compare = false;
+  std::string owner;  // the address that started it (live runs per address: Quotas::max_live_per_address)
+  // a live run nobody watches or calls ends as abandoned (Quotas::abandon_unwatched_s, abandon_idle_s)
+  std::chrono::seconds abandon_unwatched{Quotas{}.abandon_unwatched_s};
+  std::chrono::seconds abandon_idle{Quotas{}.abandon_idle_s};
 };
 
 // What an input or a control request answers: the lane's status now, and
@@ -138,6 +142,16 @@ class RunGroup : public std::enable_shared_from_this<RunGroup> {
   std::shared_ptr<FrameSource> source(int lane);
   Controller& controller() { return controller_; }  // one for every lane
 
+  // Activity: a REST call for the group, or a WebSocket message to it. A live
+  // run with neither, nor a WebSocket client, for GroupOptions::abandon_*
+  // ends as "stopped" with "ended": "abandoned" in its summary.
+  void touch();
+  bool watched();  // some lane has a WebSocket client
+  bool live() const { return options_.mode == "live"; }
+  const std::string& owner() const { return options_.owner; }
+  // Ends the run to make room for a newer one of its owner ("ended": "superseded").
+  void supersede();
+
  private:
   struct Lane {
     std::int64_t run_id = 0;
@@ -172,6 +186,7 @@ class RunGroup : public std::enable_shared_from_this<RunGroup> {
   void release_reservations_of(Lane& lane);
   std::optional<std::string> write_failure();  // a lane's frames could not be written
   void finish(const std::string& status);  // holds no lock
+  void check_abandoned();  // holds mutex_: ends a live run nobody uses (touch())
   const char* lane_status(const Lane& lane) const;
 
   RunServices services_;
@@ -206,6 +221,12 @@ class RunGroup : public std::enable_shared_from_this<RunGroup> {
   std::condition_variable exited_cv_;
   bool exited_ = false;
   Controller controller_;
+  // activity (touch()): steady-clock ticks, and whether any came since the start
+  const std::chrono::steady_clock::time_point started_at_ = std::chrono::steady_clock::now();
+  std::atomic<std::chrono::steady_clock::rep> last_activity_{started_at_.time_since_epoch().count()};
+  std::atomic<bool> touched_{false};
+  std::chrono::steady_clock::time_point next_idle_check_{};
+  std::string ended_;  // why it ended on its own ("abandoned", "superseded"); "" otherwise (under mutex_)
 };
 
 }  // namespace rrlab::server

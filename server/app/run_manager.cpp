@@ -311,7 +311,8 @@ std::int64_t RunManager::admit_work(const std::vector<LaneEstimate>& lanes, bool
 
 void RunManager::release_reserved(std::int64_t bytes) { budget_.release(bytes); }
 
-std::vector<std::int64_t> RunManager::admit(const std::vector<LaneEstimate>& lanes, bool frames) {
+std::vector<std::int64_t> RunManager::admit(const std::vector<LaneEstimate>& lanes, bool frames,
+                                            std::int64_t window) {
   double cost = 0;
   std::int64_t bytes = 0;
   std::vector<std::int64_t> reserve;
@@ -334,8 +335,9 @@ std::vector<std::int64_t> RunManager::admit(const std::vector<LaneEstimate>& lan
                      "steps",
                      {{"limit", "max_run_bytes"}, {"requested", lane_bytes}, {"allowed", limits_.max_run_bytes},
                       {"frames", lane.steps}, {"frame_bytes", lane.frame_bytes}});
-    bytes += lane_bytes;
-    reserve.push_back(lane_bytes);
+    const std::int64_t reserved = window > 0 ? std::min(lane_bytes, window) : lane_bytes;
+    bytes += reserved;
+    reserve.push_back(reserved);
   }
   if (cost > limits_.max_run_cost) {
     char text[64];
@@ -360,7 +362,7 @@ std::vector<std::int64_t> RunManager::admit(const std::vector<LaneEstimate>& lan
   const std::int64_t used = budget_.used();
   if (used + bytes > budget_.max())
     throw ApiError(507, "storage_quota",
-                   "max_total_bytes: the runs would store " + std::to_string(bytes) + " bytes of frames (" + mib(bytes) +
+                   "max_total_bytes: the runs would reserve " + std::to_string(bytes) + " bytes of frames (" + mib(bytes) +
                        ") and the database holds " + std::to_string(used) + " (" + mib(used) +
                        ", stored, queued or reserved by running runs) of at most " + std::to_string(budget_.max()) +
                        " (" + mib(budget_.max()) + ", serve --max-total-bytes): delete runs or ask for fewer steps",
@@ -370,18 +372,43 @@ std::vector<std::int64_t> RunManager::admit(const std::vector<LaneEstimate>& lan
   return reserve;
 }
 
-std::shared_ptr<RunGroup> RunManager::start_group(const std::vector<Scenario>& lanes, const GroupOptions& options) {
+// An address's live runs beyond Quotas::max_live_per_address: its oldest
+// unwatched one ends for the new one; 429 when every one is watched. Under
+// start_mutex_; the one to end is returned, ended by the caller outside mutex_.
+std::shared_ptr<RunGroup> RunManager::make_room_for_live_locked(const std::string& owner) {
+  std::vector<std::shared_ptr<RunGroup>> own;
+  for (const auto& g : groups_)
+    if (g->live() && !g->finished() && g->owner() == owner) own.push_back(g);
+  if (int(own.size()) < limits_.max_live_per_address) return nullptr;
+  for (const auto& g : own)  // oldest first
+    if (!g->watched()) return g;
+  throw ApiError(429, "too_many_live_runs",
+                 "this address holds " + std::to_string(own.size()) + " live runs, every one watched; at most " +
+                     std::to_string(limits_.max_live_per_address) +
+                     " (serve --max-live-per-address): stop one first",
+                 "", {{"limit", "max_live_per_address"}, {"allowed", limits_.max_live_per_address}});
+}
+
+std::shared_ptr<RunGroup> RunManager::start_group(const std::vector<Scenario>& lanes, const GroupOptions& requested) {
   check_writable();
+  GroupOptions options = requested;
+  options.abandon_unwatched = std::chrono::seconds(limits_.abandon_unwatched_s);
+  options.abandon_idle = std::chrono::seconds(limits_.abandon_idle_s);
   std::lock_guard start_lock(start_mutex_);  // the limit holds under concurrent starts
+  std::shared_ptr<RunGroup> superseded;
   {
     std::lock_guard lock(mutex_);
     prune_locked();
     if (stopping_ || active_locked() + int(lanes.size()) > limits_.max_active_runs)
       throw ApiError(503, "busy", "at most " + std::to_string(limits_.max_active_runs) +
                                       " runs may be active at once; stop or wait for some", "");
+    if (options.mode == "live") superseded = make_room_for_live_locked(options.owner);
   }
+  if (superseded) superseded->supersede();
+  // a live lane reserves a window ahead of what it stores, not its whole duration
+  const std::int64_t window = options.mode == "live" ? limits_.live_reserve_bytes : 0;
   RunServices services{store_, writer_, limits_.max_run_frames, limits_.max_run_bytes, &budget_,
-                       [this](const std::vector<LaneEstimate>& estimates) { return admit(estimates); }};
+                       [this, window](const std::vector<LaneEstimate>& estimates) { return admit(estimates, true, window); }};
   auto group = std::make_shared<RunGroup>(services, lanes, options);
   group->start();  // registered only once its thread runs
   std::lock_guard lock(mutex_);
@@ -393,7 +420,9 @@ std::shared_ptr<RunGroup> RunManager::group_of(std::int64_t id, int& lane) {
   std::lock_guard lock(mutex_);
   for (const auto& g : groups_) {
     lane = g->lane_of(id);
-    if (lane >= 0) return g;
+    if (lane < 0) continue;
+    g->touch();  // every REST call and WebSocket connection for a run goes through here
+    return g;
   }
   return nullptr;
 }

@@ -67,7 +67,9 @@ class RunManager {
   // write decides whether it still does).
   void check_writable();
   // A new group, registered and started. Refuses (before storing anything)
-  // a request beyond the per-run limits, the cost limit or the total bytes.
+  // a request beyond the per-run limits, the cost limit or the total bytes;
+  // a live one beyond its owner's live runs ends the owner's oldest unwatched
+  // one (429 when all are watched).
   std::shared_ptr<RunGroup> start_group(const std::vector<Scenario>& lanes, const GroupOptions& options);
   // The group holding run `id` (and its lane), or null when it is not in memory.
   std::shared_ptr<RunGroup> group_of(std::int64_t id, int& lane);
@@ -111,7 +113,10 @@ class RunManager {
   void prune_locked();
   // Checks `lanes` against the quotas and reserves their frame bytes; `frames`
   // false: they store summaries only (no per-run frame limits apply).
-  std::vector<std::int64_t> admit(const std::vector<LaneEstimate>& lanes, bool frames = true);  // under start_mutex_
+  // `window` > 0: each lane reserves at most that many bytes (a live lane's window ahead).
+  std::vector<std::int64_t> admit(const std::vector<LaneEstimate>& lanes, bool frames = true,
+                                  std::int64_t window = 0);  // under start_mutex_
+  std::shared_ptr<RunGroup> make_room_for_live_locked(const std::string& owner);
   nlohmann::json scenario_summary(const std::string& name, const nlohmann::json& doc, bool builtin);
   int active_locked() const;  // unfinished runs (lanes) and jobs
 

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "routes/api.hpp"
+#include "app/free_memory.hpp"
 #include "app/run_manager.hpp"
 #include "app/thread_priority.hpp"
 #include "scenario/scenario.hpp"
@@ -35,6 +36,7 @@ constexpr size_t kMaxRunsPerSweep = 100'000;
 constexpr size_t kMaxGeneratorEntries = 64;
 constexpr int kMaxRunningSweeps = 4;
 constexpr size_t kMaxKeptSweeps = 64;  // finished ones beyond this are forgotten (their runs stay stored)
+constexpr size_t kMaxCachedReports = 8;  // built reports kept (each at most a few MB: sweep_report_json.hpp)
 
 // Over REST a scenario entry is a catalogue name or a generator: never a path.
 void refuse_paths(const json& spec) {
@@ -64,36 +66,44 @@ struct SweepJobs::Job {
   std::mutex mutex;  // guards the fields below
   std::string status = "running", error;
   sweep::RunnerOutcome outcome;
+  std::optional<size_t> done_at_end;  // stored cases, counted once the sweep has ended
+  std::shared_ptr<const std::string> report;  // the ended sweep's report (null: not built, or dropped)
+  std::mutex build_mutex;  // held while the report is built
+  std::atomic<bool> exited{false};  // the thread has finished (the report built)
 };
 
 SweepJobs::SweepJobs(RunManager& runs, std::string scenarios_dir) : runs_(runs), scenarios_dir_(std::move(scenarios_dir)) {}
 
 // A sweep is admitted like the runs it makes (summaries only: no frame
 // limits): its cost estimate, summed over every run, against
-// --max-run-cost. Runs of one scenario entry and method configuration cost
-// alike: the entry's case 0 stands for the others (generated once: the
-// last cases made are kept, sweep_case.hpp).
-void SweepJobs::admit(const Job& job) {
-  std::map<std::pair<size_t, size_t>, LaneEstimate> by_kind;
+// --max-run-cost. A scenario entry's cases cost alike (its case 0 stands for
+// the others): each entry's first case is built once, and only the method
+// changes from one configuration to the next, so admission is linear in the
+// configurations with a small constant (no scenario built per configuration).
+void SweepJobs::admit(const sweep::SweepSpec& spec) {
   std::vector<LaneEstimate> lanes;
-  lanes.reserve(job.cases.size());
-  for (const sweep::SweepCase& c : job.cases) {
-    auto it = by_kind.find({c.entry, c.config});
-    if (it == by_kind.end()) {
-      LaneEstimate estimate;
-      try {
-        // the entry's first case: generated once for all its configurations
-        sweep::SweepCase first = c;
-        first.index = 0;
-        const Scenario scenario = sweep::scenario_of_case(job.spec, first);
-        const std::int64_t steps = job.spec.steps ? *job.spec.steps : std::llround(scenario.duration / scenario.dt);
-        estimate = estimate_lane(scenario, steps, 0);
-      } catch (const std::exception&) {
-        // a case that cannot be built fails when it runs, at no cost
-      }
-      it = by_kind.emplace(std::make_pair(c.entry, c.config), estimate).first;
+  lanes.reserve(size_t(std::min<std::uint64_t>(sweep::sweep_case_count(spec), kMaxRunsPerSweep)));
+  const size_t seeds = std::max<size_t>(1, spec.seeds.size());
+  for (size_t e = 0; e < spec.scenarios.size() && !spec.configs.empty(); ++e) {
+    std::optional<Scenario> first;
+    try {
+      sweep::SweepCase c;
+      c.entry = e;
+      first = sweep::scenario_of_case(spec, c);
+    } catch (const std::exception&) {
+      // a case that cannot be built fails when it runs, at no cost
     }
-    lanes.push_back(it->second);
+    for (const sweep::MethodConfig& config : spec.configs) {
+      LaneEstimate estimate;
+      if (first) {
+        first->method.name = config.method;
+        first->method.params.clear();
+        for (const sweep::ParamValue& p : config.params) first->method.params.emplace_back(p.name, p.value);
+        const std::int64_t steps = spec.steps ? *spec.steps : std::llround(first->duration / first->dt);
+        estimate = estimate_lane(*first, steps, 0);
+      }
+      lanes.insert(lanes.end(), size_t(spec.scenarios[e].count) * seeds, estimate);
+    }
   }
   runs_.admit_work(lanes, false);
 }
@@ -101,7 +111,7 @@ void SweepJobs::admit(const Job& job) {
 SweepJobs::~SweepJobs() { stop_all(); }
 
 // A spec checked as a start would check it (422 naming the path, the REST
-// limits, the run quotas), expanded into its cases; nothing is started.
+// limits, the run quotas), not yet expanded into its cases; nothing is started.
 std::shared_ptr<SweepJobs::Job> SweepJobs::prepare(const json& body) {
   refuse_paths(body);
   auto job = std::make_shared<Job>();
@@ -125,22 +135,28 @@ std::shared_ptr<SweepJobs::Job> SweepJobs::prepare(const json& body) {
                    "this spec has " + std::to_string(generated) + " generator entries; over REST at most " +
                        std::to_string(kMaxGeneratorEntries) + " (the command line has no limit)",
                    "scenarios");
-  job->cases = sweep::expand_sweep(job->spec);
-  admit(*job);
+  admit(job->spec);
   return job;
 }
 
 json SweepJobs::validate(const json& body) {
-  const std::shared_ptr<Job> job = prepare(body);
-  return {{"valid", true},
-          {"name", job->spec.name},
-          {"total", job->cases.size()},
-          {"scenario_entries", job->spec.scenarios.size()},
-          {"configurations", job->spec.configs.size()}};
+  json answer;
+  {
+    const std::shared_ptr<Job> job = prepare(body);  // not expanded: counted
+    answer = {{"valid", true},
+              {"name", job->spec.name},
+              {"total", sweep::sweep_case_count(job->spec)},
+              {"scenario_entries", job->spec.scenarios.size()},
+              {"configurations", job->spec.configs.size()}};
+  }
+  release_free_memory();  // a large grid's spec is gone: its pages go back to the system
+  return answer;
 }
 
 json SweepJobs::start(const json& body, int jobs) {
+  runs_.check_writable();  // 503 storage_full on a full disk: a sweep would store nothing
   const std::shared_ptr<Job> job = prepare(body);
+  job->cases = sweep::expand_sweep(job->spec);
   // one core stays for live runs
   const int cores = int(std::max(1u, std::thread::hardware_concurrency()));
   job->jobs = std::clamp(jobs, 1, std::max(1, cores - 1));
@@ -166,12 +182,7 @@ json SweepJobs::start(const json& body, int jobs) {
   }
   // forget the oldest finished sweeps beyond the limit
   for (auto it = jobs_.begin(); jobs_.size() >= kMaxKeptSweeps && it != jobs_.end();) {
-    bool ended;
-    {
-      std::lock_guard other_lock(it->second->mutex);
-      ended = it->second->status != "running";
-    }
-    if (!ended) { ++it; continue; }
+    if (!it->second->exited) { ++it; continue; }  // running, or building its report
     if (it->second->thread.joinable()) it->second->thread.join();
     it = jobs_.erase(it);
   }
@@ -191,38 +202,93 @@ json SweepJobs::start(const json& body, int jobs) {
       status = "failed";
       error = e.what();
     }
+    for (int i = 0; i < job->jobs; ++i) runs_.end_job();
     {
       std::lock_guard job_lock(job->mutex);
       job->status = status;
       job->error = error;
       job->outcome = std::move(outcome);
     }
-    for (int i = 0; i < job->jobs; ++i) runs_.end_job();
+    try {
+      report_of(job);  // built now, on this low-priority thread, not when first asked for
+    } catch (const std::exception&) {
+      // a stored summary that is not JSON: GET /api/sweeps/{id} tries again and answers the error
+    }
+    job->exited = true;
   });
-  return status_of(*job);
+  return progress_of(*job);
 }
 
-json SweepJobs::status_of(Job& job) {
-  std::string status, error;
-  sweep::RunnerOutcome outcome;
+json SweepJobs::progress_of(Job& job) {
+  std::string status, error, storage_stopped;
+  json failures = json::array();  // the first 20
+  size_t failed = 0;
+  std::optional<size_t> done;
   {
     std::lock_guard lock(job.mutex);
     status = job.status;
     error = job.error;
-    outcome = job.outcome;
+    storage_stopped = job.outcome.storage_stopped;
+    failed = job.outcome.failures.size();
+    for (size_t i = 0; i < failed && i < 20; ++i) failures.push_back(job.outcome.failures[i]);
+    done = job.done_at_end;
   }
   const size_t total = job.cases.size();
-  const size_t pending = sweep::pending_cases(job.spec, job.cases, runs_.store()).size();
+  const bool ended = status != "running";
+  if (!done) {
+    done = total - sweep::pending_cases(job.spec, job.cases, runs_.store()).size();
+    if (ended) {
+      std::lock_guard lock(job.mutex);
+      job.done_at_end = done;
+    }
+  }
   json body = {{"id", job.id},       {"name", job.spec.name}, {"status", status},
-               {"total", total},     {"done", total - pending}, {"jobs", job.jobs}};
+               {"total", total},     {"done", *done},         {"jobs", job.jobs}};
   if (!error.empty()) body["error"] = error;
-  if (status == "running") return body;
-  json failures = json::array();
-  for (size_t i = 0; i < outcome.failures.size() && i < 20; ++i) failures.push_back(outcome.failures[i]);
-  body["failed"] = outcome.failures.size();
+  // why it stopped on its own: "disk full" or "database read-only" (what was stored stays; resumable)
+  if (!storage_stopped.empty()) body["reason"] = storage_stopped;
+  if (!ended) return body;
+  body["failed"] = failed;
   body["failures"] = failures;
-  body["report"] = sweep::report_json(sweep::build_report(runs_.store().sweep_runs(job.spec.name)));
   return body;
+}
+
+std::shared_ptr<const std::string> SweepJobs::report_of(const std::shared_ptr<Job>& kept) {
+  Job& job = *kept;
+  {
+    std::lock_guard lock(job.mutex);
+    if (job.report) return job.report;
+  }
+  std::lock_guard build(job.build_mutex);
+  {
+    std::lock_guard lock(job.mutex);  // built by another caller meanwhile
+    if (job.report) return job.report;
+  }
+  const std::vector<storage::SweepRunEntry> runs = runs_.store().sweep_runs(job.spec.name, &interrupted_);
+  const sweep::SweepReport report = sweep::build_report(runs, &interrupted_);
+  if (interrupted_) return nullptr;
+  auto text = std::make_shared<const std::string>(safe_dump(sweep::report_json(report)));
+  release_free_memory();  // the runs read and the report's tables are gone: only its text stays
+  {
+    std::lock_guard lock(job.mutex);
+    job.report = text;
+  }
+  // the newest reports are kept; the oldest beyond the limit dropped
+  std::shared_ptr<Job> dropped;
+  {
+    std::lock_guard lock(cache_mutex_);
+    std::erase_if(cached_reports_, [&](const std::shared_ptr<Job>& other) { return other == kept; });
+    cached_reports_.push_back(kept);
+    if (cached_reports_.size() > kMaxCachedReports) {
+      dropped = cached_reports_.front();
+      cached_reports_.pop_front();
+    }
+  }
+  if (dropped) {
+    std::lock_guard lock(dropped->mutex);
+    dropped->report.reset();
+  }
+  return text;
 }
 
 std::shared_ptr<SweepJobs::Job> SweepJobs::find(std::int64_t id) {
@@ -232,21 +298,29 @@ std::shared_ptr<SweepJobs::Job> SweepJobs::find(std::int64_t id) {
   return it->second;
 }
 
-json SweepJobs::status(std::int64_t id) { return status_of(*find(id)); }
+std::string SweepJobs::status(std::int64_t id) {
+  const std::shared_ptr<Job> job = find(id);
+  const json progress = progress_of(*job);
+  std::string body = safe_dump(progress);
+  if (progress["status"] == "running") return body;  // no report yet
+  const std::shared_ptr<const std::string> report = report_of(job);
+  if (!report) throw ApiError(503, "busy", "the server is shutting down", "");
+  body.pop_back();  // the report spliced in as text: built once, never parsed again
+  body += ",\"report\":";
+  body += *report;
+  body += '}';
+  return body;
+}
 
 json SweepJobs::runs(std::int64_t id, const RunQuery& query) {
   const std::shared_ptr<Job> job = find(id);
-  std::vector<storage::SweepRunEntry> matching;
-  for (storage::SweepRunEntry& e : runs_.store().sweep_runs(job->spec.name)) {
-    if (query.family && sweep::report_family(e.row) != *query.family) continue;
-    if (query.config && e.row.config_key != *query.config) continue;
-    if (query.outcome && (e.row.success != (*query.outcome == "pass"))) continue;
-    if (query.failure_mode && e.row.failure_mode != query.failure_mode) continue;
-    matching.push_back(std::move(e));
-  }
+  storage::RunStore::SweepRunFilter filter{query.family, query.config, query.failure_mode, std::nullopt};
+  if (query.outcome) filter.success = *query.outcome == "pass";
+  std::int64_t total = 0;
+  const std::vector<storage::SweepRunEntry> matching =
+      runs_.store().sweep_runs_page(job->spec.name, filter, query.limit, query.offset, total);
   json page = json::array();
-  for (size_t i = size_t(query.offset); i < matching.size() && i < size_t(query.offset + query.limit); ++i) {
-    const storage::SweepRunEntry& e = matching[i];
+  for (const storage::SweepRunEntry& e : matching) {
     json summary = parsed_or_null(e.summary_json);
     const auto field = [&](const char* key) { return summary.is_object() && summary.contains(key) ? summary[key] : json(); };
     page.push_back({{"run", e.run_id},
@@ -264,7 +338,7 @@ json SweepJobs::runs(std::int64_t id, const RunQuery& query) {
                     {"max_tracking_error", field("max_tracking_error")},
                     {"difficulty", parsed_or_null(e.difficulty_json)}});
   }
-  return {{"id", id}, {"sweep", job->spec.name}, {"total", matching.size()}, {"offset", query.offset},
+  return {{"id", id}, {"sweep", job->spec.name}, {"total", total}, {"offset", query.offset},
           {"limit", query.limit}, {"runs", page}};
 }
 
@@ -290,7 +364,14 @@ json SweepJobs::control(std::int64_t id, const json& body) {
   return {{"id", id}, {"stopping", true}};
 }
 
+void SweepJobs::interrupt() {
+  interrupted_ = true;
+  std::lock_guard lock(mutex_);
+  for (const auto& [id, job] : jobs_) job->stop = true;
+}
+
 void SweepJobs::stop_all() {
+  interrupted_ = true;
   std::vector<std::shared_ptr<Job>> jobs;
   {
     std::lock_guard lock(mutex_);

@@ -7,6 +7,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <deque>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -14,6 +15,10 @@
 #include <nlohmann/json.hpp>
 #include <string>
 #include <thread>
+
+namespace rrlab::sweep {
+struct SweepSpec;
+}
 
 namespace rrlab::server {
 
@@ -29,8 +34,11 @@ class SweepJobs {
   nlohmann::json start(const nlohmann::json& spec, int jobs);
   // The checks of start() without starting: {valid, name, total, scenario_entries, configurations}.
   nlohmann::json validate(const nlohmann::json& spec);
-  // Progress; once ended, the report of the sweep's stored runs. 404 if unknown.
-  nlohmann::json status(std::int64_t id);
+  // Progress; once ended, the report of the sweep's stored runs (JSON text).
+  // 404 if unknown. The report is built once when the sweep ends, off the
+  // I/O threads, and kept for the last kMaxCachedReports sweeps (an older
+  // one is built again when asked for).
+  std::string status(std::int64_t id);
   nlohmann::json list();
   // One page of a sweep's stored runs, filtered (a report cell's runs).
   struct RunQuery {
@@ -42,19 +50,28 @@ class SweepJobs {
   nlohmann::json control(std::int64_t id, const nlohmann::json& body);
   // Stops every sweep and waits for their threads (server shutdown).
   void stop_all();
+  // Server shutdown, first step: every sweep told to stop and every report
+  // build abandoned, without waiting (so that the worker pool can be joined at once).
+  void interrupt();
 
  private:
   struct Job;
-  void admit(const Job& job);
+  void admit(const sweep::SweepSpec& spec);
   std::shared_ptr<Job> find(std::int64_t id);  // 404 if unknown
   std::shared_ptr<Job> prepare(const nlohmann::json& spec);  // parsed, limited, expanded, admitted  // its cost against the run quotas (413 beyond)
-  nlohmann::json status_of(Job& job);
+  nlohmann::json progress_of(Job& job);
+  // The ended sweep's report, from the cache or built (one build at a
+  // time per sweep); null when a shutdown interrupted the build.
+  std::shared_ptr<const std::string> report_of(const std::shared_ptr<Job>& job);
 
   RunManager& runs_;
   std::string scenarios_dir_;
   std::mutex mutex_;
   std::map<std::int64_t, std::shared_ptr<Job>> jobs_;
   std::int64_t next_id_ = 1;
+  std::mutex cache_mutex_;  // guards cached_reports_ (never held with mutex_)
+  std::deque<std::shared_ptr<Job>> cached_reports_;  // newest last, at most kMaxCachedReports
+  std::atomic<bool> interrupted_{false};
 };
 
 }  // namespace rrlab::server

@@ -288,6 +288,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
     ApiResponse later;
     later.deferred = [state = state_, api = std::move(api)](Responder respond) mutable {
       ++state->building;
+      const std::string owner = api.address;  // fair between addresses (client names share their address's turn)
       const bool queued = state->workers.post([state, api = std::move(api), respond] {
         ApiResponse response;
         try {
@@ -301,7 +302,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
           response.deferred(respond);  // a batch run's answer comes when it ends
         else
           respond(std::move(response));
-      });
+      }, owner);
       if (!queued) {
         --state->building;
         ApiResponse busy = error_response(ApiError(503, "busy", "too much slow work is waiting; try again", ""));

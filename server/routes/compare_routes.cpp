@@ -65,6 +65,7 @@ ApiResponse post_compare(RouteContext& c) {
   } catch (...) {
     rethrow_as_api_error("");
   }
+  options.owner = c.request.address;  // live runs are counted per address
   auto group = c.runs.start_group(lanes, options);
   json runs = json::array();
   for (int lane = 0; lane < group->lane_count(); ++lane)

@@ -47,8 +47,8 @@ constexpr Route kRoutes[] = {
     {"POST", "/api/sweeps", post_sweep, true},
     {"POST", "/api/sweeps/validate", validate_sweep, true},
     {"GET", "/api/sweeps", list_sweeps},
-    {"GET", "/api/sweeps/{}", get_sweep},
-    {"GET", "/api/sweeps/{}/runs", get_sweep_runs},
+    {"GET", "/api/sweeps/{}", get_sweep, true},  // an ended sweep's report may be built
+    {"GET", "/api/sweeps/{}/runs", get_sweep_runs, true},  // reads the sweep's stored runs
     {"POST", "/api/sweeps/{}/control", post_sweep_control},
 };
 

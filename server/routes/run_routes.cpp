@@ -123,6 +123,7 @@ ApiResponse post_run(RouteContext& c) {
   } catch (...) {
     rethrow_as_api_error("");
   }
+  options.owner = c.request.address;  // live runs are counted per address
   auto group = c.runs.start_group({scenario}, options);
   const std::int64_t id = group->run_id(0);
   if (options.mode == "batch" && wait) {

@@ -12,7 +12,11 @@ ApiResponse post_sweep(RouteContext& c) {
 
 ApiResponse list_sweeps(RouteContext& c) { return json_response(200, c.runs.sweeps().list()); }
 
-ApiResponse get_sweep(RouteContext& c) { return json_response(200, c.runs.sweeps().status(c.id())); }
+ApiResponse get_sweep(RouteContext& c) {
+  ApiResponse response;
+  response.body = c.runs.sweeps().status(c.id());
+  return response;
+}
 
 // Checks a spec as POST /api/sweeps would and starts nothing (the dashboard's dialog).
 ApiResponse validate_sweep(RouteContext& c) { return json_response(200, c.runs.sweeps().validate(parse_body(c.request))); }

@@ -4,16 +4,10 @@
 // failed with storage_full (its journal needs room), also after a restart,
 // so the documented remedy (delete runs) did not work.
 #include <gtest/gtest.h>
-#include <sched.h>
-#include <sys/mount.h>
-#include <sys/statvfs.h>
-#include <unistd.h>
 
-#include <cerrno>
-#include <cstring>
-#include <filesystem>
-#include <fstream>
 #include <string>
+
+#include "support/small_disk.hpp"
 
 #include "storage/database.hpp"
 #include "storage/disk_reserve.hpp"
@@ -23,49 +17,8 @@
 namespace rrlab::storage {
 namespace {
 
-// A private tmpfs of `mib` MiB at a new temporary directory.
-class SmallDisk {
- public:
-  explicit SmallDisk(int mib) {
-    const uid_t uid = getuid();
-    const gid_t gid = getgid();
-    if (unshare(uid == 0 ? CLONE_NEWNS : CLONE_NEWNS | CLONE_NEWUSER) != 0) {
-      error_ = std::string("unshare: ") + std::strerror(errno);
-      return;
-    }
-    if (uid != 0) {  // map ourselves to root in the new user namespace
-      std::ofstream("/proc/self/setgroups") << "deny";
-      std::ofstream("/proc/self/uid_map") << "0 " << uid << " 1";
-      std::ofstream("/proc/self/gid_map") << "0 " << gid << " 1";
-    }
-    mount("none", "/", nullptr, MS_REC | MS_PRIVATE, nullptr);  // nothing propagates out
-    std::string pattern = "/tmp/rrlab-small-disk-XXXXXX";
-    if (!mkdtemp(pattern.data())) {
-      error_ = "mkdtemp failed";
-      return;
-    }
-    dir_ = pattern;
-    const std::string options = "size=" + std::to_string(mib) + "m";
-    if (mount("tmpfs", dir_.c_str(), "tmpfs", 0, options.c_str()) != 0)
-      error_ = std::string("mount tmpfs: ") + std::strerror(errno);
-  }
-  ~SmallDisk() {
-    if (!dir_.empty()) {
-      umount2(dir_.c_str(), MNT_DETACH);
-      std::filesystem::remove_all(dir_);
-    }
-  }
-  const std::string& error() const { return error_; }
-  std::string path(const std::string& name) const { return dir_ + "/" + name; }
-  std::int64_t free_bytes() const {
-    struct statvfs s {};
-    statvfs(dir_.c_str(), &s);
-    return std::int64_t(s.f_bavail) * std::int64_t(s.f_frsize);
-  }
-
- private:
-  std::string dir_, error_;
-};
+using test::fill_with_a_file;
+using test::SmallDisk;
 
 std::vector<std::pair<std::int64_t, StoredFrame>> frames(std::int64_t run, int count, std::int64_t first) {
   std::vector<std::pair<std::int64_t, StoredFrame>> out;
@@ -89,14 +42,6 @@ std::int64_t fill(RunStore& store, std::int64_t run) {
       return stored;
     }
     stored += 256;
-  }
-}
-
-// Writes a file until the disk refuses more: what else filled the disk.
-void fill_with_a_file(const std::string& path) {
-  std::ofstream out(path, std::ios::binary);
-  const std::string block(64 << 10, 'x');
-  while (out.write(block.data(), std::streamsize(block.size())) && out.flush()) {
   }
 }
 

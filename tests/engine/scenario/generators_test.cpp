@@ -14,6 +14,7 @@
 #include "scenario/generator_witness.hpp"
 #include "scenario/scenario.hpp"
 #include "sim/simulator.hpp"
+#include "support/test_scale.hpp"
 
 namespace rrlab {
 namespace {
@@ -153,8 +154,10 @@ TEST(Generators, ListsTheFamilies) {
                                       "moving_obstacles", "urdf_tabletop", "urdf_shelf"}));
 }
 
-// Thousands of cases, each witness played back: Release only (suites named
-// ...AtScale, see the Makefile); the sanitized build runs the smaller checks below.
+// Thousands of cases, each witness played back, under `make test-scale`
+// (RRLAB_TEST_SCALE=full); `make test` plays back 80 of each family (50 of
+// the URDF ones), in Release (suites named ...AtScale, see the Makefile); the
+// sanitized build runs the smaller checks below.
 // block_pinv (the default): pinv, which ignores obstacles, runs into the first.
 std::string pinv_collides(const json& doc) {
   Simulator sim(parse_scenario(doc), "pinv");
@@ -162,10 +165,10 @@ std::string pinv_collides(const json& doc) {
   return sim.summary().collided ? "" : "pinv does not collide";
 }
 
-TEST(GeneratorWitnessesAtScale, PlanarClutter) { check_family("planar_clutter", 1000, json::object(), pinv_collides); }
+TEST(GeneratorWitnessesAtScale, PlanarClutter) { check_family("planar_clutter", test::scale_cases(1000, 80), json::object(), pinv_collides); }
 
 TEST(GeneratorWitnessesAtScale, NarrowPassage) {
-  check_family("narrow_passage", 1000, json::object(), [](const json& doc) -> std::string {
+  check_family("narrow_passage", test::scale_cases(1000, 80), json::object(), [](const json& doc) -> std::string {
     if (doc["obstacles"].size() != 2) return "not two walls";
     return pinv_collides(doc);
   });
@@ -177,7 +180,7 @@ std::string spatial_problem(const json& doc) {
   return pinv_collides(doc);
 }
 
-TEST(GeneratorWitnessesAtScale, SpatialClutter) { check_family("spatial_clutter", 1000, json::object(), spatial_problem); }
+TEST(GeneratorWitnessesAtScale, SpatialClutter) { check_family("spatial_clutter", test::scale_cases(1000, 80), json::object(), spatial_problem); }
 
 std::string moving_obstacles_problem(const json& doc) {
   const size_t n = doc["obstacles"].size();
@@ -188,7 +191,7 @@ std::string moving_obstacles_problem(const json& doc) {
 }
 
 TEST(GeneratorWitnessesAtScale, MovingObstacles) {
-  check_family("moving_obstacles", 1000, json::object(), moving_obstacles_problem);
+  check_family("moving_obstacles", test::scale_cases(1000, 80), json::object(), moving_obstacles_problem);
 }
 
 std::string pinv_crosses_a_limit(const json& doc) {
@@ -203,7 +206,7 @@ std::string pinv_crosses_a_limit(const json& doc) {
 // Each also checked by a full pinv run (the generator already ran pinv on it,
 // and on every rejected candidate).
 TEST(GeneratorWitnessesAtScale, PlanarLimitsMakePinvViolateALimit) {
-  check_family("planar_limits", 1000, json::object(), pinv_crosses_a_limit);
+  check_family("planar_limits", test::scale_cases(1000, 80), json::object(), pinv_crosses_a_limit);
 }
 
 // The URDF families: a pose task (fixed orientation) on a shipped arm whose
@@ -215,8 +218,8 @@ std::string urdf_pose_problem(const json& doc) {
   return pinv_collides(doc);
 }
 
-TEST(GeneratorWitnessesAtScale, UrdfTabletop) { check_family("urdf_tabletop", 200, json::object(), urdf_pose_problem); }
-TEST(GeneratorWitnessesAtScale, UrdfShelf) { check_family("urdf_shelf", 200, json::object(), urdf_pose_problem); }
+TEST(GeneratorWitnessesAtScale, UrdfTabletop) { check_family("urdf_tabletop", test::scale_cases(200, 50), json::object(), urdf_pose_problem); }
+TEST(GeneratorWitnessesAtScale, UrdfShelf) { check_family("urdf_shelf", test::scale_cases(200, 50), json::object(), urdf_pose_problem); }
 
 // The same checks on fewer cases, for the sanitized build.
 TEST(Generators, EveryFamilysCasesCarryAWitnessThatSolvesThem) {

@@ -17,9 +17,19 @@ using tcp = net::ip::tcp;
 
 HttpResult http(unsigned short port, const std::string& method, const std::string& target, const std::string& body,
                 const std::string& accept, const std::map<std::string, std::string>& request_headers) {
+  return http_from("", port, method, target, body, accept, request_headers);
+}
+
+HttpResult http_from(const std::string& local_address, unsigned short port, const std::string& method,
+                     const std::string& target, const std::string& body, const std::string& accept,
+                     const std::map<std::string, std::string>& request_headers) {
   net::io_context ioc;
   beast::tcp_stream stream(ioc);
   stream.expires_after(std::chrono::seconds(120));
+  if (!local_address.empty()) {  // another loopback address: the server sees another client
+    stream.socket().open(tcp::v4());
+    stream.socket().bind(tcp::endpoint(net::ip::make_address(local_address), 0));
+  }
   stream.connect(tcp::endpoint(net::ip::make_address("127.0.0.1"), port));
   http_ns::request<http_ns::string_body> request(http_ns::string_to_verb(method), target, 11);
   request.set(http_ns::field::host, "127.0.0.1:" + std::to_string(port));  // the server checks Host

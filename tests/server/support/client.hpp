@@ -21,6 +21,11 @@ struct HttpResult {
 HttpResult http(unsigned short port, const std::string& method, const std::string& target,
                 const std::string& body = "", const std::string& accept = "",
                 const std::map<std::string, std::string>& request_headers = {});
+// As http(), from `local_address` (another loopback address such as
+// 127.0.0.2: the server counts it as another client); "" as http().
+HttpResult http_from(const std::string& local_address, unsigned short port, const std::string& method,
+                     const std::string& target, const std::string& body = "", const std::string& accept = "",
+                     const std::map<std::string, std::string>& request_headers = {});
 inline HttpResult http_json(unsigned short port, const std::string& method, const std::string& target,
                             const nlohmann::json& body) {
   return http(port, method, target, body.dump());

@@ -1,0 +1,15 @@
+#include "app/free_memory.hpp"
+
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
+
+namespace rrlab::server {
+
+void release_free_memory() {
+#if defined(__GLIBC__)
+  malloc_trim(0);  // every arena, not only the main one (glibc >= 2.8)
+#endif
+}
+
+}  // namespace rrlab::server
