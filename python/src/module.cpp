@@ -13,6 +13,7 @@
 #include <memory>
 
 #include "frame_columns.hpp"
+#include "method_reentry.hpp"
 #include "methods/registry.hpp"
 #include "methods/registry_json.hpp"
 #include "python_method.hpp"
@@ -301,6 +302,7 @@ PYBIND11_MODULE(_rrlab, m) {
   m.def(
       "run",
       [](const py::object& scenario, const py::object& method, const py::object& params, const py::object& steps) {
+        refuse_reentry("rrlab.run");
         std::string python_method;
         std::unique_ptr<Simulator> sim = make_simulator(scenario_of(scenario), method, params, python_method);
         sim->set_total_steps(checked_steps(steps, sim->total_steps()));
@@ -326,6 +328,7 @@ PYBIND11_MODULE(_rrlab, m) {
       .def(
           "step",
           [](PySimulator& s, const py::object& count) {
+            refuse_reentry("Simulator.step");
             const long steps = long(whole_number(count, "count", 0, kMaxWholeNumber));
             const PySimulator::Use use(s);
             step_without_gil(*s.sim, steps, nullptr);

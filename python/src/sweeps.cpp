@@ -8,6 +8,7 @@
 #include <future>
 #include <sstream>
 
+#include "method_reentry.hpp"
 #include "methods/registry.hpp"
 #include "python_method.hpp"
 #include "scenario/generators.hpp"
@@ -77,6 +78,7 @@ sweep::RunnerOutcome run_interruptibly(const sweep::SweepSpec& spec, const std::
 py::tuple run_sweep_spec(const std::string& spec_text, const std::string& spec_dir, const std::string& scenarios_dir,
                          const py::object& jobs_argument, const std::string& db, bool frames) {
   using namespace rrlab::sweep;
+  refuse_reentry("rrlab.sweep");
   const int jobs = int(whole_number(jobs_argument, "jobs", 1, 256));
   const SweepSpec spec = parse_sweep_spec(parse_json(spec_text), SpecDirs{spec_dir, scenarios_dir});
   const std::vector<SweepCase> cases = expand_sweep(spec);
@@ -105,6 +107,7 @@ py::tuple run_sweep_spec(const std::string& spec_text, const std::string& spec_d
 // stored frames, as `rrlab replay` does; a run of a Python method needs that
 // method registered first.
 py::object replay_run(const py::object& db_path, const py::object& run_id) {
+  refuse_reentry("rrlab.replay");
   const std::int64_t id = whole_number(run_id, "run", 1, kMaxWholeNumber);
   const std::string db = py::str(py::module_::import("os").attr("fspath")(db_path));
   if (!std::filesystem::exists(db)) throw ScenarioError("db", "no database '" + db + "'");
