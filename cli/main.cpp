@@ -1,11 +1,17 @@
 // rrlab: command line front end (serve, run, replay, methods, generate, sweep, merge, report).
 #include <CLI/CLI.hpp>
+#include <cstdint>
+#include <limits>
 
 #include "cli.hpp"
+#include "scenario/scenario.hpp"
+#include "whole_number.hpp"
 
 // Stays whole (over 100 lines): it is the command line's option table, one
 // subcommand after the other, so that this file and `rrlab --help` read alike.
 int main(int argc, char** argv) {
+  using rrlab::cli::whole_number_in;  // every integer option's check: its range, in decimal
+  constexpr std::int64_t kInt64Max = std::numeric_limits<std::int64_t>::max();
   CLI::App app{"rrlab: redundancy-resolution lab"};
   app.require_subcommand(1);
   // the project(VERSION) of CMakeLists.txt, and the git commit when cmake last ran (if it was a git checkout)
@@ -15,72 +21,78 @@ int main(int argc, char** argv) {
   rrlab::cli::ServeOptions serve;
   CLI::App* serve_cmd = app.add_subcommand("serve", "serve the dashboard, REST and WebSocket API");
   serve_cmd->add_option("--host", serve.host, "address to bind (default 127.0.0.1: this machine only)");
-  serve_cmd->add_option("--port", serve.port, "port (0: any free port, printed at start)");
+  whole_number_in(serve_cmd->add_option("--port", serve.port, "port (0: any free port, printed at start)"), 0, 65535);
   serve_cmd->add_option("--db", serve.db, "SQLite database file (created if missing)");
   serve_cmd->add_option("--web", serve.web_dir, "directory of the dashboard's static files");
   serve_cmd->add_option("--scenarios", serve.scenarios_dir, "directory of scenario files");
-  serve_cmd->add_option("--threads", serve.threads, "I/O threads")->check(CLI::Range(1, 64));
+  whole_number_in(serve_cmd->add_option("--threads", serve.threads, "I/O threads"), 1, 64);
   serve_cmd->add_option("--display-hz", serve.display_hz, "WebSocket frame rate")->check(CLI::Range(1.0, 240.0));
-  serve_cmd->add_option("--body-limit", serve.body_limit, "largest request body in bytes")
-      ->check(CLI::Range(std::size_t(1024), std::size_t(64) << 20));
-  serve_cmd->add_option("--ws-stall-ms", serve.ws_stall_ms, "drop a WebSocket client whose write is stuck this long")
-      ->check(CLI::Range(100, 600000));
-  serve_cmd->add_option("--export-memory", serve.export_memory,
-                        "bytes all streamed frame exports may hold at once, 128 KiB each (default 67108864 = 64 MiB, "
-                        "512 exports; beyond: 503 busy)")
-      ->check(CLI::Range(std::size_t(128) << 10, std::size_t(1) << 40));
-  serve_cmd->add_option("--connections-per-address", serve.connections_per_address,
-                        "TCP connections one address may hold (default 256; at the cap its oldest connection that "
-                        "waits for a request is closed for a new one)")
-      ->check(CLI::Range(4, 65536));
-  serve_cmd->add_option("--max-websockets", serve.max_websockets,
-                        "WebSocket clients in all (default 1024; a sixteenth kept for clients that may steer)")
-      ->check(CLI::Range(16, 65536));
-  serve_cmd->add_option("--websockets-per-address", serve.websockets_per_address,
-                        "WebSocket clients one address may hold (default 128)")
-      ->check(CLI::Range(1, 65536));
-  serve_cmd->add_option("--websockets-per-client", serve.websockets_per_client,
-                        "WebSocket clients of one client name (default 32)")
-      ->check(CLI::Range(1, 65536));
-  serve_cmd->add_option("--max-run-frames", serve.quotas.max_run_frames,
-                        "frames one run may store (default 1000000; a request for more steps is 413)")
-      ->check(CLI::Range(1L, 100'000'000L));
-  serve_cmd->add_option("--max-run-bytes", serve.quotas.max_run_bytes,
-                        "bytes of frames one run may store (default 268435456 = 256 MiB; beyond: 413)")
-      ->check(CLI::Range(std::int64_t(1), std::int64_t(1) << 50));
-  serve_cmd->add_option("--max-total-bytes", serve.quotas.max_total_bytes,
-                        "bytes of frames all runs in the database may hold (default 8589934592 = 8 GiB; beyond: 507)")
-      ->check(CLI::Range(std::int64_t(1), std::int64_t(1) << 60));
+  whole_number_in(serve_cmd->add_option("--body-limit", serve.body_limit, "largest request body in bytes"), 1024,
+                  std::int64_t(64) << 20);
+  whole_number_in(serve_cmd->add_option("--ws-stall-ms", serve.ws_stall_ms,
+                                        "drop a WebSocket client whose write is stuck this long"),
+                  100, 600000);
+  whole_number_in(serve_cmd->add_option("--export-memory", serve.export_memory,
+                                        "bytes all streamed frame exports may hold at once, 128 KiB each (default "
+                                        "67108864 = 64 MiB, 512 exports; beyond: 503 busy)"),
+                  std::int64_t(128) << 10, std::int64_t(1) << 40);
+  whole_number_in(serve_cmd->add_option("--connections-per-address", serve.connections_per_address,
+                                        "TCP connections one address may hold (default 256; at the cap its oldest "
+                                        "connection that waits for a request is closed for a new one)"),
+                  4, 65536);
+  whole_number_in(serve_cmd->add_option("--max-websockets", serve.max_websockets,
+                                        "WebSocket clients in all (default 1024; a sixteenth kept for clients that "
+                                        "may steer)"),
+                  16, 65536);
+  whole_number_in(serve_cmd->add_option("--websockets-per-address", serve.websockets_per_address,
+                                        "WebSocket clients one address may hold (default 128)"),
+                  1, 65536);
+  whole_number_in(serve_cmd->add_option("--websockets-per-client", serve.websockets_per_client,
+                                        "WebSocket clients of one client name (default 32)"),
+                  1, 65536);
+  whole_number_in(serve_cmd->add_option("--max-run-frames", serve.quotas.max_run_frames,
+                                        "frames one run may store (default 1000000; a request for more steps is 413)"),
+                  1, 100'000'000);
+  whole_number_in(serve_cmd->add_option("--max-run-bytes", serve.quotas.max_run_bytes,
+                                        "bytes of frames one run may store (default 268435456 = 256 MiB; beyond: 413)"),
+                  1, std::int64_t(1) << 50);
+  whole_number_in(serve_cmd->add_option("--max-total-bytes", serve.quotas.max_total_bytes,
+                                        "bytes of frames all runs in the database may hold (default 8589934592 = 8 "
+                                        "GiB; beyond: 507)"),
+                  1, std::int64_t(1) << 60);
   serve_cmd->add_option("--max-run-cost", serve.quotas.max_run_cost,
                         "a request's cost estimate, DOF x (obstacles + 1) x steps summed over its runs (default 2e10, "
                         "about ten minutes of a core; beyond: 413)")
       ->check(CLI::Range(1.0, 1e18));
-  serve_cmd->add_option("--max-scenarios", serve.quotas.max_scenarios,
-                        "scenarios stored over REST (default 1000; beyond: 507)")
-      ->check(CLI::Range(std::int64_t(0), std::int64_t(1'000'000)));
-  serve_cmd->add_option("--max-live-per-address", serve.quotas.max_live_per_address,
-                        "live runs or compare groups one address may hold (default 16; a new one ends the address's "
-                        "oldest unwatched one, or is refused with 429 when every one is watched)")
-      ->check(CLI::Range(1, 65536));
-  serve_cmd->add_option("--live-reserve-bytes", serve.quotas.live_reserve_bytes,
-                        "bytes of --max-total-bytes a live run reserves ahead of what it has stored (default 16777216 "
-                        "= 16 MiB)")
-      ->check(CLI::Range(std::int64_t(1), std::int64_t(1) << 50));
-  serve_cmd->add_option("--abandon-unwatched-s", serve.quotas.abandon_unwatched_s,
-                        "a live run with no WebSocket client and no REST call for it this long after its start ends "
-                        "as abandoned (default 30)")
-      ->check(CLI::Range(1, 86400 * 365));
-  serve_cmd->add_option("--abandon-idle-s", serve.quotas.abandon_idle_s,
-                        "a live run with no viewer and no input for this long ends as abandoned (default 600)")
-      ->check(CLI::Range(1, 86400 * 365));
-  serve_cmd->add_option("--test-db-max-pages", serve.test_db_max_pages,
-                        "TESTS ONLY: cap the database file at this many pages (PRAGMA max_page_count) to simulate a "
-                        "full disk")
-      ->check(CLI::Range(std::int64_t(1), std::int64_t(1) << 40))
+  whole_number_in(serve_cmd->add_option("--max-scenarios", serve.quotas.max_scenarios,
+                                        "scenarios stored over REST (default 1000; beyond: 507)"),
+                  0, 1'000'000);
+  whole_number_in(serve_cmd->add_option("--max-live-per-address", serve.quotas.max_live_per_address,
+                                        "live runs or compare groups one address may hold (default 16; a new one ends "
+                                        "the address's oldest unwatched one, or is refused with 429 when every one is "
+                                        "watched)"),
+                  1, 65536);
+  whole_number_in(serve_cmd->add_option("--live-reserve-bytes", serve.quotas.live_reserve_bytes,
+                                        "bytes of --max-total-bytes a live run reserves ahead of what it has stored "
+                                        "(default 16777216 = 16 MiB)"),
+                  1, std::int64_t(1) << 50);
+  whole_number_in(serve_cmd->add_option("--abandon-unwatched-s", serve.quotas.abandon_unwatched_s,
+                                        "a live run with no WebSocket client and no REST call for it this long after "
+                                        "its start ends as abandoned (default 30)"),
+                  1, 86400 * 365);
+  whole_number_in(serve_cmd->add_option("--abandon-idle-s", serve.quotas.abandon_idle_s,
+                                        "a live run with no viewer and no input for this long ends as abandoned "
+                                        "(default 600)"),
+                  1, 86400 * 365);
+  whole_number_in(serve_cmd->add_option("--test-db-max-pages", serve.test_db_max_pages,
+                                        "TESTS ONLY: cap the database file at this many pages (PRAGMA max_page_count) "
+                                        "to simulate a full disk"),
+                  1, std::int64_t(1) << 40)
       ->group("");  // hidden from --help
-  serve_cmd->add_option("--test-build-delay-ms", serve.test_build_delay_ms,
-                        "tests only: every request that builds scenarios waits this long on the builder pool")
-      ->check(CLI::Range(0, 600000))
+  whole_number_in(serve_cmd->add_option("--test-build-delay-ms", serve.test_build_delay_ms,
+                                        "tests only: every request that builds scenarios waits this long on the "
+                                        "builder pool"),
+                  0, 600000)
       ->group("");  // hidden
   serve_cmd->add_flag("--test-db-read-only", serve.test_db_read_only,
                       "TESTS ONLY: refuse every write to the database (PRAGMA query_only), as a read-only file would")
@@ -103,13 +115,14 @@ int main(int argc, char** argv) {
   run_cmd->add_option("scenario", run.scenario_file, "scenario JSON file, or a run record")->required();
   run_cmd->add_option("--method", run.method, "method name (overrides the scenario's)");
   run_cmd->add_option("--param", run.params, "method parameter NAME=VALUE (repeatable)");
-  run_cmd->add_option("--steps", run.steps, "number of steps (default: duration / dt)");
+  whole_number_in(run_cmd->add_option("--steps", run.steps, "number of steps (default: duration / dt)"), 1,
+                  rrlab::ScenarioLimits::max_steps);
   run_cmd->add_option("--out", run.out_csv, "write one CSV row per step to this file");
   run_cmd->add_option("--db", run.db, "store the run and its frames in this SQLite database");
 
   rrlab::cli::ReplayOptions replay;
   CLI::App* replay_cmd = app.add_subcommand("replay", "re-simulate a stored run from its recorded inputs");
-  replay_cmd->add_option("run", replay.run_id, "run id")->required();
+  whole_number_in(replay_cmd->add_option("run", replay.run_id, "run id")->required(), 1, kInt64Max);
   replay_cmd->add_option("--db", replay.db, "SQLite database file")->required();
   replay_cmd->add_flag("--verify", replay.verify, "exit 1 unless every frame equals the stored one bit for bit");
 
@@ -119,11 +132,12 @@ int main(int argc, char** argv) {
   CLI::App* sweep_cmd = app.add_subcommand("sweep", "run a sweep spec's runs (resumable, shardable) into a database");
   sweep_cmd->add_option("spec", sweep.spec_file, "sweep spec JSON file")->required();
   sweep_cmd->add_option("--db", sweep.db, "SQLite database file (created if missing)")->required();
-  sweep_cmd->add_option("--jobs", sweep.jobs, "worker threads (default: one per hardware thread)")
-      ->check(CLI::Range(1, 1024));
+  whole_number_in(sweep_cmd->add_option("--jobs", sweep.jobs, "worker threads (default: one per hardware thread)"), 1,
+                  1024);
   sweep_cmd->add_option("--shard", sweep.shard, "run shard I of N (0-based): the runs whose position mod N is I");
-  sweep_cmd->add_option("--shards", sweep.shards, "N shards, this one's index from SLURM_ARRAY_TASK_ID or JOB_COMPLETION_INDEX")
-      ->check(CLI::Range(1, 1000000));
+  whole_number_in(sweep_cmd->add_option("--shards", sweep.shards,
+                                        "N shards, this one's index from SLURM_ARRAY_TASK_ID or JOB_COMPLETION_INDEX"),
+                  1, 1'000'000);
   sweep_cmd->add_option("--out", sweep.out_csv, "write the shard's run summaries as CSV to this file");
   sweep_cmd->add_flag("--frames", sweep.frames, "store every run's frames too (default: summaries only)");
   sweep_cmd->add_option("--scenarios", sweep.scenarios_dir, "directory of catalogue scenarios (NAME.json)");
@@ -139,10 +153,12 @@ int main(int argc, char** argv) {
                            "path); --option obstacles.shift=M, obstacles.rotate_deg=D, speed=[MIN,MAX], "
                            "q0_self_motion=RAD, path.shift=M");
   generate_cmd->add_option("--scenarios", generate.scenarios_dir, "directory of catalogue scenarios (NAME.json)");
-  generate_cmd->add_option("--seed", generate.seed, "the family's seed (as a sweep entry's \"seed\")");
-  generate_cmd->add_option("--count", generate.count, "cases to write")->check(CLI::Range(1, 1000000));
-  generate_cmd->add_option("--first", generate.first, "index of the first case (default 0)")
-      ->check(CLI::Range(0, 1000000000));
+  // the seeds a sweep spec's entries take (sweep/sweep_spec.cpp): a file is a sweep's case
+  whole_number_in(generate_cmd->add_option("--seed", generate.seed, "the family's seed (as a sweep entry's \"seed\")"),
+                  0, kInt64Max);
+  whole_number_in(generate_cmd->add_option("--count", generate.count, "cases to write"), 1, 1'000'000);
+  whole_number_in(generate_cmd->add_option("--first", generate.first, "index of the first case (default 0)"), 0,
+                  1'000'000'000);
   generate_cmd->add_option("--option", generate.options, "family option KEY=VALUE, VALUE as JSON (repeatable)");
   generate_cmd->add_option("--out", generate.out_dir, "directory to write FAMILY-INDEX.json (NAME-pINDEX.json) files into")->required();
 

@@ -69,11 +69,7 @@ int run(const RunOptions& options) {
     Simulator sim(scenario);
     long steps = sim.total_steps();
     if (input.frames > 0) steps = input.frames;  // a record: as many steps as the recorded run
-    if (options.steps) {
-      if (*options.steps < 1 || *options.steps > ScenarioLimits::max_steps)
-        throw ScenarioError("--steps", "must be in [1, " + std::to_string(ScenarioLimits::max_steps) + "]");
-      steps = *options.steps;
-    }
+    if (options.steps) steps = *options.steps;  // in [1, max_steps]: checked when parsed (main.cpp)
     sim.set_total_steps(input.events.empty() ? steps : ScenarioLimits::max_steps * 16);
 
     std::unique_ptr<CsvRecorder> csv;

@@ -67,7 +67,7 @@ def sweep(spec, methods=None, jobs=2, db=None, scenarios_dir=None, frames=False)
         scenarios_dir = "scenarios" if os.path.isdir("scenarios") else spec_dir
     with tempfile.TemporaryDirectory(prefix="rrlab-sweep-") as scratch:
         database = os.fspath(db) if db is not None else os.path.join(scratch, "sweep.db")
-        report, table, done = engine._run_sweep(json.dumps(doc), spec_dir, os.path.abspath(scenarios_dir), int(jobs),
+        report, table, done = engine._run_sweep(json.dumps(doc), spec_dir, os.path.abspath(scenarios_dir), jobs,
                                                 database, bool(frames))
     runs = [{key: _typed(value) for key, value in row.items()} for row in csv.DictReader(io.StringIO(table))]
     return {"report": json.loads(report), "runs": runs, "sweep": done["sweep"], "runs_total": done["runs"],

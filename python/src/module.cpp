@@ -13,6 +13,7 @@
 #include <memory>
 
 #include "frame_columns.hpp"
+#include "method_reentry.hpp"
 #include "methods/registry.hpp"
 #include "methods/registry_json.hpp"
 #include "python_method.hpp"
@@ -21,6 +22,7 @@
 #include "sim/run_inputs.hpp"
 #include "sim/simulator.hpp"
 #include "sweeps.hpp"
+#include "whole_number.hpp"
 
 namespace py = pybind11;
 
@@ -135,17 +137,7 @@ py::dict frames_dict(const FrameColumns& columns) {
 }
 
 long checked_steps(const py::object& steps, long otherwise) {
-  if (steps.is_none()) return otherwise;
-  const std::string range = "must be a whole number in [1, " + std::to_string(ScenarioLimits::max_steps) + "]";
-  if (py::isinstance<py::bool_>(steps) || !PyIndex_Check(steps.ptr())) throw ScenarioError("steps", range);
-  const py::object index = py::reinterpret_steal<py::object>(PyNumber_Index(steps.ptr()));
-  int overflow = 0;
-  const long long n = index ? PyLong_AsLongLongAndOverflow(index.ptr(), &overflow) : 0;
-  if (!index || overflow || n < 1 || n > ScenarioLimits::max_steps) {
-    PyErr_Clear();
-    throw ScenarioError("steps", range);
-  }
-  return long(n);
+  return steps.is_none() ? otherwise : long(whole_number(steps, "steps", 1, ScenarioLimits::max_steps));
 }
 
 // Every frame of a run is kept for its arrays: a run whose frames would
@@ -310,6 +302,7 @@ PYBIND11_MODULE(_rrlab, m) {
   m.def(
       "run",
       [](const py::object& scenario, const py::object& method, const py::object& params, const py::object& steps) {
+        refuse_reentry("rrlab.run");
         std::string python_method;
         std::unique_ptr<Simulator> sim = make_simulator(scenario_of(scenario), method, params, python_method);
         sim->set_total_steps(checked_steps(steps, sim->total_steps()));
@@ -334,10 +327,11 @@ PYBIND11_MODULE(_rrlab, m) {
            py::arg("scenario"), py::arg("method") = py::none(), py::arg("params") = py::none())
       .def(
           "step",
-          [](PySimulator& s, long count) {
-            if (count < 0) throw ScenarioError("count", "must be at least 0");
+          [](PySimulator& s, const py::object& count) {
+            refuse_reentry("Simulator.step");
+            const long steps = long(whole_number(count, "count", 0, kMaxWholeNumber));
             const PySimulator::Use use(s);
-            step_without_gil(*s.sim, count, nullptr);
+            step_without_gil(*s.sim, steps, nullptr);
           },
           py::arg("count") = 1, "Advances `count` steps (fewer at the end of the run)")
       .def_property_readonly("done",

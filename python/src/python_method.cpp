@@ -7,6 +7,7 @@
 #include <memory>
 #include <sstream>
 
+#include "method_reentry.hpp"
 #include "methods/registry.hpp"
 
 namespace py = pybind11;
@@ -101,6 +102,7 @@ class PythonMethod final : public Method {
       : Method(std::move(specs)),
         object_(std::move(object)),
         name_(std::move(name)),
+        where_("the Python method " + name_),
         dof_(ctx.model.dof()),
         context_{ctx.model.dof(), task_rows(ctx.space), ctx.obstacle_count, ctx.seed} {
     py::gil_scoped_acquire gil;
@@ -111,6 +113,7 @@ class PythonMethod final : public Method {
 
   void step(const StepInput& in, StepOutput& out) override {
     py::gil_scoped_acquire gil;
+    const InMethodCode in_method(where_);  // its start() and step() may not run a simulation
     std::ostringstream where;
     where << name_ << " at step " << in.state.step << " (t = " << in.state.t << " s)";
     // this run's parameter values, whoever else shares the object (two Simulators of one method object)
@@ -184,7 +187,7 @@ class PythonMethod final : public Method {
   };
 
   std::shared_ptr<py::object> object_, step_, values_;
-  std::string name_;
+  std::string name_, where_;
   int dof_;
   Context context_;
   bool started_ = false;
@@ -219,6 +222,8 @@ MethodFactory python_method_factory(py::object method, bool copy_per_run) {
   return [object, name, specs, copy_per_run](const MethodContext& ctx) -> std::unique_ptr<Method> {
     if (!copy_per_run) return std::make_unique<PythonMethod>(object, name, specs, ctx);
     py::gil_scoped_acquire gil;  // a sweep's worker thread
+    const std::string where = "the copy of the Python method " + name;
+    const InMethodCode in_method(where);  // a __deepcopy__ is the method's code too
     std::shared_ptr<py::object> copy;
     try {
       copy = held(py::module_::import("copy").attr("deepcopy")(*object));

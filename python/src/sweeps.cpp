@@ -8,6 +8,7 @@
 #include <future>
 #include <sstream>
 
+#include "method_reentry.hpp"
 #include "methods/registry.hpp"
 #include "python_method.hpp"
 #include "scenario/generators.hpp"
@@ -20,6 +21,7 @@
 #include "sweep/sweep_runner.hpp"
 #include "sweep/sweep_spec.hpp"
 #include "util/nesting_depth.hpp"
+#include "whole_number.hpp"
 
 namespace py = pybind11;
 
@@ -74,10 +76,11 @@ sweep::RunnerOutcome run_interruptibly(const sweep::SweepSpec& spec, const std::
 // Runs the spec (JSON text) into the database; returns the report, the
 // per-run CSV and what the runner did.
 py::tuple run_sweep_spec(const std::string& spec_text, const std::string& spec_dir, const std::string& scenarios_dir,
-                         int jobs, const std::string& db, bool frames) {
+                         const py::object& jobs_argument, const std::string& db, bool frames) {
   using namespace rrlab::sweep;
+  refuse_reentry("rrlab.sweep");
+  const int jobs = int(whole_number(jobs_argument, "jobs", 1, 256));
   const SweepSpec spec = parse_sweep_spec(parse_json(spec_text), SpecDirs{spec_dir, scenarios_dir});
-  if (jobs < 1 || jobs > 256) throw ScenarioError("jobs", "must be in [1, 256]");
   const std::vector<SweepCase> cases = expand_sweep(spec);
   storage::RunStore store(db);
   RunnerOptions options;
@@ -103,7 +106,9 @@ py::tuple run_sweep_spec(const std::string& spec_text, const std::string& spec_d
 // A stored run re-simulated from its recorded inputs and compared with its
 // stored frames, as `rrlab replay` does; a run of a Python method needs that
 // method registered first.
-py::object replay_run(const py::object& db_path, std::int64_t id) {
+py::object replay_run(const py::object& db_path, const py::object& run_id) {
+  refuse_reentry("rrlab.replay");
+  const std::int64_t id = whole_number(run_id, "run", 1, kMaxWholeNumber);
   const std::string db = py::str(py::module_::import("os").attr("fspath")(db_path));
   if (!std::filesystem::exists(db)) throw ScenarioError("db", "no database '" + db + "'");
   storage::RunStore store(db);
@@ -132,9 +137,12 @@ void register_sweeps(py::module_& m) {
         py::arg("jobs"), py::arg("db"), py::arg("frames"));
   m.def(
       "generate",
-      [](const std::string& family, std::uint64_t seed, int count, int first, const py::object& options) {
-        if (count < 1 || count > 100000) throw ScenarioError("count", "must be in [1, 100000]");
-        if (first < 0) throw ScenarioError("first", "must be at least 0");
+      [](const std::string& family, const py::object& seed_argument, const py::object& count_argument,
+         const py::object& first_argument, const py::object& options) {
+        // the seeds a sweep spec takes; count: the cases are held in memory; first + count stays an int
+        const auto seed = std::uint64_t(whole_number(seed_argument, "seed", 0, kMaxWholeNumber));
+        const int count = int(whole_number(count_argument, "count", 1, 100'000));
+        const int first = int(whole_number(first_argument, "first", 0, 1'000'000'000));
         const nlohmann::json parsed =
             options.is_none() ? nlohmann::json::object()
                               : parse_json(std::string(py::str(py::module_::import("json").attr("dumps")(options))));
