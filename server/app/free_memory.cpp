@@ -1,5 +1,7 @@
 #include "app/free_memory.hpp"
 
+#include <cstdlib>  // defines __GLIBC__ (through <features.h>) where glibc is the C library
+
 #if defined(__GLIBC__)
 #include <malloc.h>
 #endif

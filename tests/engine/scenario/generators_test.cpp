@@ -155,8 +155,8 @@ TEST(Generators, ListsTheFamilies) {
 }
 
 // Thousands of cases, each witness played back, under `make test-scale`
-// (RRLAB_TEST_SCALE=full); `make test` plays back 80 of each family (50 of
-// the URDF ones), in Release (suites named ...AtScale, see the Makefile); the
+// (RRLAB_TEST_SCALE=full); `make test` plays back 80 of each family (24 of
+// the URDF ones, whose cases take seconds each), in Release (suites named ...AtScale, see the Makefile); the
 // sanitized build runs the smaller checks below.
 // block_pinv (the default): pinv, which ignores obstacles, runs into the first.
 std::string pinv_collides(const json& doc) {
@@ -218,8 +218,8 @@ std::string urdf_pose_problem(const json& doc) {
   return pinv_collides(doc);
 }
 
-TEST(GeneratorWitnessesAtScale, UrdfTabletop) { check_family("urdf_tabletop", test::scale_cases(200, 50), json::object(), urdf_pose_problem); }
-TEST(GeneratorWitnessesAtScale, UrdfShelf) { check_family("urdf_shelf", test::scale_cases(200, 50), json::object(), urdf_pose_problem); }
+TEST(GeneratorWitnessesAtScale, UrdfTabletop) { check_family("urdf_tabletop", test::scale_cases(200, 24), json::object(), urdf_pose_problem); }
+TEST(GeneratorWitnessesAtScale, UrdfShelf) { check_family("urdf_shelf", test::scale_cases(200, 24), json::object(), urdf_pose_problem); }
 
 // The same checks on fewer cases, for the sanitized build.
 TEST(Generators, EveryFamilysCasesCarryAWitnessThatSolvesThem) {
