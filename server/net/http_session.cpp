@@ -220,11 +220,12 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
 
     // Host, Origin, token and Content-Type rules (net/request_guard.hpp), once per request
     const AccessDecision access = check_access(
-        state_->access, {std::string(request.method_string()), target, std::string(request[http::field::host]),
-                         std::string(request[http::field::origin]), std::string(request[http::field::content_type]),
-                         !request.body().empty(), websocket::is_upgrade(request),
-                         std::string(request[http::field::authorization]),
-                         std::string(request[http::field::access_control_request_headers])});
+        state_->access,
+        {std::string(request.method_string()), target, std::string(request[http::field::host]),
+         std::string(request[http::field::origin]), std::string(request[http::field::content_type]),
+         !request.body().empty(), websocket::is_upgrade(request), std::string(request[http::field::authorization]),
+         std::string(request[http::field::access_control_request_headers]), int(request.count(http::field::host)),
+         int(request.count(http::field::origin))});
     access_headers_ = access.headers;
     if (access.wrong_token) {  // token guessing: 429 for a while after too many wrong ones (net/auth_throttle.hpp)
       const std::string address = remote_address();
@@ -238,7 +239,8 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
       }
       state_->auth_failures.failed(address, now);
     }
-    if (access.status >= 400) return send_api(error_response(ApiError(access.status, access.code, access.message)));
+    if (access.status >= 400)
+      return send_api(error_response(ApiError(access.status, access.code, access.message, access.path)));
     if (!access.allowed()) {  // a CORS preflight
       ApiResponse preflight;
       preflight.status = access.status;

@@ -1,6 +1,7 @@
 // A plain TCP connection to 127.0.0.1 for tests that send bytes no HTTP
-// client would (malformed request lines, bare LFs, oversized headers): write
-// raw bytes, read what comes back, every wait bounded by a timeout.
+// client would (malformed request lines, bare LFs, oversized headers,
+// repeated headers): write raw bytes, read what comes back, every wait
+// bounded by a timeout.
 #pragma once
 
 #include <arpa/inet.h>
@@ -99,6 +100,16 @@ class RawConnection {
   std::string received_;
   bool closed_ = false;
 };
+
+// A WebSocket upgrade request for `target` as a browser would send it, with
+// `extra` header lines ("Name: value\r\n" each) before the blank line.
+inline std::string websocket_upgrade_request(unsigned short port, const std::string& target,
+                                             const std::string& extra = "") {
+  return "GET " + target + " HTTP/1.1\r\nHost: 127.0.0.1:" + std::to_string(port) +
+         "\r\nUpgrade: websocket\r\nConnection: Upgrade\r\nSec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\n"
+         "Sec-WebSocket-Version: 13\r\n" +
+         extra + "\r\n";
+}
 
 // The status line's code ("HTTP/1.1 431 ..." -> 431), 0 when there is none.
 inline int status_of(const std::string& response) {
