@@ -252,8 +252,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
       const auto query = question == std::string::npos ? std::map<std::string, std::string>{}
                                                        : parse_query(target.substr(question + 1));
       const auto client = query.find("client");
-      return upgrade(std::move(request), path, access.may_steer,
-                     client == query.end() ? "" : valid_client_name(client->second));
+      return upgrade(std::move(request), path, access, client == query.end() ? "" : valid_client_name(client->second));
     }
     if (path.rfind("/api/", 0) == 0 || path == "/api") return answer_api(request, path, target, question);
     return answer_static(request, path);
@@ -469,8 +468,8 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   }
 
   // A WebSocket route of the router (websocket_routes: /ws/runs/{id}, /ws/replays/{id}).
-  // `may_steer` false: a tokenless watcher (--public-read); `client`: its name (app/controller.hpp).
-  void upgrade(http::request<http::string_body>&& request, const std::string& path, bool may_steer,
+  // `access.may_steer` false: a tokenless watcher (--public-read); `client`: its name (app/controller.hpp).
+  void upgrade(http::request<http::string_body>&& request, const std::string& path, const AccessDecision& access,
                const std::string& client) {
     std::shared_ptr<FrameSource> source;
     try {
@@ -479,11 +478,14 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
       return send_api(error_response(e));
     }
     std::string refused;
-    PeerLimits::Hold socket_hold = state_->peers.websocket(address_, client, may_steer, refused);
+    const Standing standing = access.token_holder ? Standing::token_holder
+                              : access.may_steer  ? Standing::anonymous
+                                                  : Standing::watcher;
+    PeerLimits::Hold socket_hold = state_->peers.websocket(address_, client, standing, refused);
     if (!socket_hold) return send_error(503, refused);
     double display_hz = state_->runs.limits().default_display_hz;
     start_websocket_session(std::move(stream_), state_, std::move(source), std::move(request), display_hz,
-                            {may_steer, client}, {std::move(hold_), std::move(socket_hold)});
+                            {access.may_steer, client}, {std::move(hold_), std::move(socket_hold)});
   }
 
   template <typename Response>

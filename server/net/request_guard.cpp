@@ -297,7 +297,7 @@ AccessDecision check_access(const AccessConfig& config, const AccessRequest& req
       refused.headers.push_back({"WWW-Authenticate", "Bearer realm=\"rrlab\""});
       return refused;
     }
-    decision.may_steer = valid;
+    decision.may_steer = decision.token_holder = valid;
   }
 
   // 4. Content-Type of API bodies

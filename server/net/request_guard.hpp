@@ -64,6 +64,7 @@ struct AccessDecision {
   bool may_steer = true;  // a WebSocket upgrade: its messages may steer (false: watch only)
   bool token_presented = false;  // a token was sent (right or wrong): the throttle applies (net/auth_throttle.hpp)
   bool wrong_token = false;      // ... and it was wrong
+  bool token_holder = false;     // the server has a token and this request sent it (net/peer_limits.hpp)
   bool allowed() const { return status == 0; }
 };
 
