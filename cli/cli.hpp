@@ -30,6 +30,8 @@ struct ServeOptions {
   int ws_stall_ms = 5000;  // a WebSocket write pending this long drops the client
   std::size_t export_memory = 64 << 20;  // bytes all streamed exports may hold at once (128 KiB each)
   int connections_per_address = 256, max_websockets = 1024, websockets_per_address = 128, websockets_per_client = 32;
+  int websocket_fair_share = 8;                   // an address holding fewer may take the newcomer reserve
+  std::optional<int> websocket_newcomer_reserve;  // unset: an eighth of max_websockets
   // quotas (server/app/run_manager.hpp ServerLimits has the defaults' reasons)
   Quotas quotas;  // --max-run-frames, --max-run-bytes, --max-total-bytes, --max-run-cost, --max-scenarios
   std::int64_t test_db_max_pages = 0;  // tests only: PRAGMA max_page_count on the write connection (0: none)

@@ -41,9 +41,18 @@ int main(int argc, char** argv) {
                                         "connection that waits for a request is closed for a new one)"),
                   4, 65536);
   whole_number_in(serve_cmd->add_option("--max-websockets", serve.max_websockets,
-                                        "WebSocket clients in all (default 1024; a sixteenth kept for clients that "
-                                        "may steer)"),
+                                        "WebSocket clients in all (default 1024; a sixteenth kept for token holders, "
+                                        "an eighth for new clients)"),
                   16, 65536);
+  whole_number_in(serve_cmd->add_option("--websocket-newcomer-reserve", serve.websocket_newcomer_reserve,
+                                        "WebSockets that clients without a token take only while their address holds "
+                                        "fewer than --websocket-fair-share (default: an eighth of --max-websockets, "
+                                        "128)"),
+                  0, 65536);
+  whole_number_in(serve_cmd->add_option("--websocket-fair-share", serve.websocket_fair_share,
+                                        "an address without a token holding fewer WebSockets than this may take the "
+                                        "newcomer reserve (default 8)"),
+                  1, 65536);
   whole_number_in(serve_cmd->add_option("--websockets-per-address", serve.websockets_per_address,
                                         "WebSocket clients one address may hold (default 128)"),
                   1, 65536);

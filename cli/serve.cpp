@@ -48,7 +48,8 @@ int serve(const ServeOptions& options) {
     net_limits.export_budget = options.export_memory;
     net_limits.test_build_delay = std::chrono::milliseconds(options.test_build_delay_ms);
     net_limits.peers = {options.connections_per_address, options.max_websockets, options.websockets_per_address,
-                        options.websockets_per_client};
+                        options.websockets_per_client, options.websocket_fair_share,
+                        options.websocket_newcomer_reserve};
     auto state = std::make_shared<ServerState>(runs, ServerInfo{RRLAB_VERSION, std::chrono::steady_clock::now()},
                                                find_dir(options.web_dir, "web"), net_limits);
     state->info.websockets = &state->websockets;

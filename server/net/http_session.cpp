@@ -220,11 +220,12 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
 
     // Host, Origin, token and Content-Type rules (net/request_guard.hpp), once per request
     const AccessDecision access = check_access(
-        state_->access, {std::string(request.method_string()), target, std::string(request[http::field::host]),
-                         std::string(request[http::field::origin]), std::string(request[http::field::content_type]),
-                         !request.body().empty(), websocket::is_upgrade(request),
-                         std::string(request[http::field::authorization]),
-                         std::string(request[http::field::access_control_request_headers])});
+        state_->access,
+        {std::string(request.method_string()), target, std::string(request[http::field::host]),
+         std::string(request[http::field::origin]), std::string(request[http::field::content_type]),
+         !request.body().empty(), websocket::is_upgrade(request), std::string(request[http::field::authorization]),
+         std::string(request[http::field::access_control_request_headers]), int(request.count(http::field::host)),
+         int(request.count(http::field::origin))});
     access_headers_ = access.headers;
     if (access.wrong_token) {  // token guessing: 429 for a while after too many wrong ones (net/auth_throttle.hpp)
       const std::string address = remote_address();
@@ -238,7 +239,8 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
       }
       state_->auth_failures.failed(address, now);
     }
-    if (access.status >= 400) return send_api(error_response(ApiError(access.status, access.code, access.message)));
+    if (access.status >= 400)
+      return send_api(error_response(ApiError(access.status, access.code, access.message, access.path)));
     if (!access.allowed()) {  // a CORS preflight
       ApiResponse preflight;
       preflight.status = access.status;
@@ -250,8 +252,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
       const auto query = question == std::string::npos ? std::map<std::string, std::string>{}
                                                        : parse_query(target.substr(question + 1));
       const auto client = query.find("client");
-      return upgrade(std::move(request), path, access.may_steer,
-                     client == query.end() ? "" : valid_client_name(client->second));
+      return upgrade(std::move(request), path, access, client == query.end() ? "" : valid_client_name(client->second));
     }
     if (path.rfind("/api/", 0) == 0 || path == "/api") return answer_api(request, path, target, question);
     return answer_static(request, path);
@@ -467,8 +468,8 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   }
 
   // A WebSocket route of the router (websocket_routes: /ws/runs/{id}, /ws/replays/{id}).
-  // `may_steer` false: a tokenless watcher (--public-read); `client`: its name (app/controller.hpp).
-  void upgrade(http::request<http::string_body>&& request, const std::string& path, bool may_steer,
+  // `access.may_steer` false: a tokenless watcher (--public-read); `client`: its name (app/controller.hpp).
+  void upgrade(http::request<http::string_body>&& request, const std::string& path, const AccessDecision& access,
                const std::string& client) {
     std::shared_ptr<FrameSource> source;
     try {
@@ -477,11 +478,14 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
       return send_api(error_response(e));
     }
     std::string refused;
-    PeerLimits::Hold socket_hold = state_->peers.websocket(address_, client, may_steer, refused);
+    const Standing standing = access.token_holder ? Standing::token_holder
+                              : access.may_steer  ? Standing::anonymous
+                                                  : Standing::watcher;
+    PeerLimits::Hold socket_hold = state_->peers.websocket(address_, client, standing, refused);
     if (!socket_hold) return send_error(503, refused);
     double display_hz = state_->runs.limits().default_display_hz;
     start_websocket_session(std::move(stream_), state_, std::move(source), std::move(request), display_hz,
-                            {may_steer, client}, {std::move(hold_), std::move(socket_hold)});
+                            {access.may_steer, client}, {std::move(hold_), std::move(socket_hold)});
   }
 
   template <typename Response>

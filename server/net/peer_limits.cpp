@@ -4,6 +4,27 @@
 
 namespace rrlab::server {
 
+namespace {
+
+// Why a WebSocket of `standing`, from an address that holds `held`, finds no
+// room while `open` are open in all; "" when it finds some.
+std::string no_room(const PeerCaps& caps, Standing standing, int held, int open) {
+  const std::string total = "too many WebSocket clients (" + std::to_string(caps.websockets) + ")";
+  if (standing == Standing::token_holder) return open < caps.websockets ? "" : total;
+  const int tokenless = caps.websockets - (standing == Standing::watcher ? caps.token_reserve() : 0);
+  if (open >= tokenless)
+    return standing == Standing::watcher
+               ? "too many watchers without a token: the remaining WebSockets are kept for clients with one"
+               : total;
+  if (held >= caps.websocket_fair_share && open >= tokenless - caps.newcomer_reserve())
+    return "too many WebSocket clients: the last " + std::to_string(caps.newcomer_reserve()) +
+           " are kept for new clients (addresses holding fewer than " + std::to_string(caps.websocket_fair_share) +
+           "), and this address holds " + std::to_string(held);
+  return "";
+}
+
+}  // namespace
+
 PeerLimits::Hold PeerLimits::connection(const std::string& address, Closable closable) {
   std::function<void()> close_for_room;
   std::uint64_t id = 0;
@@ -44,17 +65,14 @@ void PeerLimits::release_connection(const std::string& address, std::uint64_t id
   if (it->second.connections.empty() && it->second.websockets == 0) addresses_.erase(it);
 }
 
-PeerLimits::Hold PeerLimits::websocket(const std::string& address, const std::string& client, bool may_steer,
+PeerLimits::Hold PeerLimits::websocket(const std::string& address, const std::string& client, Standing standing,
                                        std::string& refused) {
   std::lock_guard lock(mutex_);
-  const int allowed = may_steer ? caps_.websockets : caps_.websockets - caps_.websocket_reserve();
-  if (websockets_ >= allowed) {
-    refused = may_steer ? "too many WebSocket clients (" + std::to_string(caps_.websockets) + ")"
-                        : "too many watchers without a token: the remaining WebSockets are kept for clients with one";
-    return nullptr;
-  }
-  Counts& counts = addresses_[address];
-  if (counts.websockets >= caps_.websockets_per_address) {
+  const auto known = addresses_.find(address);
+  const int held = known == addresses_.end() ? 0 : known->second.websockets;
+  refused = no_room(caps_, standing, held, websockets_);
+  if (!refused.empty()) return nullptr;
+  if (held >= caps_.websockets_per_address) {
     refused = "too many WebSockets from this address (" + std::to_string(caps_.websockets_per_address) + ")";
     return nullptr;
   }
@@ -63,7 +81,7 @@ PeerLimits::Hold PeerLimits::websocket(const std::string& address, const std::st
     return nullptr;
   }
   ++websockets_;
-  ++counts.websockets;
+  ++addresses_[address].websockets;
   if (!client.empty()) ++clients_[client];
   return Hold(static_cast<void*>(this), [this, address, client](void*) { release_websocket(address, client); });
 }

@@ -1,8 +1,16 @@
 // What one peer may hold, so that one client cannot take what every other
 // needs: TCP connections per address, and WebSockets per address, per client
-// name and in all, with a reserve of WebSockets that only clients that may
-// steer (a token holder, or anyone on a server without a token) can use, so
-// that tokenless watchers under --public-read never lock the holder out.
+// name and in all, with two reserves of WebSockets:
+// - the token holders': the last sixteenth, which tokenless watchers under
+//   --public-read never take, so that they cannot lock the holder out;
+// - the newcomers': an eighth (--websocket-newcomer-reserve), below the
+//   token holders' where the server has a token, which clients without a
+//   token take only while their address holds fewer than its fair share
+//   (--websocket-fair-share), so that a few greedy addresses filling their
+//   caps still leave a new client its sockets.
+//   Addresses are all a server without a token can tell clients apart by, and
+//   many are cheap (127.0.0.0/8, an IPv6 /64): this keeps a new client in
+//   against a few hogs, not against one with many addresses (docs/api.md).
 //
 // At its connection cap an address makes room by closing its own oldest
 // connection that is only waiting for a request's header (half-sent or
@@ -16,6 +24,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 
 namespace rrlab::server {
@@ -25,8 +34,19 @@ struct PeerCaps {
   int websockets = 1024;              // serve --max-websockets
   int websockets_per_address = 128;   // serve --websockets-per-address
   int websockets_per_client = 32;     // serve --websockets-per-client (per client name)
-  // WebSockets kept for clients that may steer: a sixteenth of the total
-  int websocket_reserve() const { return websockets / 16; }
+  int websocket_fair_share = 8;       // serve --websocket-fair-share: an address holding fewer is a newcomer
+  std::optional<int> websocket_newcomer_reserve;  // serve --websocket-newcomer-reserve; unset: an eighth
+  // WebSockets kept for token holders: a sixteenth of the total
+  int token_reserve() const { return websockets / 16; }
+  // WebSockets kept for newcomers: an eighth of the total unless set
+  int newcomer_reserve() const { return websocket_newcomer_reserve.value_or(websockets / 8); }
+};
+
+// Who opens a WebSocket, as the reserves see it.
+enum class Standing {
+  token_holder,  // sent the server's token: may take every slot
+  anonymous,     // the server has no token: anyone may steer, nobody is known
+  watcher,       // no token on a --public-read server: never the token holders' reserve
 };
 
 class PeerLimits {
@@ -46,9 +66,9 @@ class PeerLimits {
   // of its connections can be closed for it.
   Hold connection(const std::string& address, Closable closable);
   // A WebSocket from `address` of client `client` ("": unnamed, a client of
-  // its own); `may_steer`: may use the reserve. Null with the reason in
-  // `refused` when over a cap.
-  Hold websocket(const std::string& address, const std::string& client, bool may_steer, std::string& refused);
+  // its own). Null with the reason in `refused` when over a cap or where only
+  // a reserve is left that `standing` (and the address's holding) may not use.
+  Hold websocket(const std::string& address, const std::string& client, Standing standing, std::string& refused);
 
   int connections(const std::string& address);
   int websockets();

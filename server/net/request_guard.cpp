@@ -126,6 +126,14 @@ AccessDecision refuse(int status, std::string code, std::string message) {
   return d;
 }
 
+// Rule 0: `fields` copies of a header that may come once.
+AccessDecision duplicate_header(const std::string& name, int fields, const std::string& allowed) {
+  AccessDecision refused = refuse(
+      400, "duplicate_header", "the request has " + std::to_string(fields) + " " + name + " headers; send " + allowed);
+  refused.path = name;
+  return refused;
+}
+
 // The value of the query parameter `name` (percent-decoded), if present.
 std::optional<std::string> query_value(const std::string& target, const std::string& name) {
   const auto question = target.find('?');
@@ -206,6 +214,10 @@ std::string normalize_origin(const std::string& origin) {
 }
 
 AccessDecision check_access(const AccessConfig& config, const AccessRequest& request) {
+  // 0. One Host, one Origin
+  if (request.host_fields > 1) return duplicate_header("Host", request.host_fields, "exactly one");
+  if (request.origin_fields > 1) return duplicate_header("Origin", request.origin_fields, "at most one");
+
   // 1. Host
   int request_port = config.port;  // the port the client addressed
   if (request.host.empty()) {
@@ -285,7 +297,7 @@ AccessDecision check_access(const AccessConfig& config, const AccessRequest& req
       refused.headers.push_back({"WWW-Authenticate", "Bearer realm=\"rrlab\""});
       return refused;
     }
-    decision.may_steer = valid;
+    decision.may_steer = decision.token_holder = valid;
   }
 
   // 4. Content-Type of API bodies

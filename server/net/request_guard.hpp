@@ -2,6 +2,9 @@
 // keep other web pages (and DNS rebinding) from driving it. Plain strings in,
 // a decision out; no Beast, so that the rules are tested as a table.
 //
+// 0. At most one Host and one Origin field (RFC 9112: a request with two
+//    Hosts is refused; with two Origins, the rules below would judge one and
+//    a proxy or browser may act on the other). Else 400 "duplicate_header".
 // 1. Host must name this server: localhost, 127.0.0.1, [::1] or the --host
 //    address with the bound port, or an --allow-host name (any port). Else
 //    421 "misdirected". No Host at all: allowed on a loopback bind only
@@ -50,15 +53,18 @@ struct AccessRequest {
   bool upgrade = false;  // a WebSocket upgrade
   std::string authorization;  // the Authorization header
   std::string request_headers;  // Access-Control-Request-Headers (a preflight)
+  int host_fields = 0, origin_fields = 0;  // how many Host and Origin fields came (`host`, `origin`: the first)
 };
 
 struct AccessDecision {
   int status = 0;  // 0: go on; 204: answer the preflight now; >= 400: refuse
   std::string code, message;
+  std::string path;  // the header at fault (the error body's "path"), if one is
   std::vector<std::pair<std::string, std::string>> headers;  // add to the answer (CORS)
   bool may_steer = true;  // a WebSocket upgrade: its messages may steer (false: watch only)
   bool token_presented = false;  // a token was sent (right or wrong): the throttle applies (net/auth_throttle.hpp)
   bool wrong_token = false;      // ... and it was wrong
+  bool token_holder = false;     // the server has a token and this request sent it (net/peer_limits.hpp)
   bool allowed() const { return status == 0; }
 };
 

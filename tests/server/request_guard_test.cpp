@@ -1,9 +1,10 @@
 // Who may talk to the server (net/request_guard.hpp): a real server refuses
 // foreign Hosts (DNS rebinding), changes and WebSockets from foreign Origins,
-// and API bodies that are not JSON; --allow-host and --allow-origin widen
-// that. Then the decision table itself.
+// a second Host or Origin, and API bodies that are not JSON; --allow-host and
+// --allow-origin widen that. Then the decision table itself.
 #include "net/request_guard.hpp"
 
+#include "raw_connection.hpp"
 #include "server_fixture.hpp"
 
 namespace rrlab::testing {
@@ -113,6 +114,52 @@ TEST_F(RequestGuard, WebSocketUpgradeFromForeignOriginIsRefused) {
   WsClient client(port(), ws, {{"Origin", own_origin()}});
   const auto snapshot = client.read_type("snapshot");
   ASSERT_TRUE(snapshot);
+  EXPECT_EQ(send("POST", "/api/runs/" + std::to_string(id) + "/control", {{"action", "stop"}}).status, 200);
+  wait_ended(id);
+}
+
+// Sends raw `request` (a Host or Origin twice: no HTTP client would) and
+// returns the status and the JSON body of the answer.
+std::pair<int, json> send_raw(unsigned short port, const std::string& request) {
+  RawConnection connection(port);
+  EXPECT_TRUE(connection.write(request));
+  const std::string answer = connection.read_until("\r\n\r\n");
+  const auto header_end = answer.find("\r\n\r\n");
+  if (status_of(answer) == 101 || header_end == std::string::npos) return {status_of(answer), json()};
+  const std::string full = connection.read_until("}}");  // the error object's end
+  return {status_of(full), json::parse(full.substr(header_end + 4), nullptr, false)};
+}
+
+TEST_F(RequestGuard, TwoHostsOrTwoOriginsAreRefused) {
+  const std::string own_host = "Host: 127.0.0.1:" + std::to_string(port()) + "\r\n";
+  const std::string own = "Origin: " + own_origin() + "\r\n", foreign = "Origin: http://evil.example\r\n";
+  const auto expect_refused = [](const std::pair<int, json>& answer, const std::string& header,
+                                 const std::string& what) {
+    EXPECT_EQ(answer.first, 400) << what;
+    const json error = answer.second.is_object() ? answer.second.value("error", json::object()) : json::object();
+    EXPECT_EQ(error.value("code", ""), "duplicate_header") << what << ": " << answer.second;
+    EXPECT_EQ(error.value("path", ""), header) << what;
+    EXPECT_NE(error.value("message", "").find(header), std::string::npos) << what << ": " << answer.second;
+  };
+  // plain HTTP: the own Host first or second, or twice the same
+  for (const std::string& hosts :
+       {own_host + "Host: evil.example\r\n", "Host: evil.example\r\n" + own_host, own_host + own_host})
+    expect_refused(send_raw(port(), "GET /api/health HTTP/1.1\r\n" + hosts + "Connection: close\r\n\r\n"), "Host",
+                   "GET with " + hosts);
+  const std::string post = "POST /api/scenarios/validate HTTP/1.1\r\n" + own_host +
+                           "Content-Type: application/json\r\nContent-Length: 2\r\nConnection: close\r\n";
+  expect_refused(send_raw(port(), post + own + foreign + "\r\n{}"), "Origin", "POST, own Origin then foreign");
+  expect_refused(send_raw(port(), post + own + own + "\r\n{}"), "Origin", "POST, own Origin twice");
+  EXPECT_EQ(send_raw(port(), post + own + "\r\n{}").first, 422);  // one Origin: the body is judged
+
+  // WebSocket upgrades
+  const std::int64_t id = start_live({{"scenario", small_scenario("joystick", 60)}, {"rate", 1}});
+  const std::string ws = "/ws/runs/" + std::to_string(id);
+  expect_refused(send_raw(port(), websocket_upgrade_request(port(), ws, own + foreign)), "Origin",
+                 "upgrade, 2 Origins");
+  expect_refused(send_raw(port(), websocket_upgrade_request(port(), ws, "Host: evil.example\r\n")), "Host",
+                 "upgrade, 2 Hosts");
+  EXPECT_EQ(send_raw(port(), websocket_upgrade_request(port(), ws, own)).first, 101);
   EXPECT_EQ(send("POST", "/api/runs/" + std::to_string(id) + "/control", {{"action", "stop"}}).status, 200);
   wait_ended(id);
 }
@@ -234,6 +281,15 @@ TEST(RequestGuardTable, Decisions) {
   EXPECT_EQ(status_of(wildcard, "POST", "lab-pc", "http://lab-pc", "application/json", true), 0);  // behind a proxy on 80
   const auto preflight =
       check_access(wildcard, {"OPTIONS", "/api/runs", "lab-pc:8080", "https://rrlab.example.org", "", false, false});
+  AccessRequest twice{"GET", "/api/health", "localhost:8080", "http://localhost:8080", "", false, false, "", "", 2, 1};
+  EXPECT_EQ(check_access(loopback, twice).status, 400);
+  EXPECT_EQ(check_access(loopback, twice).path, "Host");
+  twice.host_fields = 1;
+  twice.origin_fields = 2;
+  EXPECT_EQ(check_access(loopback, twice).code, "duplicate_header");
+  EXPECT_EQ(check_access(loopback, twice).path, "Origin");
+  twice.origin_fields = 1;
+  EXPECT_EQ(check_access(loopback, twice).status, 0);
   EXPECT_EQ(preflight.status, 204);
   EXPECT_FALSE(preflight.headers.empty());
 

@@ -1,6 +1,8 @@
 // A plain TCP connection to 127.0.0.1 for tests that send bytes no HTTP
-// client would (malformed request lines, bare LFs, oversized headers): write
-// raw bytes, read what comes back, every wait bounded by a timeout.
+// client would (malformed request lines, bare LFs, oversized headers,
+// repeated headers): write raw bytes, read what comes back, every wait
+// bounded by a timeout. It may come from another loopback address
+// (127.0.0.2, ...: loopback on Linux), as a client on another machine would.
 #pragma once
 
 #include <arpa/inet.h>
@@ -21,9 +23,12 @@ class RawConnection {
 
   // `receive_buffer` > 0: SO_RCVBUF before connecting (a client that reads
   // nothing then takes little of an answer into its kernel buffer).
-  explicit RawConnection(unsigned short port, int receive_buffer = 0) : fd_(::socket(AF_INET, SOCK_STREAM, 0)) {
+  // `from`: the local IPv4 address to connect from (a loopback one), "" any.
+  explicit RawConnection(unsigned short port, int receive_buffer = 0, const std::string& from = "")
+      : fd_(::socket(AF_INET, SOCK_STREAM, 0)) {
     if (fd_ < 0) throw std::runtime_error("socket() failed");
     if (receive_buffer > 0) ::setsockopt(fd_, SOL_SOCKET, SO_RCVBUF, &receive_buffer, sizeof receive_buffer);
+    if (!from.empty()) bind_to(from);
     sockaddr_in address{};
     address.sin_family = AF_INET;
     address.sin_port = htons(port);
@@ -75,6 +80,16 @@ class RawConnection {
   const std::string& received() const { return received_; }
 
  private:
+  void bind_to(const std::string& from) {
+    sockaddr_in local{};
+    local.sin_family = AF_INET;
+    if (::inet_pton(AF_INET, from.c_str(), &local.sin_addr) != 1 ||
+        ::bind(fd_, reinterpret_cast<sockaddr*>(&local), sizeof local) != 0) {
+      ::close(fd_);
+      throw std::runtime_error("cannot bind to " + from);
+    }
+  }
+
   bool wait_for(short events, Clock::time_point deadline) {
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
     if (left <= 0) return false;
@@ -99,6 +114,16 @@ class RawConnection {
   std::string received_;
   bool closed_ = false;
 };
+
+// A WebSocket upgrade request for `target` as a browser would send it, with
+// `extra` header lines ("Name: value\r\n" each) before the blank line.
+inline std::string websocket_upgrade_request(unsigned short port, const std::string& target,
+                                             const std::string& extra = "") {
+  return "GET " + target + " HTTP/1.1\r\nHost: 127.0.0.1:" + std::to_string(port) +
+         "\r\nUpgrade: websocket\r\nConnection: Upgrade\r\nSec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\n"
+         "Sec-WebSocket-Version: 13\r\n" +
+         extra + "\r\n";
+}
 
 // The status line's code ("HTTP/1.1 431 ..." -> 431), 0 when there is none.
 inline int status_of(const std::string& response) {
