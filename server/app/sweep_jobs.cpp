@@ -312,32 +312,40 @@ std::string SweepJobs::status(std::int64_t id) {
   return body;
 }
 
+json sweep_run_json(const storage::SweepRunEntry& e) {
+  const json summary = parsed_or_null(e.summary_json);
+  const auto field = [&](const char* key) { return summary.is_object() && summary.contains(key) ? summary[key] : json(); };
+  return {{"run", e.run_id},
+          {"key", e.row.key},
+          {"case", e.row.scenario_key},
+          {"config", e.row.config_key},
+          {"family", sweep::report_family(e.row)},
+          {"success", e.row.success},
+          {"failure_mode", e.row.failure_mode ? json(*e.row.failure_mode) : json()},
+          {"failure_t", e.row.failure_t ? json(*e.row.failure_t) : json()},
+          {"frames", e.frames},
+          {"steps", field("steps")},
+          {"collided", field("collided")},
+          {"min_distance", field("min_distance")},
+          {"max_tracking_error", field("max_tracking_error")},
+          {"difficulty", parsed_or_null(e.difficulty_json)}};
+}
+
+storage::RunStore::SweepRunFilter SweepJobs::RunQuery::filter() const {
+  storage::RunStore::SweepRunFilter f{family, config, failure_mode, std::nullopt};
+  if (outcome) f.success = *outcome == "pass";
+  return f;
+}
+
+std::string SweepJobs::name(std::int64_t id) { return find(id)->spec.name; }
+
 json SweepJobs::runs(std::int64_t id, const RunQuery& query) {
   const std::shared_ptr<Job> job = find(id);
-  storage::RunStore::SweepRunFilter filter{query.family, query.config, query.failure_mode, std::nullopt};
-  if (query.outcome) filter.success = *query.outcome == "pass";
   std::int64_t total = 0;
   const std::vector<storage::SweepRunEntry> matching =
-      runs_.store().sweep_runs_page(job->spec.name, filter, query.limit, query.offset, total);
+      runs_.store().sweep_runs_page(job->spec.name, query.filter(), query.limit, query.offset, total);
   json page = json::array();
-  for (const storage::SweepRunEntry& e : matching) {
-    json summary = parsed_or_null(e.summary_json);
-    const auto field = [&](const char* key) { return summary.is_object() && summary.contains(key) ? summary[key] : json(); };
-    page.push_back({{"run", e.run_id},
-                    {"key", e.row.key},
-                    {"case", e.row.scenario_key},
-                    {"config", e.row.config_key},
-                    {"family", sweep::report_family(e.row)},
-                    {"success", e.row.success},
-                    {"failure_mode", e.row.failure_mode ? json(*e.row.failure_mode) : json()},
-                    {"failure_t", e.row.failure_t ? json(*e.row.failure_t) : json()},
-                    {"frames", e.frames},
-                    {"steps", field("steps")},
-                    {"collided", field("collided")},
-                    {"min_distance", field("min_distance")},
-                    {"max_tracking_error", field("max_tracking_error")},
-                    {"difficulty", parsed_or_null(e.difficulty_json)}});
-  }
+  for (const storage::SweepRunEntry& e : matching) page.push_back(sweep_run_json(e));
   return {{"id", id}, {"sweep", job->spec.name}, {"total", total}, {"offset", query.offset},
           {"limit", query.limit}, {"runs", page}};
 }

@@ -16,6 +16,8 @@
 #include <string>
 #include <thread>
 
+#include "storage/run_store.hpp"
+
 namespace rrlab::sweep {
 struct SweepSpec;
 }
@@ -23,6 +25,10 @@ struct SweepSpec;
 namespace rrlab::server {
 
 class RunManager;
+
+// One stored sweep run as GET /api/sweeps/{id}/runs lists it (its summary's
+// headline fields, its case's difficulty).
+nlohmann::json sweep_run_json(const storage::SweepRunEntry& entry);
 
 class SweepJobs {
  public:
@@ -44,8 +50,10 @@ class SweepJobs {
   struct RunQuery {
     std::optional<std::string> family, config, outcome, failure_mode;  // outcome: "pass" | "fail"
     std::int64_t limit = 100, offset = 0;
+    storage::RunStore::SweepRunFilter filter() const;
   };
   nlohmann::json runs(std::int64_t id, const RunQuery& query);
+  std::string name(std::int64_t id);  // the sweep's name (404 if unknown)
   // {"action": "stop"}: workers finish their current run; stored runs stay (resumable).
   nlohmann::json control(std::int64_t id, const nlohmann::json& body);
   // Stops every sweep and waits for their threads (server shutdown).

@@ -1,5 +1,7 @@
 // Sweeps over REST: POST /api/sweeps starts one (202), GET /api/sweeps/{id}
 // gives its progress and, once ended, its report; POST .../control stops it.
+#include <iterator>
+
 #include "app/sweep_jobs.hpp"
 #include "routes/routes.hpp"
 
@@ -21,7 +23,69 @@ ApiResponse get_sweep(RouteContext& c) {
 // Checks a spec as POST /api/sweeps would and starts nothing (the dashboard's dialog).
 ApiResponse validate_sweep(RouteContext& c) { return json_response(200, c.runs.sweeps().validate(parse_body(c.request))); }
 
-// ?family=&config=&outcome=pass|fail&failure_mode=&limit=&offset=
+namespace {
+
+// Every run of a sweep that matches a filter, as CSV (one row per run, the
+// columns of the JSON page): streamed on an export worker, 500 rows read from
+// SQL at a time, so that the whole of a sweep of 100,000 runs costs the
+// server one page of memory however it is filtered.
+class SweepRunsCsv : public BodyStream {
+ public:
+  SweepRunsCsv(storage::RunStore& store, std::string sweep, storage::RunStore::SweepRunFilter filter,
+               std::int64_t offset)
+      : store_(store), sweep_(std::move(sweep)), filter_(std::move(filter)), offset_(offset) {}
+
+  bool next(std::string& out, std::size_t target) override {
+    out.clear();
+    if (!header_done_) {
+      for (size_t i = 0; i < std::size(kColumns); ++i) out += (i ? "," : "") + std::string(kColumns[i]);
+      out += '\n';
+      header_done_ = true;
+    }
+    while (out.size() < target && more_) {
+      std::int64_t total = 0;
+      const std::vector<storage::SweepRunEntry> page = store_.sweep_runs_page(sweep_, filter_, kPage, offset_, total);
+      for (const storage::SweepRunEntry& e : page) append_row(sweep_run_json(e), out);
+      offset_ += std::int64_t(page.size());
+      more_ = std::int64_t(page.size()) == kPage;
+    }
+    return more_;
+  }
+
+ private:
+  static constexpr std::int64_t kPage = 500;
+  static constexpr const char* kColumns[] = {"run",     "key",       "case",   "config",   "family",
+                                             "success", "failure_mode", "failure_t", "frames", "steps",
+                                             "collided", "min_distance", "max_tracking_error", "difficulty"};
+
+  static void append_row(const nlohmann::json& row, std::string& out) {
+    for (size_t i = 0; i < std::size(kColumns); ++i) {
+      if (i) out += ',';
+      const nlohmann::json& value = row[kColumns[i]];
+      if (value.is_null()) continue;
+      const std::string text = value.is_string() ? value.get<std::string>() : safe_dump(value);
+      if (text.find_first_of(",\"\n") == std::string::npos) {
+        out += text;
+        continue;
+      }
+      out += '"';  // a field with a comma, quote or newline (a key, the difficulty object) is quoted
+      for (char ch : text) out += ch == '"' ? std::string("\"\"") : std::string(1, ch);
+      out += '"';
+    }
+    out += '\n';
+  }
+
+  storage::RunStore& store_;
+  const std::string sweep_;
+  const storage::RunStore::SweepRunFilter filter_;
+  std::int64_t offset_;
+  bool header_done_ = false, more_ = true;
+};
+
+}  // namespace
+
+// ?family=&config=&outcome=pass|fail&failure_mode=&limit=&offset=; as CSV
+// (Accept: text/csv or ?format=csv) every matching run from offset, streamed.
 ApiResponse get_sweep_runs(RouteContext& c) {
   SweepJobs::RunQuery query;
   const auto& q = c.request.query;
@@ -37,7 +101,17 @@ ApiResponse get_sweep_runs(RouteContext& c) {
     throw ApiError(400, "invalid", "must be pass or fail", "outcome");
   query.limit = query_int(c, "limit", 100, 1, 1000);
   query.offset = query_int(c, "offset", 0, 0, 1'000'000'000);
-  return json_response(200, c.runs.sweeps().runs(c.id(), query));
+  bool csv = c.request.accept.find("text/csv") != std::string::npos;
+  if (const auto format = text("format")) {
+    if (*format != "json" && *format != "csv") throw ApiError(400, "invalid", "must be json or csv", "format");
+    csv = *format == "csv";
+  }
+  if (!csv) return json_response(200, c.runs.sweeps().runs(c.id(), query));
+  ApiResponse response;
+  response.content_type = "text/csv";
+  response.stream =
+      std::make_shared<SweepRunsCsv>(c.runs.store(), c.runs.sweeps().name(c.id()), query.filter(), query.offset);
+  return response;
 }
 
 ApiResponse post_sweep_control(RouteContext& c) {

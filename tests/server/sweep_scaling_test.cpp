@@ -4,6 +4,7 @@
 // expands it nor keeps other clients waiting; a full disk stops a sweep with
 // the reason, and runs can still be deleted. Sizes and scaling are asserted,
 // and /api/health within 1 s; no timing that depends on the machine.
+#include <algorithm>
 #include <chrono>
 #include <future>
 #include <thread>
@@ -91,6 +92,17 @@ TEST(SweepScaling, AReportGrowsLinearlyWithItsConfigurationsAndIsBuiltOnce) {
   const json page = http(server.port(), "GET", "/api/sweeps/" + std::to_string(large) + "/runs?limit=7&offset=390").json();
   EXPECT_EQ(page["total"], 400);
   EXPECT_EQ(page["runs"].size(), 7u);
+  // and every run as CSV, whatever the table's cut: a header and one row per run
+  const HttpResult csv = http(server.port(), "GET", "/api/sweeps/" + std::to_string(large) + "/runs?format=csv");
+  ASSERT_EQ(csv.status, 200);
+  EXPECT_EQ(csv.content_type, "text/csv");
+  EXPECT_EQ(std::count(csv.body.begin(), csv.body.end(), '\n'), 401);
+  EXPECT_EQ(csv.body.substr(0, csv.body.find('\n')),
+            "run,key,case,config,family,success,failure_mode,failure_t,frames,steps,collided,min_distance,"
+            "max_tracking_error,difficulty");
+  const std::string one_config = "/api/sweeps/" + std::to_string(large) + "/runs?config=dls%7Blambda%3D0.002%7D";
+  const HttpResult filtered = http(server.port(), "GET", one_config, "", "text/csv");
+  EXPECT_EQ(std::count(filtered.body.begin(), filtered.body.end(), '\n'), 2) << filtered.body;
   EXPECT_EQ(server.stop(), 0);
 }
 

@@ -28,26 +28,36 @@ nlohmann::json disk_filling_spec() {
 TEST(SweepFullDisk, TheFirstRunThatCannotBeStoredStopsTheSweepAndDeletesStillWork) {
   test::SmallDisk disk(24);
   ASSERT_EQ(disk.error(), "") << "a tmpfs in a private mount namespace is needed for this test";
-  storage::RunStore store(disk.path("sweep.db"), storage::DiskReserve::kDefaultBytes);  // as the server opens it
-  const SweepSpec spec = parse_spec(disk_filling_spec());
-  const std::vector<SweepCase> cases = expand_sweep(spec);  // 2 x 6 x 40 = 480 runs, far more than fit
-  RunnerOptions options;
-  options.jobs = 2;
-  options.frames = true;
-  const RunnerOutcome outcome = run_sweep(spec, cases, store, options);
+  const std::string db = disk.path("sweep.db");
+  std::vector<std::int64_t> stored_ids;
+  {
+    storage::RunStore store(db, storage::DiskReserve::kDefaultBytes);  // as the server opens it
+    const SweepSpec spec = parse_spec(disk_filling_spec());
+    const std::vector<SweepCase> cases = expand_sweep(spec);  // 2 x 6 x 40 = 480 runs, far more than fit
+    RunnerOptions options;
+    options.jobs = 2;
+    options.frames = true;
+    const RunnerOutcome outcome = run_sweep(spec, cases, store, options);
 
-  EXPECT_EQ(outcome.storage_stopped, "disk full");
-  EXPECT_TRUE(outcome.interrupted);
-  EXPECT_TRUE(outcome.failures.empty()) << outcome.failures.front();  // no run failed: the sweep stopped
-  EXPECT_GT(outcome.stored, 0u);
-  EXPECT_LT(outcome.stored, cases.size());
-  // stopped at once: at most one run in flight per job was computed after the first refusal
-  const std::vector<storage::SweepRunEntry> runs = store.sweep_runs("filling");
-  EXPECT_EQ(runs.size(), outcome.stored);
+    EXPECT_EQ(outcome.storage_stopped, "disk full");
+    EXPECT_TRUE(outcome.interrupted);
+    EXPECT_TRUE(outcome.failures.empty()) << outcome.failures.front();  // no run failed: the sweep stopped
+    EXPECT_GT(outcome.stored, 0u);
+    EXPECT_LT(outcome.stored, cases.size());
+    const std::vector<storage::SweepRunEntry> runs = store.sweep_runs("filling");
+    EXPECT_EQ(runs.size(), outcome.stored);
+    for (const storage::SweepRunEntry& e : runs) stored_ids.push_back(e.run_id);
 
-  // the remedy works on the full disk: delete runs, then resume
-  ASSERT_TRUE(store.delete_run(runs.front().run_id));
-  ASSERT_TRUE(store.delete_run(runs.back().run_id));
+    // the remedy works on the full disk: delete runs
+    ASSERT_TRUE(store.delete_run(stored_ids.front()));
+  }
+  ASSERT_GE(stored_ids.size(), 4u);
+  // the rest of the disk filled by something else, then a restart on the full disk:
+  // opening takes what its journal needs of the reserve, the deletes the rest
+  test::fill_with_a_file(disk.path("other-data"));
+  storage::RunStore store(db, storage::DiskReserve::kDefaultBytes);
+  EXPECT_FALSE(store.probe_write());
+  for (size_t i = 1; i < 4; ++i) ASSERT_TRUE(store.delete_run(stored_ids[i])) << "delete " << i << " after the restart";
   EXPECT_EQ(store.integrity_check(), "ok");
 }
 
