@@ -275,7 +275,10 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
       auto self = shared_from_this();
       response.deferred([self](ApiResponse ready) {
         net::post(self->stream_.get_executor(),
-                  [self, ready = std::move(ready)] { self->guarded([&] { self->send_api(ready); }); });
+                  [self, ready = std::move(ready)] {
+                    // a slow route's answer may be streamed too (a sweep's runs as CSV)
+                    self->guarded([&] { ready.stream ? self->send_stream(ready) : self->send_api(ready); });
+                  });
       });
       return;
     }
