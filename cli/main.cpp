@@ -82,8 +82,8 @@ int main(int argc, char** argv) {
                                         "watched)"),
                   1, 65536);
   whole_number_in(serve_cmd->add_option("--live-reserve-bytes", serve.quotas.live_reserve_bytes,
-                                        "bytes of --max-total-bytes a live run reserves ahead of what it has stored "
-                                        "(default 16777216 = 16 MiB)"),
+                                        "bytes of --max-total-bytes a live run reserves at its start, at most (default "
+                                        "16777216 = 16 MiB; later frames are stored while the total fits)"),
                   1, std::int64_t(1) << 50);
   whole_number_in(serve_cmd->add_option("--abandon-unwatched-s", serve.quotas.abandon_unwatched_s,
                                         "a live run with no WebSocket client and no REST call for it this long after "

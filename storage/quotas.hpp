@@ -27,9 +27,11 @@ struct Quotas {
   // count); a new one beyond ends the address's oldest unwatched one, or is
   // refused (429) when every one is watched. --max-live-per-address
   int max_live_per_address = 16;
-  // A live lane reserves of --max-total-bytes what it has stored plus at most
-  // this many bytes ahead, not its whole duration's frames, so that runs that
-  // store nothing never fill the quota. --live-reserve-bytes
+  // A live lane reserves of --max-total-bytes at most this many bytes of what
+  // it will store, not its whole duration's frames, so that runs that store
+  // nothing never fill the quota; its frames past the reservation are stored
+  // while the total still fits (else it stops storing, storage_stopped).
+  // --live-reserve-bytes
   std::int64_t live_reserve_bytes = 16ll << 20;
   // A live run with no WebSocket client and no REST call for it for this long
   // after its start ends as abandoned (stored frames kept). --abandon-unwatched-s

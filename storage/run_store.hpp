@@ -167,6 +167,11 @@ class RunStore {
   };
   std::vector<SweepRunEntry> sweep_runs_page(const std::string& sweep, const SweepRunFilter& filter,
                                              std::int64_t limit, std::int64_t offset, std::int64_t& total);
+  // The next `limit` matching runs whose keys follow `after_key` (keyset
+  // paging: a stream of every run reads each row once, whatever is stored
+  // or deleted meanwhile).
+  std::vector<SweepRunEntry> sweep_runs_after(const std::string& sweep, const SweepRunFilter& filter,
+                                              const std::string& after_key, std::int64_t limit);
 
   std::string integrity_check();  // "ok" when sound
 

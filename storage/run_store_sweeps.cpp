@@ -140,4 +140,15 @@ std::vector<SweepRunEntry> RunStore::sweep_runs_page(const std::string& sweep, c
   return out;
 }
 
+std::vector<SweepRunEntry> RunStore::sweep_runs_after(const std::string& sweep, const SweepRunFilter& filter,
+                                                      const std::string& after_key, std::int64_t limit) {
+  std::lock_guard lock(read_mutex_);
+  Statement s = read_db_->prepare(std::string(kSweepRunColumns) + kSweepRunFilter + "AND w.key > ?6 ORDER BY w.key LIMIT ?7");
+  bind_filter(s, sweep, filter);
+  s.bind(6, after_key).bind(7, limit);
+  std::vector<SweepRunEntry> out;
+  while (s.step()) out.push_back(sweep_run_entry(s));
+  return out;
+}
+
 }  // namespace rrlab::storage

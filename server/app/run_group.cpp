@@ -190,7 +190,7 @@ void RunGroup::wait_exited() {
 void RunGroup::request_stop() {
   {
     auto lock = lock_for_input();
-    stop_requested_ = true;
+    stop_requested_ = ending_ = true;
   }
   wake_.notify_all();
 }
@@ -376,7 +376,7 @@ void RunGroup::check_abandoned() {
   const bool unused_since_start = !touched_ && !ever_watched && now - started_at_ >= options_.abandon_unwatched;
   if (unused_since_start || now - last >= options_.abandon_idle) {
     ended_ = "abandoned";
-    stop_requested_ = true;
+    stop_requested_ = ending_ = true;
   }
 }
 
@@ -385,7 +385,7 @@ void RunGroup::supersede() {
     auto lock = lock_for_input();
     if (stop_requested_ || finished_) return;
     ended_ = "superseded";
-    stop_requested_ = true;
+    stop_requested_ = ending_ = true;
   }
   wake_.notify_all();
 }
@@ -553,7 +553,7 @@ Accepted RunGroup::control(int lane_index, const json& body) {
     ++step_requests_;
     step_waiters_.push_back({lane_index, lane.seq + step_requests_, accepted.pending});
   } else if (action == "stop") {
-    stop_requested_ = true;  // the REST route answers once the run has ended (deferred)
+    stop_requested_ = ending_ = true;  // the REST route answers once the run has ended (deferred)
   }
   wake_.notify_all();
   accepted.status = status_locked(lane);

@@ -148,6 +148,7 @@ class RunGroup : public std::enable_shared_from_this<RunGroup> {
   void touch();
   bool watched();  // some lane has a WebSocket client
   bool live() const { return options_.mode == "live"; }
+  bool ending() const { return ending_; }  // asked to stop (by a client, or as abandoned or superseded)
   const std::string& owner() const { return options_.owner; }
   // Ends the run to make room for a newer one of its owner ("ended": "superseded").
   void supersede();
@@ -225,6 +226,7 @@ class RunGroup : public std::enable_shared_from_this<RunGroup> {
   const std::chrono::steady_clock::time_point started_at_ = std::chrono::steady_clock::now();
   std::atomic<std::chrono::steady_clock::rep> last_activity_{started_at_.time_since_epoch().count()};
   std::atomic<bool> touched_{false};
+  std::atomic<bool> ending_{false};  // stop_requested_, readable without the lock
   std::chrono::steady_clock::time_point next_idle_check_{};
   std::string ended_;  // why it ended on its own ("abandoned", "superseded"); "" otherwise (under mutex_)
 };

@@ -377,8 +377,8 @@ std::vector<std::int64_t> RunManager::admit(const std::vector<LaneEstimate>& lan
 // start_mutex_; the one to end is returned, ended by the caller outside mutex_.
 std::shared_ptr<RunGroup> RunManager::make_room_for_live_locked(const std::string& owner) {
   std::vector<std::shared_ptr<RunGroup>> own;
-  for (const auto& g : groups_)
-    if (g->live() && !g->finished() && g->owner() == owner) own.push_back(g);
+  for (const auto& g : groups_)  // those already ending (superseded a moment ago, abandoned, stopped) are not counted
+    if (g->live() && !g->finished() && !g->ending() && g->owner() == owner) own.push_back(g);
   if (int(own.size()) < limits_.max_live_per_address) return nullptr;
   for (const auto& g : own)  // oldest first
     if (!g->watched()) return g;
@@ -404,12 +404,12 @@ std::shared_ptr<RunGroup> RunManager::start_group(const std::vector<Scenario>& l
                                       " runs may be active at once; stop or wait for some", "");
     if (options.mode == "live") superseded = make_room_for_live_locked(options.owner);
   }
-  if (superseded) superseded->supersede();
-  // a live lane reserves a window ahead of what it stores, not its whole duration
+  // a live lane reserves at most a window of what it will store, not its whole duration
   const std::int64_t window = options.mode == "live" ? limits_.live_reserve_bytes : 0;
   RunServices services{store_, writer_, limits_.max_run_frames, limits_.max_run_bytes, &budget_,
                        [this, window](const std::vector<LaneEstimate>& estimates) { return admit(estimates, true, window); }};
-  auto group = std::make_shared<RunGroup>(services, lanes, options);
+  auto group = std::make_shared<RunGroup>(services, lanes, options);  // a refused request ends no other run
+  if (superseded) superseded->supersede();
   group->start();  // registered only once its thread runs
   std::lock_guard lock(mutex_);
   groups_.push_back(group);
@@ -483,6 +483,7 @@ json RunManager::delete_run(std::int64_t id) {
     deleting_.erase(id);
   }
   if (!deleted) throw ApiError(404, "not_found", "no " + run_name, "id");
+  sweeps_->forget_reports(std::nullopt);  // it may have been a sweep's run: reports are built again
   return {{"deleted", id}};
 }
 

@@ -156,6 +156,7 @@ json SweepJobs::validate(const json& body) {
 json SweepJobs::start(const json& body, int jobs) {
   runs_.check_writable();  // 503 storage_full on a full disk: a sweep would store nothing
   const std::shared_ptr<Job> job = prepare(body);
+  forget_reports(job->spec.name);  // an earlier run of this sweep: its runs are about to change
   job->cases = sweep::expand_sweep(job->spec);
   // one core stays for live runs
   const int cores = int(std::max(1u, std::thread::hardware_concurrency()));
@@ -203,16 +204,19 @@ json SweepJobs::start(const json& body, int jobs) {
       error = e.what();
     }
     for (int i = 0; i < job->jobs; ++i) runs_.end_job();
+    // the report is built before the sweep shows as ended, on this low-priority
+    // thread: a client that sees it ended gets the report at once, and no GET
+    // waits on a worker for it
+    try {
+      report_of(job, true);
+    } catch (const std::exception&) {
+      // a stored summary that is not JSON: GET /api/sweeps/{id} tries again and answers the error
+    }
     {
       std::lock_guard job_lock(job->mutex);
       job->status = status;
       job->error = error;
       job->outcome = std::move(outcome);
-    }
-    try {
-      report_of(job);  // built now, on this low-priority thread, not when first asked for
-    } catch (const std::exception&) {
-      // a stored summary that is not JSON: GET /api/sweeps/{id} tries again and answers the error
     }
     job->exited = true;
   });
@@ -253,13 +257,17 @@ json SweepJobs::progress_of(Job& job) {
   return body;
 }
 
-std::shared_ptr<const std::string> SweepJobs::report_of(const std::shared_ptr<Job>& kept) {
+std::shared_ptr<const std::string> SweepJobs::report_of(const std::shared_ptr<Job>& kept, bool wait) {
   Job& job = *kept;
   {
     std::lock_guard lock(job.mutex);
     if (job.report) return job.report;
   }
-  std::lock_guard build(job.build_mutex);
+  std::unique_lock build(job.build_mutex, std::defer_lock);
+  if (wait)
+    build.lock();
+  else if (!build.try_lock())  // another request builds it: no second worker held waiting for it
+    throw ApiError(503, "busy", "this sweep's report is being built; ask again in a moment", "");
   {
     std::lock_guard lock(job.mutex);  // built by another caller meanwhile
     if (job.report) return job.report;
@@ -303,7 +311,7 @@ std::string SweepJobs::status(std::int64_t id) {
   const json progress = progress_of(*job);
   std::string body = safe_dump(progress);
   if (progress["status"] == "running") return body;  // no report yet
-  const std::shared_ptr<const std::string> report = report_of(job);
+  const std::shared_ptr<const std::string> report = report_of(job, false);
   if (!report) throw ApiError(503, "busy", "the server is shutting down", "");
   body.pop_back();  // the report spliced in as text: built once, never parsed again
   body += ",\"report\":";
@@ -370,6 +378,23 @@ json SweepJobs::control(std::int64_t id, const json& body) {
     throw ApiError(400, "invalid", "a sweep takes {\"action\": \"stop\"}", "action");
   find(id)->stop = true;
   return {{"id", id}, {"stopping", true}};
+}
+
+void SweepJobs::forget_reports(const std::optional<std::string>& name) {
+  std::vector<std::shared_ptr<Job>> jobs;
+  {
+    std::lock_guard lock(mutex_);
+    for (const auto& [id, job] : jobs_)
+      if (!name || job->spec.name == *name) jobs.push_back(job);
+  }
+  for (const auto& job : jobs) {
+    std::lock_guard lock(job->mutex);
+    if (job->status == "running") continue;
+    job->report.reset();
+    job->done_at_end.reset();
+  }
+  std::lock_guard lock(cache_mutex_);
+  std::erase_if(cached_reports_, [&](const std::shared_ptr<Job>& kept) { return !name || kept->spec.name == *name; });
 }
 
 void SweepJobs::interrupt() {

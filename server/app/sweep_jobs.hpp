@@ -58,6 +58,9 @@ class SweepJobs {
   nlohmann::json control(std::int64_t id, const nlohmann::json& body);
   // Stops every sweep and waits for their threads (server shutdown).
   void stop_all();
+  // Reports (and stored counts) of ended sweeps named `name` (all: none) are
+  // built again when next asked for: their stored runs changed (a delete, a resume).
+  void forget_reports(const std::optional<std::string>& name);
   // Server shutdown, first step: every sweep told to stop and every report
   // build abandoned, without waiting (so that the worker pool can be joined at once).
   void interrupt();
@@ -70,7 +73,8 @@ class SweepJobs {
   nlohmann::json progress_of(Job& job);
   // The ended sweep's report, from the cache or built (one build at a
   // time per sweep); null when a shutdown interrupted the build.
-  std::shared_ptr<const std::string> report_of(const std::shared_ptr<Job>& job);
+  // `wait` false: 503 busy when another caller is building it.
+  std::shared_ptr<const std::string> report_of(const std::shared_ptr<Job>& job, bool wait);
 
   RunManager& runs_;
   std::string scenarios_dir_;

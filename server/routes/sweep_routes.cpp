@@ -1,6 +1,7 @@
 // Sweeps over REST: POST /api/sweeps starts one (202), GET /api/sweeps/{id}
 // gives its progress and, once ended, its report; POST .../control stops it.
 #include <iterator>
+#include <optional>
 
 #include "app/sweep_jobs.hpp"
 #include "routes/routes.hpp"
@@ -27,8 +28,9 @@ namespace {
 
 // Every run of a sweep that matches a filter, as CSV (one row per run, the
 // columns of the JSON page): streamed on an export worker, 500 rows read from
-// SQL at a time, so that the whole of a sweep of 100,000 runs costs the
-// server one page of memory however it is filtered.
+// SQL at a time by key (each row once, even while the sweep stores more), so
+// that the whole of a sweep of 100,000 runs costs the server one page of
+// memory however it is filtered.
 class SweepRunsCsv : public BodyStream {
  public:
   SweepRunsCsv(storage::RunStore& store, std::string sweep, storage::RunStore::SweepRunFilter filter,
@@ -43,10 +45,13 @@ class SweepRunsCsv : public BodyStream {
       header_done_ = true;
     }
     while (out.size() < target && more_) {
+      // the first page from the client's offset, the next ones after the last key read
       std::int64_t total = 0;
-      const std::vector<storage::SweepRunEntry> page = store_.sweep_runs_page(sweep_, filter_, kPage, offset_, total);
+      const std::vector<storage::SweepRunEntry> page =
+          last_key_ ? store_.sweep_runs_after(sweep_, filter_, *last_key_, kPage)
+                    : store_.sweep_runs_page(sweep_, filter_, kPage, offset_, total);
       for (const storage::SweepRunEntry& e : page) append_row(sweep_run_json(e), out);
-      offset_ += std::int64_t(page.size());
+      if (!page.empty()) last_key_ = page.back().row.key;
       more_ = std::int64_t(page.size()) == kPage;
     }
     return more_;
@@ -78,7 +83,8 @@ class SweepRunsCsv : public BodyStream {
   storage::RunStore& store_;
   const std::string sweep_;
   const storage::RunStore::SweepRunFilter filter_;
-  std::int64_t offset_;
+  const std::int64_t offset_;
+  std::optional<std::string> last_key_;  // of the last row sent
   bool header_done_ = false, more_ = true;
 };
 

@@ -79,6 +79,10 @@ TEST(LiveRunLimits, AnAddressBeyondItsLiveRunsEndsItsOldestUnwatchedOrIsRefused)
   const std::int64_t second = start_live_run(server.port(), 3600, true);
   WsClient watch_second(server.port(), "/ws/runs/" + std::to_string(second));
   ASSERT_TRUE(watch_second.read_type("snapshot")) << "no snapshot";
+  // a request refused for another reason (413: more frames than a run may store) ends no run
+  const json too_long = {{"scenario", small_scenario("joystick", 3600)}, {"paused", true}, {"steps", 2000000}};
+  EXPECT_EQ(http(server.port(), "POST", "/api/runs", too_long.dump()).status, 413);
+  EXPECT_EQ(listed_run(server.port(), first)["status"], "paused");
   const std::int64_t third = start_live_run(server.port(), 3600, true);  // the first, unwatched, ends for it
   ASSERT_GT(third, 0);
   json run;
