@@ -103,6 +103,12 @@ constexpr const char* kSweepRunFilter =
     "WHERE w.sweep = ?1 AND (?2 IS NULL OR (CASE WHEN w.family = 'file' THEN w.scenario_key ELSE w.family END) = ?2) "
     "AND (?3 IS NULL OR w.config_key = ?3) AND (?4 IS NULL OR w.success = ?4) AND (?5 IS NULL OR w.failure_mode = ?5) ";
 
+std::vector<SweepRunEntry> entries_of(Statement& s) {
+  std::vector<SweepRunEntry> out;
+  while (s.step()) out.push_back(sweep_run_entry(s));
+  return out;
+}
+
 void bind_filter(Statement& s, const std::string& sweep, const RunStore::SweepRunFilter& f) {
   s.bind(1, sweep);
   if (f.family) s.bind(2, *f.family); else s.bind_null(2);
@@ -135,9 +141,7 @@ std::vector<SweepRunEntry> RunStore::sweep_runs_page(const std::string& sweep, c
   Statement s = read_db_->prepare(std::string(kSweepRunColumns) + kSweepRunFilter + "ORDER BY w.key LIMIT ?6 OFFSET ?7");
   bind_filter(s, sweep, filter);
   s.bind(6, limit).bind(7, offset);
-  std::vector<SweepRunEntry> out;
-  while (s.step()) out.push_back(sweep_run_entry(s));
-  return out;
+  return entries_of(s);
 }
 
 std::vector<SweepRunEntry> RunStore::sweep_runs_after(const std::string& sweep, const SweepRunFilter& filter,
@@ -146,9 +150,7 @@ std::vector<SweepRunEntry> RunStore::sweep_runs_after(const std::string& sweep, 
   Statement s = read_db_->prepare(std::string(kSweepRunColumns) + kSweepRunFilter + "AND w.key > ?6 ORDER BY w.key LIMIT ?7");
   bind_filter(s, sweep, filter);
   s.bind(6, after_key).bind(7, limit);
-  std::vector<SweepRunEntry> out;
-  while (s.step()) out.push_back(sweep_run_entry(s));
-  return out;
+  return entries_of(s);
 }
 
 }  // namespace rrlab::storage
