@@ -59,6 +59,12 @@ std::shared_ptr<const Scenario> generated_case(const ScenarioEntry& entry, int i
   return made;
 }
 
+void use_method_config(Scenario& scenario, const MethodConfig& config) {
+  scenario.method.name = config.method;
+  scenario.method.params.clear();
+  for (const ParamValue& p : config.params) scenario.method.params.emplace_back(p.name, p.value);
+}
+
 Scenario scenario_of_case(const SweepSpec& spec, const SweepCase& c) {
   const ScenarioEntry& entry = spec.scenarios.at(c.entry);
   Scenario scenario = entry.generated() ? *generated_case(entry, c.index) : *entry.scenario;
@@ -68,13 +74,9 @@ Scenario scenario_of_case(const SweepSpec& spec, const SweepCase& c) {
     scenario.json["name"] = entry.name;
   }
   const MethodConfig& config = spec.configs.at(c.config);
-  scenario.method.name = config.method;
-  scenario.method.params.clear();
+  use_method_config(scenario, config);
   nlohmann::json params = nlohmann::json::object();
-  for (const ParamValue& p : config.params) {
-    scenario.method.params.emplace_back(p.name, p.value);
-    params[p.name] = p.value;
-  }
+  for (const ParamValue& p : config.params) params[p.name] = p.value;
   scenario.json["method"] = {{"name", config.method}, {"params", params}};
   if (const MethodInfo* info = find_method(config.method); info && info->python)
     scenario.json["method"]["origin"] = "python";  // its stored runs say where the method lives

@@ -27,6 +27,9 @@ std::shared_ptr<const Scenario> generated_case(const ScenarioEntry& entry, int i
 // seed and method configuration (parameters not set keep the method's
 // defaults; the scenario's own method parameters do not carry over).
 Scenario scenario_of_case(const SweepSpec& spec, const SweepCase& c);
+// The configuration's method and the parameters it sets (the others keep
+// their defaults) on `scenario`; its JSON record is left as it is.
+void use_method_config(Scenario& scenario, const MethodConfig& config);
 
 // Throws what the engine throws (ScenarioError, ParamError) for a case it
 // cannot run, and RunInterrupted once `stop` (may be null) is set.

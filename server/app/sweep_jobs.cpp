@@ -96,9 +96,7 @@ void SweepJobs::admit(const sweep::SweepSpec& spec) {
     for (const sweep::MethodConfig& config : spec.configs) {
       LaneEstimate estimate;
       if (first) {
-        first->method.name = config.method;
-        first->method.params.clear();
-        for (const sweep::ParamValue& p : config.params) first->method.params.emplace_back(p.name, p.value);
+        sweep::use_method_config(*first, config);
         const std::int64_t steps = spec.steps ? *spec.steps : std::llround(first->duration / first->dt);
         estimate = estimate_lane(*first, steps, 0);
       }
