@@ -51,15 +51,18 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
       if (ec) return;
       self->open_ = true;
       self->attach_controller();
-      self->send_snapshot();
-      self->read();
-      self->arm_timer();
-      // new frames are pushed at once: the publisher posts onto this strand
+      // new frames are pushed at once: the publisher posts onto this strand.
+      // Subscribed before the snapshot is written: a client that has read its
+      // snapshot is counted as watching (the snapshot's write may complete
+      // before this handler returns, and the client act on it at once).
       std::weak_ptr<WebSocketSession> weak = self;
       self->subscription_ = self->source_->subscribers().add([weak] {
         if (auto session = weak.lock())
           net::post(session->ws_.get_executor(), [session] { session->send_latest(); });
       });
+      self->send_snapshot();
+      self->read();
+      self->arm_timer();
     });
   }
 
