@@ -23,7 +23,7 @@ SANITIZE_FLAGS = -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEB
 # the Python package (PythonPackage: its module is built in Release only).
 # Every other test (unit, HTTP, command line, Python client) runs against the
 # ASan + UBSan build.
-RELEASE_TESTS = ^(Web|Docker|Docs|Slurm|Soak|Benchmark|PythonPackage|[A-Za-z]+Paper|[A-Za-z]+AtScale)\.
+RELEASE_TESTS = ^(Web|Docker|Docs|Slurm|Soak|Benchmark|Package|PythonPackage|[A-Za-z]+Paper|[A-Za-z]+AtScale)\.
 # What those need of the Release build (the benchmarks are built so they keep compiling).
 RELEASE_TARGETS = rrlab rrlab_engine_tests rrlab_soak rrlab_bench rrlab_server_load rrlab_python
 TIMED = ./scripts/timed

@@ -10,9 +10,10 @@
 #include <chrono>
 #include <vector>
 
-#include "methods/registry.hpp"
-#include "scenario/scenario.hpp"
-#include "sim/simulator.hpp"
+#include <rrlab/methods/registry.hpp>
+#include <rrlab/scenario/scenario.hpp>
+#include <rrlab/sim/simulator.hpp>
+
 #include "step_timing.hpp"
 
 namespace rrlab {

@@ -8,11 +8,11 @@
 #include <kdl/chainiksolvervel_wdls.hpp>
 #include <kdl/chainjnttojacsolver.hpp>
 
-#include "collision/collision_world.hpp"
-#include "kinematics/kinematics.hpp"
-#include "methods/registry.hpp"
-#include "scenario/scenario.hpp"
-#include "sim/simulator.hpp"
+#include <rrlab/collision/collision_world.hpp>
+#include <rrlab/kinematics/kinematics.hpp>
+#include <rrlab/methods/registry.hpp>
+#include <rrlab/scenario/scenario.hpp>
+#include <rrlab/sim/simulator.hpp>
 
 namespace rrlab {
 namespace {

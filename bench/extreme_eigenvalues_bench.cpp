@@ -8,7 +8,7 @@
 #include <random>
 #include <vector>
 
-#include "util/extreme_eigenvalues.hpp"
+#include <rrlab/util/extreme_eigenvalues.hpp>
 
 namespace rrlab {
 namespace {

@@ -10,9 +10,9 @@
 #include <utility>
 #include <vector>
 
-#include "methods/step_cost.hpp"
-#include "scenario/scenario.hpp"
-#include "sim/simulator.hpp"
+#include <rrlab/scenario/scenario.hpp>
+#include <rrlab/scenario/scenario_step_cost.hpp>
+#include <rrlab/sim/simulator.hpp>
 
 namespace rrlab {
 namespace {

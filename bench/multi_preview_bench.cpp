@@ -7,9 +7,9 @@
 
 #include <algorithm>
 
-#include "methods/multi_preview_ga.hpp"
-#include "scenario/scenario.hpp"
-#include "sim/simulator.hpp"
+#include <rrlab/methods/multi_preview_ga.hpp>
+#include <rrlab/scenario/scenario.hpp>
+#include <rrlab/sim/simulator.hpp>
 
 namespace rrlab {
 namespace {

@@ -5,9 +5,9 @@
 // planar arm <= 30 µs, ccp_voronoi RK4 on Sezgin Ex1 <= 20 µs.
 #include <benchmark/benchmark.h>
 
-#include "methods/registry.hpp"
-#include "scenario/scenario.hpp"
-#include "sim/simulator.hpp"
+#include <rrlab/methods/registry.hpp>
+#include <rrlab/scenario/scenario.hpp>
+#include <rrlab/sim/simulator.hpp>
 
 namespace rrlab {
 namespace {

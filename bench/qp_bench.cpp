@@ -9,7 +9,7 @@
 #include <random>
 #include <vector>
 
-#include "util/qp_solver.hpp"
+#include <rrlab/util/qp_solver.hpp>
 
 namespace rrlab {
 namespace {

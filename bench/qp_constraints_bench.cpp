@@ -8,8 +8,9 @@
 #include <chrono>
 #include <vector>
 
-#include "scenario/scenario.hpp"
-#include "sim/simulator.hpp"
+#include <rrlab/scenario/scenario.hpp>
+#include <rrlab/sim/simulator.hpp>
+
 #include "step_timing.hpp"
 
 namespace rrlab {

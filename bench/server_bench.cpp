@@ -1,8 +1,8 @@
 // WebSocket frame encoding: size and time of one 7-DOF planar frame.
 #include <benchmark/benchmark.h>
 
-#include "app/stream_json.hpp"
-#include "scenario/scenario.hpp"
+#include <rrlab/scenario/scenario.hpp>
+#include <rrlab/server/app/stream_json.hpp>
 
 namespace rrlab::server {
 namespace {

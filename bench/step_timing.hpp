@@ -8,7 +8,7 @@
 #include <chrono>
 #include <vector>
 
-#include "sim/simulator.hpp"
+#include <rrlab/sim/simulator.hpp>
 
 namespace rrlab {
 

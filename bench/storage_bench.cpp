@@ -5,10 +5,10 @@
 
 #include <filesystem>
 
-#include "sim/frame_csv.hpp"
-#include "storage/frame_codec.hpp"
-#include "storage/frame_writer.hpp"
-#include "storage/run_store.hpp"
+#include <rrlab/sim/frame_csv.hpp>
+#include <rrlab/storage/frame_codec.hpp>
+#include <rrlab/storage/frame_writer.hpp>
+#include <rrlab/storage/run_store.hpp>
 
 namespace rrlab::storage {
 namespace {

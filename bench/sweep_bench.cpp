@@ -6,9 +6,9 @@
 
 #include <filesystem>
 
-#include "storage/run_store.hpp"
-#include "sweep/sweep_runner.hpp"
-#include "sweep/sweep_spec.hpp"
+#include <rrlab/storage/run_store.hpp>
+#include <rrlab/sweep/sweep_runner.hpp>
+#include <rrlab/sweep/sweep_spec.hpp>
 
 namespace rrlab::sweep {
 namespace {

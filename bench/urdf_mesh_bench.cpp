@@ -7,12 +7,12 @@
 // and scenario 43's 576-triangle torus hoop (Arg 2).
 #include <benchmark/benchmark.h>
 
-#include "collision/collision_world.hpp"
-#include "collision/mesh_loader.hpp"
-#include "collision/mesh_shapes.hpp"
-#include "kinematics/kinematics.hpp"
-#include "scenario/scenario.hpp"
-#include "sim/simulator.hpp"
+#include <rrlab/collision/collision_world.hpp>
+#include <rrlab/collision/mesh_loader.hpp>
+#include <rrlab/collision/mesh_shapes.hpp>
+#include <rrlab/kinematics/kinematics.hpp>
+#include <rrlab/scenario/scenario.hpp>
+#include <rrlab/sim/simulator.hpp>
 
 namespace rrlab {
 namespace {

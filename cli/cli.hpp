@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "storage/quotas.hpp"
+#include <rrlab/storage/quotas.hpp>
 
 namespace rrlab::cli {
 
@@ -68,6 +68,7 @@ struct GenerateOptions {
   int count = 1, first = 0;
   std::vector<std::string> options;  // KEY=VALUE, VALUE as JSON where it parses
   std::string out_dir;
+  bool list = false;  // print the families (name, tab, summary) instead
 };
 
 struct MergeOptions {

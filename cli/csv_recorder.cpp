@@ -2,8 +2,8 @@
 
 #include <stdexcept>
 
-#include "sim/frame_csv.hpp"
-#include "sim/simulator.hpp"
+#include <rrlab/sim/frame_csv.hpp>
+#include <rrlab/sim/simulator.hpp>
 
 namespace rrlab {
 

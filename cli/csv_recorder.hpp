@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <string>
 
-#include "sim/recorder.hpp"
+#include <rrlab/sim/recorder.hpp>
 
 namespace rrlab {
 

@@ -8,12 +8,13 @@
 #include <fstream>
 #include <iostream>
 
+#include <rrlab/generators/generators.hpp>
+#include <rrlab/generators/perturbation.hpp>
+#include <rrlab/scenario/scenario.hpp>
+#include <rrlab/sweep/sweep_spec.hpp>
+#include <rrlab/util/nesting_depth.hpp>
+
 #include "cli.hpp"
-#include "scenario/generators.hpp"
-#include "scenario/perturbation.hpp"
-#include "scenario/scenario.hpp"
-#include "sweep/sweep_spec.hpp"
-#include "util/nesting_depth.hpp"
 
 namespace rrlab::cli {
 
@@ -55,6 +56,14 @@ sweep::ScenarioEntry perturbation_entry(const GenerateOptions& options, const nl
 
 int generate(const GenerateOptions& options) {
   try {
+    if (options.list) {  // the generator registry, for scripts (scripts/benchmark-table)
+      for (const GeneratorFamily& family : generator_family_table()) std::cout << family.name << '\t' << family.summary << '\n';
+      return 0;
+    }
+    if (options.out_dir.empty()) {
+      std::cerr << "rrlab: error: generate needs --out DIR\n";
+      return 2;
+    }
     nlohmann::json family_options = nlohmann::json::object();
     for (const std::string& text : options.options) add_option(family_options, text);
     if (options.family.empty() == options.perturb.empty()) {

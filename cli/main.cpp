@@ -3,8 +3,10 @@
 #include <cstdint>
 #include <limits>
 
+#include <rrlab/generators/generators.hpp>
+#include <rrlab/scenario/scenario.hpp>
+
 #include "cli.hpp"
-#include "scenario/scenario.hpp"
 #include "whole_number.hpp"
 
 // Stays whole (over 100 lines): it is the command line's option table, one
@@ -154,9 +156,10 @@ int main(int argc, char** argv) {
   rrlab::cli::GenerateOptions generate;
   CLI::App* generate_cmd =
       app.add_subcommand("generate", "write a generated family's cases (with their witnesses) as scenario files");
-  generate_cmd->add_option("family", generate.family,
-                           "planar_clutter, planar_limits, narrow_passage, spatial_clutter, moving_obstacles, "
-                           "urdf_tabletop or urdf_shelf (or --perturb)");
+  std::string family_names;
+  for (const std::string& name : rrlab::generator_families()) family_names += (family_names.empty() ? "" : ", ") + name;
+  generate_cmd->add_option("family", generate.family, family_names + " (or --perturb)");
+  generate_cmd->add_flag("--list", generate.list, "print the families, one a line: name, a tab, what its cases are");
   generate_cmd->add_option("--perturb", generate.perturb,
                            "instead of a family: the perturbation family of this scenario (catalogue name or .json "
                            "path); --option obstacles.shift=M, obstacles.rotate_deg=D, speed=[MIN,MAX], "
@@ -169,7 +172,7 @@ int main(int argc, char** argv) {
   whole_number_in(generate_cmd->add_option("--first", generate.first, "index of the first case (default 0)"), 0,
                   1'000'000'000);
   generate_cmd->add_option("--option", generate.options, "family option KEY=VALUE, VALUE as JSON (repeatable)");
-  generate_cmd->add_option("--out", generate.out_dir, "directory to write FAMILY-INDEX.json (NAME-pINDEX.json) files into")->required();
+  generate_cmd->add_option("--out", generate.out_dir, "directory to write FAMILY-INDEX.json (NAME-pINDEX.json) files into");
 
   rrlab::cli::MergeOptions merge;
   CLI::App* merge_cmd = app.add_subcommand("merge", "merge shard databases' sweep runs into one database");

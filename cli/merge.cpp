@@ -3,9 +3,10 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include <rrlab/storage/run_store.hpp>
+#include <rrlab/sweep/sweep_merge.hpp>
+
 #include "cli.hpp"
-#include "storage/run_store.hpp"
-#include "sweep/sweep_merge.hpp"
 
 namespace rrlab::cli {
 

@@ -1,7 +1,8 @@
 #include <iostream>
 
+#include <rrlab/methods/registry_json.hpp>
+
 #include "cli.hpp"
-#include "methods/registry_json.hpp"
 
 namespace rrlab::cli {
 

@@ -1,9 +1,10 @@
 #include <filesystem>
 #include <iostream>
 
-#include "storage/resimulation.hpp"
+#include <rrlab/storage/resimulation.hpp>
+#include <rrlab/storage/run_store.hpp>
+
 #include "cli.hpp"
-#include "storage/run_store.hpp"
 
 namespace rrlab::cli {
 

@@ -3,11 +3,12 @@
 #include <fstream>
 #include <iostream>
 
+#include <rrlab/storage/run_store.hpp>
+#include <rrlab/sweep/sweep_report.hpp>
+#include <rrlab/sweep/sweep_report_html.hpp>
+#include <rrlab/sweep/sweep_report_text.hpp>
+
 #include "cli.hpp"
-#include "storage/run_store.hpp"
-#include "sweep/sweep_report.hpp"
-#include "sweep/sweep_report_html.hpp"
-#include "sweep/sweep_report_text.hpp"
 
 namespace rrlab::cli {
 

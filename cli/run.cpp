@@ -5,15 +5,16 @@
 #include <memory>
 #include <sstream>
 
-#include "storage/resimulation.hpp"
+#include <rrlab/scenario/scenario.hpp>
+#include <rrlab/sim/run_record.hpp>
+#include <rrlab/sim/simulator.hpp>
+#include <rrlab/storage/frame_codec.hpp>
+#include <rrlab/storage/frame_writer.hpp>
+#include <rrlab/storage/resimulation.hpp>
+#include <rrlab/storage/run_store.hpp>
+
 #include "cli.hpp"
 #include "csv_recorder.hpp"
-#include "scenario/scenario.hpp"
-#include "sim/run_record.hpp"
-#include "sim/simulator.hpp"
-#include "storage/frame_codec.hpp"
-#include "storage/frame_writer.hpp"
-#include "storage/run_store.hpp"
 
 namespace rrlab::cli {
 

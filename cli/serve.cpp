@@ -7,13 +7,14 @@
 #include <thread>
 #include <vector>
 
+#include <rrlab/server/app/sweep_jobs.hpp>
+#include <rrlab/server/net/sessions.hpp>
+#include <rrlab/storage/disk_reserve.hpp>
+#include <rrlab/storage/frame_writer.hpp>
+#include <rrlab/storage/migrations.hpp>
+#include <rrlab/storage/run_store.hpp>
+
 #include "cli.hpp"
-#include "net/sessions.hpp"
-#include "app/sweep_jobs.hpp"
-#include "storage/disk_reserve.hpp"
-#include "storage/frame_writer.hpp"
-#include "storage/migrations.hpp"
-#include "storage/run_store.hpp"
 
 namespace rrlab::cli {
 

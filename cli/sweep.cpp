@@ -8,13 +8,14 @@
 #include <fstream>
 #include <iostream>
 
+#include <rrlab/scenario/scenario.hpp>
+#include <rrlab/storage/run_store.hpp>
+#include <rrlab/sweep/summaries_csv.hpp>
+#include <rrlab/sweep/sweep_runner.hpp>
+#include <rrlab/sweep/sweep_shard.hpp>
+#include <rrlab/sweep/sweep_spec.hpp>
+
 #include "cli.hpp"
-#include "scenario/scenario.hpp"
-#include "storage/run_store.hpp"
-#include "sweep/summaries_csv.hpp"
-#include "sweep/sweep_runner.hpp"
-#include "sweep/sweep_shard.hpp"
-#include "sweep/sweep_spec.hpp"
 
 namespace rrlab::cli {
 

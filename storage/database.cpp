@@ -1,4 +1,4 @@
-#include "storage/database.hpp"
+#include <rrlab/storage/database.hpp>
 
 #include <sqlite3.h>
 

@@ -1,4 +1,4 @@
-#include "storage/disk_reserve.hpp"
+#include <rrlab/storage/disk_reserve.hpp>
 
 #include <fcntl.h>
 #include <sys/stat.h>

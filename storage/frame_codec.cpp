@@ -1,13 +1,14 @@
-#include "storage/frame_codec.hpp"
+#include <rrlab/storage/frame_codec.hpp>
 
 #include <bit>
 #include <cstdint>
 #include <cstring>
 #include <stdexcept>
+#include <string>
 #include <utility>
 
-#include "sim/frame_json.hpp"
-#include "util/number_text.hpp"
+#include <rrlab/sim/frame_json.hpp>
+#include <rrlab/util/number_text.hpp>
 
 namespace rrlab::storage {
 
@@ -15,12 +16,21 @@ static_assert(std::endian::native == std::endian::little, "the frame blob is lit
 
 namespace {
 
-// Bytes of the blob after its two counts: the step (i64) and the doubles of
-// every other blob field, in kFrameFields order.
-size_t blob_body_size(std::uint32_t n, std::uint32_t k) {
+// The first word of a versioned blob: "RF" and the version. A version-1 blob
+// starts with its joint count (at most 4096), never with this.
+constexpr std::uint32_t kVersionMagic = 0x52460000u;
+constexpr std::uint32_t kMaxCount = 4096;
+
+constexpr bool in_blob(const FrameField& field, int version) {
+  return (field.outputs & kFrameBlob) != 0 && field.since >= 1 && field.since <= version;
+}
+
+// Bytes of the blob after its header: the step (i64) and the doubles of
+// every blob field of `version`, in kFrameFields order.
+size_t blob_body_size(std::uint32_t n, std::uint32_t k, int version) {
   size_t bytes = 0;
   for (const FrameField& field : kFrameFields)
-    if (field.outputs & kFrameBlob) bytes += 8 * size_t(frame_value_count(field.kind, int(n), int(k)));
+    if (in_blob(field, version)) bytes += 8 * size_t(frame_value_count(field.kind, int(n), int(k)));
   return bytes;
 }
 
@@ -43,9 +53,10 @@ T take(std::string_view& in) {
 // field's kind, size and place in the Frame are constants: as fast as the
 // hand-written codec this replaced.
 template <size_t I>
-void pack_field(const Frame& f, char*& at) {
+void pack_field(const Frame& f, char*& at, int version) {
   constexpr const FrameField& field = kFrameFields[I];
   if constexpr ((field.outputs & kFrameBlob) != 0) {
+    if (!in_blob(field, version)) return;
     if constexpr (field.kind == FrameFieldKind::count) {
       at = put(at, std::int64_t(f.step));
     } else {
@@ -60,9 +71,10 @@ void pack_field(const Frame& f, char*& at) {
 
 // `at` has the field's bytes: unpack_frame checked the blob's size first.
 template <size_t I>
-void unpack_field(Frame& f, const char*& at, std::uint32_t n, std::uint32_t k) {
+void unpack_field(Frame& f, const char*& at, std::uint32_t n, std::uint32_t k, int version) {
   constexpr const FrameField& field = kFrameFields[I];
   if constexpr ((field.outputs & kFrameBlob) != 0) {
+    if (!in_blob(field, version)) return;
     std::array<double, 4> scratch;
     if constexpr (field.kind == FrameFieldKind::count) {
       std::int64_t value;
@@ -85,23 +97,29 @@ void unpack_field(Frame& f, const char*& at, std::uint32_t n, std::uint32_t k) {
 }
 
 template <size_t... I>
-void pack_fields(const Frame& f, char* at, std::index_sequence<I...>) {
-  (pack_field<I>(f, at), ...);
+void pack_fields(const Frame& f, char* at, int version, std::index_sequence<I...>) {
+  (pack_field<I>(f, at, version), ...);
 }
 
 template <size_t... I>
-void unpack_fields(Frame& f, const char* at, std::uint32_t n, std::uint32_t k, std::index_sequence<I...>) {
-  (unpack_field<I>(f, at, n, k), ...);
+void unpack_fields(Frame& f, const char* at, std::uint32_t n, std::uint32_t k, int version,
+                   std::index_sequence<I...>) {
+  (unpack_field<I>(f, at, n, k, version), ...);
 }
 
 constexpr auto kFieldIndices = std::make_index_sequence<kFrameFields.size()>();
 
 }  // namespace
 
-void pack_frame(const Frame& f, std::string& out) {
+void pack_frame(const Frame& f, std::string& out, int version) {
+  if (version < 1 || version > kFrameBlobVersion)
+    throw std::invalid_argument("no frame blob version " + std::to_string(version));
   const auto n = std::uint32_t(f.q.size()), k = std::uint32_t(f.diagnostics.size());
-  out.resize(8 + blob_body_size(n, k));
-  pack_fields(f, put(put(out.data(), n), k), kFieldIndices);
+  const size_t header = version >= 2 ? 12 : 8;
+  out.resize(header + blob_body_size(n, k, version));
+  char* at = out.data();
+  if (version >= 2) at = put(at, kVersionMagic | std::uint32_t(version));
+  pack_fields(f, put(put(at, n), k), version, kFieldIndices);
 }
 
 std::string pack_frame(const Frame& frame) {
@@ -110,19 +128,32 @@ std::string pack_frame(const Frame& frame) {
   return out;
 }
 
+int frame_blob_version(std::string_view blob) {
+  const auto first = take<std::uint32_t>(blob);
+  if (first <= kMaxCount) return 1;
+  if ((first & 0xffff0000u) != kVersionMagic) throw std::runtime_error("frame blob has no known header");
+  const auto version = int(first & 0xffffu);
+  if (version < 2 || version > kFrameBlobVersion)
+    throw std::runtime_error("frame blob of version " + std::to_string(version) + ": this build reads versions 1 to " +
+                             std::to_string(kFrameBlobVersion));
+  return version;
+}
+
 StoredFrame stored_frame(std::int64_t seq, const Frame& f, std::string packed) {
   return {seq, f.step, f.t, f.task_error, f.min_distance, f.collided, std::move(packed)};
 }
 
 Frame unpack_frame(std::string_view in) {
+  const int version = frame_blob_version(in);
+  if (version >= 2) in.remove_prefix(4);
   const auto n = take<std::uint32_t>(in), k = take<std::uint32_t>(in);
-  if (n > 4096 || k > 4096 || in.size() != blob_body_size(n, k))
+  if (n > kMaxCount || k > kMaxCount || in.size() != blob_body_size(n, k, version))
     throw std::runtime_error("frame blob has the wrong size");
   Frame f;
   f.q.resize(n);
   f.qdot.resize(n);
   f.diagnostics.resize(k);
-  unpack_fields(f, in.data(), n, k, kFieldIndices);
+  unpack_fields(f, in.data(), n, k, version, kFieldIndices);
   return f;
 }
 

@@ -8,24 +8,32 @@
 #include <string_view>
 #include <vector>
 
-#include "sim/frame_fields.hpp"
-#include "storage/run_store.hpp"
+#include <rrlab/sim/frame_fields.hpp>
+#include <rrlab/storage/run_store.hpp>
 
 namespace rrlab::storage {
 
-// Layout: u32 n (joints), u32 k (diagnostics), then the blob fields of
+// Layout (version 2, kFrameBlobVersion): u32 version word (0x52460000 |
+// version), u32 n (joints), u32 k (diagnostics), then the blob fields of
 // kFrameFields (sim/frame_fields.hpp) in its order, the step as an i64 and
 // every other number as a double: t, q[n], qdot[n], ee[3], ee_quat[4]
 // (w x y z), target[3], task_error, orientation_error, min_distance,
 // min_distance_link, collided, joint_limit_margin, manipulability,
-// condition_number, diagnostics[k].
-void pack_frame(const Frame& frame, std::string& out);
+// condition_number, diagnostics[k]. Version 1 (runs stored before the word
+// existed) starts at n and has the same fields. A version's fields are the
+// blob fields whose `since` is at most that version.
+void pack_frame(const Frame& frame, std::string& out, int version = kFrameBlobVersion);
 std::string pack_frame(const Frame& frame);
+
+// The format version of a packed frame (1 or 2); throws std::runtime_error
+// on a blob too short to say, or of a version this build does not know.
+int frame_blob_version(std::string_view blob);
 
 // The row stored for the run's frame `seq`; `packed` is pack_frame(frame).
 StoredFrame stored_frame(std::int64_t seq, const Frame& frame, std::string packed);
 
-// Throws std::runtime_error on a blob that is not a packed frame.
+// Any version this build knows; throws std::runtime_error on a blob that is
+// not a packed frame.
 Frame unpack_frame(std::string_view blob);
 
 // One stored frame as GET /api/runs/{id}/frames writes it: {"seq":..,

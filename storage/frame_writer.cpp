@@ -1,8 +1,8 @@
-#include "storage/frame_writer.hpp"
+#include <rrlab/storage/frame_writer.hpp>
 
 #include <vector>
 
-#include "storage/database.hpp"
+#include <rrlab/storage/database.hpp>
 
 namespace rrlab::storage {
 

@@ -19,8 +19,8 @@
 #include <thread>
 #include <utility>
 
-#include "storage/completion.hpp"
-#include "storage/run_store.hpp"
+#include <rrlab/storage/completion.hpp>
+#include <rrlab/storage/run_store.hpp>
 
 namespace rrlab::storage {
 

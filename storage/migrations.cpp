@@ -1,9 +1,10 @@
-#include "storage/migrations.hpp"
+#include <rrlab/storage/migrations.hpp>
 
 #include <iterator>
 #include <string>
 
-#include "storage/database.hpp"
+#include <rrlab/storage/database.hpp>
+
 #include "storage/schema_sql.hpp"
 
 namespace rrlab::storage {

@@ -1,13 +1,13 @@
-#include "storage/resimulation.hpp"
+#include <rrlab/storage/resimulation.hpp>
 
 #include <algorithm>
 #include <chrono>
 
-#include "methods/registry_json.hpp"
-#include "sim/run_record.hpp"
-#include "sim/simulator.hpp"
-#include "storage/frame_codec.hpp"
-#include "util/nesting_depth.hpp"
+#include <rrlab/methods/registry_json.hpp>
+#include <rrlab/sim/run_record.hpp>
+#include <rrlab/sim/simulator.hpp>
+#include <rrlab/storage/frame_codec.hpp>
+#include <rrlab/util/nesting_depth.hpp>
 
 namespace rrlab::storage {
 
@@ -51,6 +51,16 @@ std::string describe_difference(const std::string& stored, const std::string& fr
     return "metrics or diagnostics";
   } catch (const std::exception& e) {
     return e.what();
+  }
+}
+
+// A stored blob's format version; an unreadable blob is compared as the
+// current format (and then differs).
+int stored_version(const std::string& blob) {
+  try {
+    return frame_blob_version(blob);
+  } catch (const std::exception&) {
+    return kFrameBlobVersion;
   }
 }
 
@@ -118,7 +128,7 @@ ResimulationResult resimulate(RunStore& store, const RunRecord& run,
     events.push_back({long(e.seq), e.kind, parse_json(e.payload_json)});
   EventReplayer replayer(events);
   ResimulationResult result;
-  std::string packed;
+  std::string packed, packed_as_stored;
   constexpr std::int64_t chunk = 4096;
   std::vector<std::string> stored;
   for (std::int64_t from = 0; from < run.frames; from += chunk) {
@@ -134,9 +144,17 @@ ResimulationResult resimulate(RunStore& store, const RunRecord& run,
       storage::pack_frame(sim.frame(), packed);
       if (on_frame) on_frame(seq, sim.frame(), packed);
       ++result.frames_compared;
-      if (!result.first_mismatch && packed != stored[i]) {
+      if (result.first_mismatch) continue;
+      // a run stored in an older blob format is compared in its own format
+      const std::string* fresh = &packed;
+      const int version = stored_version(stored[i]);
+      if (version != kFrameBlobVersion) {
+        storage::pack_frame(sim.frame(), packed_as_stored, version);
+        fresh = &packed_as_stored;
+      }
+      if (*fresh != stored[i]) {
         result.first_mismatch = seq;
-        result.mismatch = describe_difference(stored[i], packed);
+        result.mismatch = describe_difference(stored[i], *fresh);
       }
     }
   }

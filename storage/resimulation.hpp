@@ -9,10 +9,10 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "scenario/scenario.hpp"
-#include "sim/frame.hpp"
-#include "sim/simulator.hpp"
-#include "storage/run_store.hpp"
+#include <rrlab/scenario/scenario.hpp>
+#include <rrlab/sim/frame.hpp>
+#include <rrlab/sim/simulator.hpp>
+#include <rrlab/storage/run_store.hpp>
 
 namespace rrlab::storage {
 

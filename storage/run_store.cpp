@@ -1,11 +1,11 @@
-#include "storage/run_store.hpp"
+#include <rrlab/storage/run_store.hpp>
 
 #include <cmath>
 #include <limits>
 
-#include "storage/database.hpp"
-#include "storage/disk_reserve.hpp"
-#include "storage/migrations.hpp"
+#include <rrlab/storage/database.hpp>
+#include <rrlab/storage/disk_reserve.hpp>
+#include <rrlab/storage/migrations.hpp>
 
 namespace rrlab::storage {
 

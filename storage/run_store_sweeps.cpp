@@ -2,8 +2,8 @@
 // one transaction (resume and merge rely on never seeing half a run).
 #include <cmath>
 
-#include "storage/database.hpp"
-#include "storage/run_store.hpp"
+#include <rrlab/storage/database.hpp>
+#include <rrlab/storage/run_store.hpp>
 
 namespace rrlab::storage {
 

@@ -1,11 +1,11 @@
-#include "sweep/failure_watch.hpp"
+#include <rrlab/sweep/failure_watch.hpp>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
 
-#include "sim/simulator.hpp"
+#include <rrlab/sim/simulator.hpp>
 
 namespace rrlab::sweep {
 

@@ -23,8 +23,8 @@
 #include <string>
 #include <vector>
 
-#include "sim/recorder.hpp"
-#include "sweep/success_criteria.hpp"
+#include <rrlab/sim/recorder.hpp>
+#include <rrlab/sweep/success_criteria.hpp>
 
 namespace rrlab::sweep {
 

@@ -1,10 +1,10 @@
-#include "sweep/method_grid.hpp"
+#include <rrlab/sweep/method_grid.hpp>
 
 #include <cstdio>
 #include <map>
 
-#include "methods/registry.hpp"
-#include "scenario/json_reader.hpp"
+#include <rrlab/methods/registry.hpp>
+#include <rrlab/scenario/json_reader.hpp>
 
 namespace rrlab::sweep {
 

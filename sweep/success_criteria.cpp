@@ -1,8 +1,8 @@
-#include "sweep/success_criteria.hpp"
+#include <rrlab/sweep/success_criteria.hpp>
 
 #include <cmath>
 
-#include "scenario/json_reader.hpp"
+#include <rrlab/scenario/json_reader.hpp>
 
 namespace rrlab::sweep {
 

@@ -6,7 +6,7 @@
 #include <optional>
 #include <string>
 
-#include "sim/frame.hpp"
+#include <rrlab/sim/frame.hpp>
 
 namespace rrlab::sweep {
 

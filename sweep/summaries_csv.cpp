@@ -1,10 +1,10 @@
-#include "sweep/summaries_csv.hpp"
+#include <rrlab/sweep/summaries_csv.hpp>
 
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <unordered_map>
 
-#include "util/nesting_depth.hpp"
+#include <rrlab/util/nesting_depth.hpp>
 
 namespace rrlab::sweep {
 

@@ -7,8 +7,8 @@
 #include <ostream>
 #include <vector>
 
-#include "storage/run_store.hpp"
-#include "sweep/sweep_expansion.hpp"
+#include <rrlab/storage/run_store.hpp>
+#include <rrlab/sweep/sweep_expansion.hpp>
 
 namespace rrlab::sweep {
 

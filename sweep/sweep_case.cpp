@@ -1,17 +1,17 @@
-#include "sweep/sweep_case.hpp"
+#include <rrlab/sweep/sweep_case.hpp>
 
 #include <deque>
 #include <mutex>
 
-#include "methods/registry.hpp"
-#include "scenario/generators.hpp"
-#include "scenario/perturbation.hpp"
-#include "sim/recorder.hpp"
-#include "sim/simulator.hpp"
-#include "storage/frame_codec.hpp"
-#include "storage/quotas.hpp"
-#include "storage/resimulation.hpp"
-#include "sweep/failure_watch.hpp"
+#include <rrlab/generators/generators.hpp>
+#include <rrlab/generators/perturbation.hpp>
+#include <rrlab/methods/registry.hpp>
+#include <rrlab/sim/recorder.hpp>
+#include <rrlab/sim/simulator.hpp>
+#include <rrlab/storage/frame_codec.hpp>
+#include <rrlab/storage/quotas.hpp>
+#include <rrlab/storage/resimulation.hpp>
+#include <rrlab/sweep/failure_watch.hpp>
 
 namespace rrlab::sweep {
 

@@ -7,9 +7,9 @@
 #include <atomic>
 #include <memory>
 
-#include "sim/frame.hpp"
-#include "storage/run_store.hpp"
-#include "sweep/sweep_expansion.hpp"
+#include <rrlab/sim/frame.hpp>
+#include <rrlab/storage/run_store.hpp>
+#include <rrlab/sweep/sweep_expansion.hpp>
 
 namespace rrlab::sweep {
 

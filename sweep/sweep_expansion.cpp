@@ -1,4 +1,4 @@
-#include "sweep/sweep_expansion.hpp"
+#include <rrlab/sweep/sweep_expansion.hpp>
 
 #include <limits>
 

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "sweep/sweep_spec.hpp"
+#include <rrlab/sweep/sweep_spec.hpp>
 
 namespace rrlab::sweep {
 

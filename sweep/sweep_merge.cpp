@@ -1,4 +1,4 @@
-#include "sweep/sweep_merge.hpp"
+#include <rrlab/sweep/sweep_merge.hpp>
 
 #include <limits>
 #include <map>

@@ -6,7 +6,7 @@
 
 #include <cstddef>
 
-#include "storage/run_store.hpp"
+#include <rrlab/storage/run_store.hpp>
 
 namespace rrlab::sweep {
 

@@ -1,4 +1,4 @@
-#include "sweep/sweep_progress.hpp"
+#include <rrlab/sweep/sweep_progress.hpp>
 
 #include <cstdio>
 #include <string>

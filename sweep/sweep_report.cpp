@@ -1,4 +1,4 @@
-#include "sweep/sweep_report.hpp"
+#include <rrlab/sweep/sweep_report.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -9,8 +9,8 @@
 #include <stdexcept>
 #include <tuple>
 
-#include "methods/witness_playback.hpp"
-#include "util/nesting_depth.hpp"
+#include <rrlab/methods/witness_playback.hpp>
+#include <rrlab/util/nesting_depth.hpp>
 
 namespace rrlab::sweep {
 

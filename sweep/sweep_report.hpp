@@ -36,8 +36,8 @@
 #include <string>
 #include <vector>
 
-#include "storage/run_store.hpp"
-#include "sweep/sweep_stats.hpp"
+#include <rrlab/storage/run_store.hpp>
+#include <rrlab/sweep/sweep_stats.hpp>
 
 namespace rrlab::sweep {
 

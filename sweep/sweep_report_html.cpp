@@ -1,10 +1,10 @@
-#include "sweep/sweep_report_html.hpp"
+#include <rrlab/sweep/sweep_report_html.hpp>
 
 #include <algorithm>
 #include <cstdio>
 #include <string>
 
-#include "sweep/sweep_report_text.hpp"
+#include <rrlab/sweep/sweep_report_text.hpp>
 
 namespace rrlab::sweep {
 

@@ -6,7 +6,7 @@
 
 #include <ostream>
 
-#include "sweep/sweep_report.hpp"
+#include <rrlab/sweep/sweep_report.hpp>
 
 namespace rrlab::sweep {
 

@@ -1,4 +1,4 @@
-#include "sweep/sweep_report_json.hpp"
+#include <rrlab/sweep/sweep_report_json.hpp>
 
 #include <algorithm>
 #include <cmath>

@@ -4,7 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "sweep/sweep_report.hpp"
+#include <rrlab/sweep/sweep_report.hpp>
 
 namespace rrlab::sweep {
 

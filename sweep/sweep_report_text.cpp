@@ -1,4 +1,4 @@
-#include "sweep/sweep_report_text.hpp"
+#include <rrlab/sweep/sweep_report_text.hpp>
 
 #include <cmath>
 #include <cstdio>

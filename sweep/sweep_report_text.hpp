@@ -4,7 +4,7 @@
 
 #include <ostream>
 
-#include "sweep/sweep_report.hpp"
+#include <rrlab/sweep/sweep_report.hpp>
 
 namespace rrlab::sweep {
 

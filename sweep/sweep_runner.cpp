@@ -1,4 +1,4 @@
-#include "sweep/sweep_runner.hpp"
+#include <rrlab/sweep/sweep_runner.hpp>
 
 #include <algorithm>
 #include <mutex>
@@ -6,11 +6,11 @@
 #include <thread>
 #include <unordered_set>
 
-#include "methods/method.hpp"
-#include "sim/simulator.hpp"
-#include "storage/database.hpp"
-#include "sweep/sweep_case.hpp"
-#include "sweep/sweep_progress.hpp"
+#include <rrlab/methods/method.hpp>
+#include <rrlab/sim/simulator.hpp>
+#include <rrlab/storage/database.hpp>
+#include <rrlab/sweep/sweep_case.hpp>
+#include <rrlab/sweep/sweep_progress.hpp>
 
 namespace rrlab::sweep {
 

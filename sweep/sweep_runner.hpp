@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "storage/run_store.hpp"
-#include "sweep/sweep_expansion.hpp"
+#include <rrlab/storage/run_store.hpp>
+#include <rrlab/sweep/sweep_expansion.hpp>
 
 namespace rrlab::sweep {
 

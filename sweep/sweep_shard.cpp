@@ -1,8 +1,8 @@
-#include "sweep/sweep_shard.hpp"
+#include <rrlab/sweep/sweep_shard.hpp>
 
 #include <charconv>
 
-#include "scenario/scenario.hpp"
+#include <rrlab/scenario/scenario.hpp>
 
 namespace rrlab::sweep {
 

@@ -8,7 +8,7 @@
 #include <optional>
 #include <string>
 
-#include "sweep/sweep_expansion.hpp"
+#include <rrlab/sweep/sweep_expansion.hpp>
 
 namespace rrlab::sweep {
 

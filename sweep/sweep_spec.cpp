@@ -1,4 +1,4 @@
-#include "sweep/sweep_spec.hpp"
+#include <rrlab/sweep/sweep_spec.hpp>
 
 #include <algorithm>
 #include <fstream>
@@ -7,10 +7,10 @@
 #include <set>
 #include <sstream>
 
-#include "methods/method.hpp"
-#include "scenario/generators.hpp"
-#include "scenario/json_reader.hpp"
-#include "sim/simulator.hpp"
+#include <rrlab/generators/generators.hpp>
+#include <rrlab/methods/method.hpp>
+#include <rrlab/scenario/json_reader.hpp>
+#include <rrlab/sim/simulator.hpp>
 
 namespace rrlab::sweep {
 

@@ -19,10 +19,10 @@
 #include <string>
 #include <vector>
 
-#include "sweep/method_grid.hpp"
-#include "scenario/perturbation.hpp"
-#include "scenario/scenario.hpp"
-#include "sweep/success_criteria.hpp"
+#include <rrlab/generators/perturbation.hpp>
+#include <rrlab/scenario/scenario.hpp>
+#include <rrlab/sweep/method_grid.hpp>
+#include <rrlab/sweep/success_criteria.hpp>
 
 namespace rrlab::sweep {
 

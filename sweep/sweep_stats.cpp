@@ -1,4 +1,4 @@
-#include "sweep/sweep_stats.hpp"
+#include <rrlab/sweep/sweep_stats.hpp>
 
 #include <algorithm>
 #include <cmath>

@@ -1,17 +1,17 @@
 // The distance table and its driver: every link against every obstacle,
 // each pair by the function the dispatch table (pair_table.cpp) holds for its
 // backend, link shape and obstacle shape.
-#include "collision/collision_world.hpp"
+#include <rrlab/collision/collision_world.hpp>
 
 #include <cmath>
 #include <memory>
 #include <utility>
 
-#include "collision/fcl_pairs.hpp"
-#include "collision/mesh_distance.hpp"
-#include "collision/obstacle_geometry.hpp"
-#include "collision/pair_table.hpp"
-#include "collision/segment_geometry.hpp"
+#include <rrlab/collision/fcl_pairs.hpp>
+#include <rrlab/collision/mesh_distance.hpp>
+#include <rrlab/collision/obstacle_geometry.hpp>
+#include <rrlab/collision/pair_table.hpp>
+#include <rrlab/collision/segment_geometry.hpp>
 
 namespace rrlab {
 

@@ -8,10 +8,10 @@
 #include <memory>
 #include <vector>
 
-#include "collision/link_obstacle_distance.hpp"
-#include "collision/scene.hpp"
-#include "kinematics/kinematics.hpp"
-#include "model/model.hpp"
+#include <rrlab/collision/link_obstacle_distance.hpp>
+#include <rrlab/collision/scene.hpp>
+#include <rrlab/kinematics/kinematics.hpp>
+#include <rrlab/model/model.hpp>
 
 namespace rrlab {
 

@@ -4,13 +4,13 @@
 // separating-axis penetration depth over face normals and segment x edge
 // directions, which is exactly the minimum translation (see
 // best_separating_axis).
-#include "collision/convex_polytope.hpp"
+#include <rrlab/collision/convex_polytope.hpp>
 
 #include <algorithm>
 #include <cassert>
 #include <cmath>
 
-#include "collision/segment_geometry.hpp"
+#include <rrlab/collision/segment_geometry.hpp>
 
 namespace rrlab::collision {
 

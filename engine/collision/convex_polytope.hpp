@@ -7,8 +7,8 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "collision/link_obstacle_distance.hpp"
-#include "collision/polygon.hpp"
+#include <rrlab/collision/link_obstacle_distance.hpp>
+#include <rrlab/collision/polygon.hpp>
 
 namespace rrlab::collision {
 

@@ -3,7 +3,7 @@
 // and meshes; the reference backend (compute_with_fcl) fills the whole table
 // from fcl::distance / fcl::collide, and the tests check that both agree on
 // random poses. Why compute() does not use FCL for capsules: pair_table.cpp.
-#include "collision/fcl_pairs.hpp"
+#include <rrlab/collision/fcl_pairs.hpp>
 
 #include <fcl/fcl.h>
 
@@ -11,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-#include "collision/segment_geometry.hpp"
+#include <rrlab/collision/segment_geometry.hpp>
 
 namespace rrlab::collision {
 

@@ -8,10 +8,10 @@
 #include <Eigen/Geometry>
 #include <memory>
 
-#include "collision/link_obstacle_distance.hpp"
-#include "collision/mesh_distance.hpp"
-#include "collision/obstacle_geometry.hpp"
-#include "collision/scene.hpp"
+#include <rrlab/collision/link_obstacle_distance.hpp>
+#include <rrlab/collision/mesh_distance.hpp>
+#include <rrlab/collision/obstacle_geometry.hpp>
+#include <rrlab/collision/scene.hpp>
 
 namespace rrlab::collision {
 

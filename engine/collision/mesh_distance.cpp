@@ -2,7 +2,7 @@
 // mesh links against walls and spheres. With fcl_pairs.cpp, the only file
 // that includes FCL: the tree is FCL's BVHModel (OBBRSS), descended here by
 // hand (fcl::distance on a capsule allocates while bounding the capsule).
-#include "collision/mesh_distance.hpp"
+#include <rrlab/collision/mesh_distance.hpp>
 
 #include <fcl/fcl.h>
 
@@ -12,7 +12,7 @@
 #include <map>
 #include <vector>
 
-#include "collision/segment_geometry.hpp"
+#include <rrlab/collision/segment_geometry.hpp>
 
 namespace rrlab::collision {
 

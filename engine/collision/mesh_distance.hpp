@@ -10,8 +10,8 @@
 #include <Eigen/Geometry>
 #include <memory>
 
-#include "collision/link_obstacle_distance.hpp"
-#include "collision/mesh_loader.hpp"
+#include <rrlab/collision/link_obstacle_distance.hpp>
+#include <rrlab/collision/mesh_loader.hpp>
 
 namespace fcl {
 template <typename S_>

@@ -1,4 +1,4 @@
-#include "collision/mesh_loader.hpp"
+#include <rrlab/collision/mesh_loader.hpp>
 
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>

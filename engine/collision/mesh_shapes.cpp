@@ -1,4 +1,4 @@
-#include "collision/mesh_shapes.hpp"
+#include <rrlab/collision/mesh_shapes.hpp>
 
 #include <cmath>
 #include <fstream>

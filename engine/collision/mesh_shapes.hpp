@@ -6,7 +6,7 @@
 #include <Eigen/Core>
 #include <string>
 
-#include "collision/mesh_loader.hpp"
+#include <rrlab/collision/mesh_loader.hpp>
 
 namespace rrlab {
 

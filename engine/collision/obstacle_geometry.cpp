@@ -1,13 +1,13 @@
 // An obstacle's geometry, and a segment's distance to each obstacle kind.
-#include "collision/obstacle_geometry.hpp"
+#include <rrlab/collision/obstacle_geometry.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
-#include "collision/polygon.hpp"
-#include "collision/segment_geometry.hpp"
+#include <rrlab/collision/polygon.hpp>
+#include <rrlab/collision/segment_geometry.hpp>
 
 namespace rrlab::collision {
 

@@ -8,10 +8,10 @@
 #include <memory>
 #include <vector>
 
-#include "collision/convex_polytope.hpp"
-#include "collision/link_obstacle_distance.hpp"
-#include "collision/mesh_distance.hpp"
-#include "collision/scene.hpp"
+#include <rrlab/collision/convex_polytope.hpp>
+#include <rrlab/collision/link_obstacle_distance.hpp>
+#include <rrlab/collision/mesh_distance.hpp>
+#include <rrlab/collision/scene.hpp>
 
 namespace rrlab::collision {
 

@@ -56,9 +56,9 @@
 // reported contact at every pose here, with either GJK solver); walls
 // analytic (the lowest vertex). FCL's mesh distance gives no penetration
 // depth: a penetrating mesh link reports -kMeshContact.
-#include "collision/pair_table.hpp"
+#include <rrlab/collision/pair_table.hpp>
 
-#include "collision/fcl_pairs.hpp"
+#include <rrlab/collision/fcl_pairs.hpp>
 
 namespace rrlab::collision {
 

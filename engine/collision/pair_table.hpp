@@ -7,11 +7,11 @@
 
 #include <Eigen/Geometry>
 
-#include "collision/collision_world.hpp"
-#include "collision/link_obstacle_distance.hpp"
-#include "collision/mesh_distance.hpp"
-#include "collision/obstacle_geometry.hpp"
-#include "collision/scene.hpp"
+#include <rrlab/collision/collision_world.hpp>
+#include <rrlab/collision/link_obstacle_distance.hpp>
+#include <rrlab/collision/mesh_distance.hpp>
+#include <rrlab/collision/obstacle_geometry.hpp>
+#include <rrlab/collision/scene.hpp>
 
 namespace rrlab::collision {
 

@@ -1,10 +1,10 @@
-#include "collision/planar_obstacles.hpp"
+#include <rrlab/collision/planar_obstacles.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "collision/polygon.hpp"
+#include <rrlab/collision/polygon.hpp>
 
 namespace rrlab {
 

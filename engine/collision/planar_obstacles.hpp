@@ -15,7 +15,7 @@
 #include <limits>
 #include <vector>
 
-#include "collision/scene.hpp"
+#include <rrlab/collision/scene.hpp>
 
 namespace rrlab {
 

@@ -2,7 +2,7 @@
 //
 // Vertex and edge numbers in messages are 0-based (edge i runs from vertex i
 // to vertex i+1), like the JSON paths the scenario loader reports.
-#include "collision/polygon.hpp"
+#include <rrlab/collision/polygon.hpp>
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "collision/scene.hpp"
+#include <rrlab/collision/scene.hpp>
 
 namespace rrlab {
 

@@ -1,5 +1,5 @@
 // Exact closest points of segments, points and triangles.
-#include "collision/segment_geometry.hpp"
+#include <rrlab/collision/segment_geometry.hpp>
 
 #include <algorithm>
 

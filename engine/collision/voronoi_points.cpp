@@ -1,10 +1,10 @@
-#include "collision/voronoi_points.hpp"
+#include <rrlab/collision/voronoi_points.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "collision/mesh_loader.hpp"
+#include <rrlab/collision/mesh_loader.hpp>
 
 namespace rrlab {
 namespace {

@@ -28,7 +28,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "collision/scene.hpp"
+#include <rrlab/collision/scene.hpp>
 
 namespace rrlab {
 

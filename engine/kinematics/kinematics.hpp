@@ -6,7 +6,7 @@
 #include <Eigen/Eigenvalues>
 #include <vector>
 
-#include "model/model.hpp"
+#include <rrlab/model/model.hpp>
 
 namespace rrlab {
 

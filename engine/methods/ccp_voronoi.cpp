@@ -46,9 +46,9 @@
 #include <cmath>
 #include <limits>
 
-#include "collision/voronoi_points.hpp"
-#include "methods/factories.hpp"
-#include "util/right_inverse.hpp"
+#include <rrlab/collision/voronoi_points.hpp>
+#include <rrlab/methods/factories.hpp>
+#include <rrlab/util/right_inverse.hpp>
 
 namespace rrlab {
 namespace {

@@ -7,9 +7,9 @@
 // joint velocities stay continuous when an obstacle enters the influence zone.
 #include <algorithm>
 
-#include "methods/factories.hpp"
-#include "methods/secondary_tasks.hpp"
-#include "util/right_inverse.hpp"
+#include <rrlab/methods/factories.hpp>
+#include <rrlab/methods/secondary_tasks.hpp>
+#include <rrlab/util/right_inverse.hpp>
 
 namespace rrlab {
 namespace {

@@ -76,10 +76,10 @@
 #include <cstdint>
 #include <cmath>
 
-#include "methods/factories.hpp"
-#include "util/extreme_eigenvalues.hpp"
-#include "util/right_inverse.hpp"
-#include "util/small_lu.hpp"
+#include <rrlab/methods/factories.hpp>
+#include <rrlab/util/extreme_eigenvalues.hpp>
+#include <rrlab/util/right_inverse.hpp>
+#include <rrlab/util/small_lu.hpp>
 
 namespace rrlab {
 namespace {

@@ -1,9 +1,9 @@
 // Wampler (1986): damped least squares q̇ = Jᵀ(JJᵀ + λ²I)⁻¹ ẋ. With adaptive
 // damping λ grows as the manipulability w = √det(JJᵀ) falls below w0
 // (Nakamura & Hanafusa 1986): λ = λ0 (1 − w/w0) for w < w0, else 0.
-#include "methods/factories.hpp"
-#include "methods/secondary_tasks.hpp"
-#include "util/right_inverse.hpp"
+#include <rrlab/methods/factories.hpp>
+#include <rrlab/methods/secondary_tasks.hpp>
+#include <rrlab/util/right_inverse.hpp>
 
 namespace rrlab {
 namespace {

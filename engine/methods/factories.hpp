@@ -4,7 +4,7 @@
 #include <memory>
 #include <vector>
 
-#include "methods/method.hpp"
+#include <rrlab/methods/method.hpp>
 
 namespace rrlab {
 

@@ -8,9 +8,9 @@
 //    minimised; ∇d = J_pᵀ n at each link's nearest point.
 #include <cmath>
 
-#include "methods/factories.hpp"
-#include "methods/secondary_tasks.hpp"
-#include "util/right_inverse.hpp"
+#include <rrlab/methods/factories.hpp>
+#include <rrlab/methods/secondary_tasks.hpp>
+#include <rrlab/util/right_inverse.hpp>
 
 namespace rrlab {
 namespace {

@@ -1,4 +1,4 @@
-#include "methods/method.hpp"
+#include <rrlab/methods/method.hpp>
 
 #include <cmath>
 #include <sstream>

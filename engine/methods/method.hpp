@@ -12,12 +12,12 @@
 #include <string_view>
 #include <vector>
 
-#include "collision/collision_world.hpp"
-#include "collision/scene.hpp"
-#include "kinematics/kinematics.hpp"
-#include "model/model.hpp"
-#include "task/task.hpp"
-#include "task/witness.hpp"
+#include <rrlab/collision/collision_world.hpp>
+#include <rrlab/collision/scene.hpp>
+#include <rrlab/kinematics/kinematics.hpp>
+#include <rrlab/model/model.hpp>
+#include <rrlab/task/task.hpp>
+#include <rrlab/task/witness.hpp>
 
 namespace rrlab {
 

@@ -23,11 +23,11 @@
 #include <limits>
 #include <string>
 
-#include "methods/factories.hpp"
-#include "methods/multi_preview_avoidance.hpp"
-#include "methods/multi_preview_ga.hpp"
-#include "util/right_inverse.hpp"
-#include "util/rng.hpp"
+#include <rrlab/methods/factories.hpp>
+#include <rrlab/methods/multi_preview_avoidance.hpp>
+#include <rrlab/methods/multi_preview_ga.hpp>
+#include <rrlab/util/right_inverse.hpp>
+#include <rrlab/util/rng.hpp>
 
 namespace rrlab {
 namespace {

@@ -1,9 +1,9 @@
-#include "methods/multi_preview_avoidance.hpp"
+#include <rrlab/methods/multi_preview_avoidance.hpp>
 
 #include <algorithm>
 #include <cmath>
 
-#include "util/rng.hpp"
+#include <rrlab/util/rng.hpp>
 
 namespace rrlab {
 

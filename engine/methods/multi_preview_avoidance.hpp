@@ -9,10 +9,10 @@
 #include <Eigen/Eigenvalues>
 #include <vector>
 
-#include "collision/collision_world.hpp"
-#include "kinematics/kinematics.hpp"
-#include "model/model.hpp"
-#include "util/right_inverse.hpp"
+#include <rrlab/collision/collision_world.hpp>
+#include <rrlab/kinematics/kinematics.hpp>
+#include <rrlab/model/model.hpp>
+#include <rrlab/util/right_inverse.hpp>
 
 namespace rrlab {
 

@@ -1,4 +1,4 @@
-#include "methods/multi_preview_ga.hpp"
+#include <rrlab/methods/multi_preview_ga.hpp>
 
 #include <algorithm>
 #include <bit>

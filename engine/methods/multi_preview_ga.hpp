@@ -12,14 +12,14 @@
 #include <memory>
 #include <vector>
 
-#include "collision/collision_world.hpp"
-#include "collision/planar_obstacles.hpp"
-#include "collision/scene.hpp"
-#include "methods/multi_preview_avoidance.hpp"
-#include "methods/multi_preview_planar.hpp"
-#include "task/task.hpp"
-#include "util/right_inverse.hpp"
-#include "util/rng.hpp"
+#include <rrlab/collision/collision_world.hpp>
+#include <rrlab/collision/planar_obstacles.hpp>
+#include <rrlab/collision/scene.hpp>
+#include <rrlab/methods/multi_preview_avoidance.hpp>
+#include <rrlab/methods/multi_preview_planar.hpp>
+#include <rrlab/task/task.hpp>
+#include <rrlab/util/right_inverse.hpp>
+#include <rrlab/util/rng.hpp>
 
 namespace rrlab {
 

@@ -1,9 +1,9 @@
-#include "methods/multi_preview_planar.hpp"
+#include <rrlab/methods/multi_preview_planar.hpp>
 
 #include <algorithm>
 #include <cmath>
 
-#include "methods/multi_preview_avoidance.hpp"
+#include <rrlab/methods/multi_preview_avoidance.hpp>
 
 namespace rrlab {
 

@@ -11,8 +11,8 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "kinematics/kinematics.hpp"
-#include "model/model.hpp"
+#include <rrlab/kinematics/kinematics.hpp>
+#include <rrlab/model/model.hpp>
 
 namespace rrlab {
 

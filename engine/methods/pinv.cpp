@@ -1,6 +1,6 @@
 // Whitney (1969): minimum-norm joint velocity q̇ = J⁺ ẋ.
-#include "methods/factories.hpp"
-#include "util/right_inverse.hpp"
+#include <rrlab/methods/factories.hpp>
+#include <rrlab/util/right_inverse.hpp>
 
 namespace rrlab {
 namespace {

@@ -85,9 +85,9 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
-#include "methods/factories.hpp"
-#include "methods/posture_generation_criteria.hpp"
-#include "util/right_inverse.hpp"
+#include <rrlab/methods/factories.hpp>
+#include <rrlab/methods/posture_generation_criteria.hpp>
+#include <rrlab/util/right_inverse.hpp>
 
 namespace rrlab {
 namespace {

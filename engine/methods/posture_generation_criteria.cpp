@@ -1,4 +1,4 @@
-#include "methods/posture_generation_criteria.hpp"
+#include <rrlab/methods/posture_generation_criteria.hpp>
 
 #include <Eigen/Geometry>
 #include <algorithm>

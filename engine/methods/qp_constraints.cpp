@@ -83,8 +83,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "methods/factories.hpp"
-#include "util/qp_solver.hpp"
+#include <rrlab/methods/factories.hpp>
+#include <rrlab/util/qp_solver.hpp>
 
 namespace rrlab {
 namespace {

@@ -8,15 +8,21 @@
 #include <string_view>
 #include <vector>
 
-#include "methods/method.hpp"
+#include <rrlab/methods/method.hpp>
+#include <rrlab/methods/step_cost.hpp>
 
 namespace rrlab {
 
+// One row per method: everything rrlab needs to know of it. A row without a
+// factory or a step cost does not register (std::logic_error for a built-in
+// row, std::invalid_argument from register_external_method).
 struct MethodInfo {
   std::string name, description;
   std::vector<ParamSpec> params;
   std::function<std::unique_ptr<Method>(const MethodContext&)> make;
-  bool python = false;  // registered by the Python package (a method written in Python)
+  StepCostFactor step_cost = nullptr;  // a step's cost relative to pinv's (methods/step_cost.hpp)
+  std::string docs;                    // its section of docs/methods.md ("docs/methods.md#anchor"), "" if none
+  bool python = false;                 // registered by the Python package (a method written in Python)
 };
 
 // The built-in methods.

@@ -1,4 +1,4 @@
-#include "methods/registry_json.hpp"
+#include <rrlab/methods/registry_json.hpp>
 
 namespace rrlab {
 

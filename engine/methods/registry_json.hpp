@@ -3,7 +3,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "methods/registry.hpp"
+#include <rrlab/methods/registry.hpp>
 
 namespace rrlab {
 

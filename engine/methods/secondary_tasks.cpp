@@ -1,4 +1,4 @@
-#include "methods/secondary_tasks.hpp"
+#include <rrlab/methods/secondary_tasks.hpp>
 
 #include <cmath>
 

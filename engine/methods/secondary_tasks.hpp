@@ -4,10 +4,10 @@
 
 #include <Eigen/Core>
 
-#include "collision/collision_world.hpp"
-#include "kinematics/kinematics.hpp"
-#include "methods/method.hpp"
-#include "model/model.hpp"
+#include <rrlab/collision/collision_world.hpp>
+#include <rrlab/kinematics/kinematics.hpp>
+#include <rrlab/methods/method.hpp>
+#include <rrlab/model/model.hpp>
 
 namespace rrlab {
 

@@ -4,9 +4,9 @@
 // projector = damped, J_E* as Chen's eq. (9) prints it. The secondary task is
 // the closest-point distance (J_C = nᵀJ_p, ẋ_C = k(d0 − d) inside d0, which
 // vanishes at d0 so the switch is smooth) or joint centring (J_C = I).
-#include "methods/factories.hpp"
-#include "methods/secondary_tasks.hpp"
-#include "util/right_inverse.hpp"
+#include <rrlab/methods/factories.hpp>
+#include <rrlab/methods/secondary_tasks.hpp>
+#include <rrlab/util/right_inverse.hpp>
 
 namespace rrlab {
 namespace {

@@ -3,9 +3,9 @@
 // with the secondary task either the distance of the closest link point to
 // its obstacle (x₂ = d, kept at least at the influence distance) or joint
 // centring (J₂ = I, ẋ₂ = −k(q − q̄), where (N₁)⁺ = N₁ reduces it to N₁ẋ₂).
-#include "methods/factories.hpp"
-#include "methods/secondary_tasks.hpp"
-#include "util/right_inverse.hpp"
+#include <rrlab/methods/factories.hpp>
+#include <rrlab/methods/secondary_tasks.hpp>
+#include <rrlab/util/right_inverse.hpp>
 
 namespace rrlab {
 namespace {

@@ -2,7 +2,7 @@
 // reference lane, and the check that a generated case is solvable). Each step
 // commands the velocity that reaches the witness at the next step time, so an
 // Euler step lands on it.
-#include "methods/witness_playback.hpp"
+#include <rrlab/methods/witness_playback.hpp>
 
 namespace rrlab {
 namespace {
@@ -38,7 +38,8 @@ const MethodInfo& witness_method_info() {
                                "Plays back the scenario's witness, a joint trajectory known to solve it (generated "
                                "cases); a reference, not a redundancy-resolution method",
                                {},
-                               make_witness_playback};
+                               make_witness_playback,
+                               unit_step_cost};
   return info;
 }
 

@@ -3,7 +3,7 @@
 // redundancy and runs only scenarios that carry a witness.
 #pragma once
 
-#include "methods/registry.hpp"
+#include <rrlab/methods/registry.hpp>
 
 namespace rrlab {
 

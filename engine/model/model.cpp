@@ -1,4 +1,4 @@
-#include "model/model.hpp"
+#include <rrlab/model/model.hpp>
 
 #include <cmath>
 

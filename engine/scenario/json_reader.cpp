@@ -1,4 +1,4 @@
-#include "scenario/json_reader.hpp"
+#include <rrlab/scenario/json_reader.hpp>
 
 #include <algorithm>
 #include <cmath>

@@ -1,9 +1,9 @@
-#include "scenario/mesh_obstacle.hpp"
+#include <rrlab/scenario/mesh_obstacle.hpp>
 
 #include <filesystem>
 
-#include "scenario/scenario.hpp"
-#include "scenario/urdf_robot.hpp"
+#include <rrlab/scenario/scenario.hpp>
+#include <rrlab/scenario/urdf_robot.hpp>
 
 namespace rrlab {
 

@@ -7,7 +7,7 @@
 #include <memory>
 #include <string>
 
-#include "collision/mesh_loader.hpp"
+#include <rrlab/collision/mesh_loader.hpp>
 
 namespace rrlab {
 

@@ -1,9 +1,9 @@
-#include "scenario/physical_bounds.hpp"
+#include <rrlab/scenario/physical_bounds.hpp>
 
 #include <cmath>
 #include <cstdio>
 
-#include "scenario/scenario.hpp"
+#include <rrlab/scenario/scenario.hpp>
 
 namespace rrlab {
 

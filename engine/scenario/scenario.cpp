@@ -1,6 +1,6 @@
 // Scenario loader: scenario JSON (the file format of scenarios/) to engine types. Every
 // check happens here, where user input enters; errors name the JSON path.
-#include "scenario/scenario.hpp"
+#include <rrlab/scenario/scenario.hpp>
 
 #include <cmath>
 #include <filesystem>
@@ -9,14 +9,14 @@
 #include <set>
 #include <sstream>
 
-#include "collision/polygon.hpp"
-#include "methods/registry.hpp"
-#include "collision/mesh_loader.hpp"
-#include "scenario/json_reader.hpp"
-#include "scenario/mesh_obstacle.hpp"
-#include "scenario/physical_bounds.hpp"
-#include "scenario/urdf_robot.hpp"
-#include "util/nesting_depth.hpp"
+#include <rrlab/collision/mesh_loader.hpp>
+#include <rrlab/collision/polygon.hpp>
+#include <rrlab/methods/registry.hpp>
+#include <rrlab/scenario/json_reader.hpp>
+#include <rrlab/scenario/mesh_obstacle.hpp>
+#include <rrlab/scenario/physical_bounds.hpp>
+#include <rrlab/scenario/urdf_robot.hpp>
+#include <rrlab/util/nesting_depth.hpp>
 
 namespace rrlab {
 

@@ -11,10 +11,10 @@
 #include <utility>
 #include <vector>
 
-#include "collision/scene.hpp"
-#include "model/model.hpp"
-#include "task/task.hpp"
-#include "task/witness.hpp"
+#include <rrlab/collision/scene.hpp>
+#include <rrlab/model/model.hpp>
+#include <rrlab/task/task.hpp>
+#include <rrlab/task/witness.hpp>
 
 namespace rrlab {
 

@@ -1,4 +1,4 @@
-#include "scenario/urdf_robot.hpp"
+#include <rrlab/scenario/urdf_robot.hpp>
 
 #include <algorithm>
 #include <array>
@@ -7,11 +7,11 @@
 #include <map>
 #include <sstream>
 
-#include "collision/mesh_loader.hpp"
-#include "scenario/mesh_obstacle.hpp"
-#include "scenario/physical_bounds.hpp"
-#include "scenario/scenario.hpp"
-#include "urdf/urdf_chain.hpp"
+#include <rrlab/collision/mesh_loader.hpp>
+#include <rrlab/scenario/mesh_obstacle.hpp>
+#include <rrlab/scenario/physical_bounds.hpp>
+#include <rrlab/scenario/scenario.hpp>
+#include <rrlab/urdf/urdf_chain.hpp>
 
 namespace rrlab {
 

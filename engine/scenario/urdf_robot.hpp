@@ -6,8 +6,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "model/model.hpp"
-#include "scenario/json_reader.hpp"
+#include <rrlab/model/model.hpp>
+#include <rrlab/scenario/json_reader.hpp>
 
 namespace rrlab {
 

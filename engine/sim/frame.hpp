@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "methods/method.hpp"
+#include <rrlab/methods/method.hpp>
 
 namespace rrlab {
 

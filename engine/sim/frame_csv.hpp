@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "sim/frame_fields.hpp"
+#include <rrlab/sim/frame_fields.hpp>
 
 namespace rrlab {
 

@@ -1,4 +1,4 @@
-#include "sim/frame_fields.hpp"
+#include <rrlab/sim/frame_fields.hpp>
 
 #include <stdexcept>
 #include <string>

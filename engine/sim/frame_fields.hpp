@@ -1,16 +1,24 @@
 // What a frame holds, as one table: every writer of frames (the stored blob,
-// the CSV, the JSON of the REST API and of the WebSocket stream) walks it, so
-// that a field is added in one place and every output agrees on its name, its
-// unit and its order.
+// the CSV, the JSON of the REST API and of the WebSocket stream, the field
+// list of GET /api/frame-fields that the dashboard and the OpenAPI document
+// follow) walks it, so that a field is added in one place and every output
+// agrees on its name, its unit and its order.
+//
+// Adding a field: a member of Frame (sim/frame.hpp), one row of
+// RRLAB_FRAME_FIELDS below, the code that computes it (sim/simulator.cpp) and
+// its row in docs/api.md (a test compares the two). A new blob field goes
+// after the last blob field with `since` = kFrameBlobVersion + 1, and
+// kFrameBlobVersion is raised: older blobs are still read (storage/frame_codec.cpp).
 #pragma once
 
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string_view>
 
-#include "sim/frame.hpp"
+#include <rrlab/sim/frame.hpp>
 
 namespace rrlab {
 
@@ -32,11 +40,51 @@ enum FrameOutput : unsigned {
   kFrameCsv = 2u,
   kFrameJson = 4u,
 };
+inline constexpr unsigned kAllFrameOutputs = kFrameBlob | kFrameCsv | kFrameJson;
+inline constexpr unsigned kLiveOnly = kFrameCsv | kFrameJson;  // measured, not deterministic: never stored
+
+// The stored blob's format version (storage/frame_codec.hpp): 1 had no
+// version word, 2 has one and the same fields.
+inline constexpr int kFrameBlobVersion = 2;
+
+// The table. X(id, member of Frame, kind, metric: inside JSON's "metrics",
+// outputs, blob version it appears from, unit, description), in the order
+// every output writes them; the blob's order is this one (its layout must not
+// change: stored runs are read back and re-simulated). The metrics are
+// consecutive (the JSON writer opens "metrics" once).
+#define RRLAB_FRAME_FIELDS(X)                                                                                       \
+  X(step, step, count, false, kAllFrameOutputs, 1, "", "step index")                                                \
+  X(t, t, number, false, kAllFrameOutputs, 1, "s", "time")                                                          \
+  X(q, q, joints, false, kAllFrameOutputs, 1, "rad|m", "joint positions at t")                                      \
+  X(qdot, qdot, joints, false, kAllFrameOutputs, 1, "rad/s|m/s", "joint velocities applied over [t, t + dt]")       \
+  X(ee, ee_position, vec3, false, kAllFrameOutputs, 1, "m", "end-effector position")                                \
+  X(ee_quat, ee_orientation, quaternion, false, kAllFrameOutputs, 1, "", "end-effector orientation (w x y z)")      \
+  X(target, target, vec3, false, kAllFrameOutputs, 1, "m", "desired position at t")                                 \
+  X(target_quat, target_orientation, quaternion, false, kFrameJson, 0, "",                                          \
+    "desired orientation at t (pose tasks, live frames only)")                                                      \
+  X(task_error, task_error, number, true, kAllFrameOutputs, 1, "m", "position error norm")                          \
+  X(orientation_error, orientation_error, number, true, kAllFrameOutputs, 1, "rad",                                 \
+    "orientation error angle (pose tasks)")                                                                         \
+  X(min_distance, min_distance, number, true, kAllFrameOutputs, 1, "m",                                             \
+    "signed distance from the arm to the nearest obstacle (null without obstacles)")                                \
+  X(min_distance_link, min_distance_link, link, true, kAllFrameOutputs, 1, "",                                      \
+    "the link nearest an obstacle, 1-based (0: none)")                                                              \
+  X(collided, collided, flag, true, kAllFrameOutputs, 1, "", "the arm touches an obstacle")                         \
+  X(joint_limit_margin, joint_limit_margin, number, true, kAllFrameOutputs, 1, "rad|m",                             \
+    "smallest distance of a bounded joint to its limit (null if none)")                                             \
+  X(manipulability, manipulability, number, true, kAllFrameOutputs, 1, "",                                          \
+    "Yoshikawa's sqrt(det(J J^T)) of the task Jacobian")                                                            \
+  X(condition_number, condition_number, number, true, kAllFrameOutputs, 1, "",                                      \
+    "largest over smallest singular value of the task Jacobian")                                                    \
+  X(step_us, step_us, number, true, kLiveOnly, 0, "us",                                                             \
+    "compute time of the step (measured, not deterministic: live frames and `rrlab run --out` only)")               \
+  X(diagnostics, diagnostics, diagnostics, false, kAllFrameOutputs, 1, "",                                          \
+    "the method's named scalars, in the order of diagnostic_names")
 
 enum class FrameFieldId : std::uint8_t {
-  step, t, q, qdot, ee, ee_quat, target, target_quat,
-  task_error, orientation_error, min_distance, min_distance_link, collided,
-  joint_limit_margin, manipulability, condition_number, step_us, diagnostics,
+#define RRLAB_FRAME_FIELD_ID(id, member, kind, metric, outputs, since, unit, description) id,
+  RRLAB_FRAME_FIELDS(RRLAB_FRAME_FIELD_ID)
+#undef RRLAB_FRAME_FIELD_ID
 };
 
 struct FrameField {
@@ -46,58 +94,18 @@ struct FrameField {
   FrameFieldKind kind;
   bool metric;            // JSON: inside "metrics"
   unsigned outputs;       // FrameOutput bits
+  int since;              // blob fields: the blob version that added it (0: not stored)
   std::string_view description;
 };
 
-inline constexpr unsigned kAllFrameOutputs = kFrameBlob | kFrameCsv | kFrameJson;
-
-// In the order every output writes them; the blob's order is this one (its
-// layout must not change: stored runs are read back and re-simulated).
-inline constexpr std::array<FrameField, 18> kFrameFields{{
-    {FrameFieldId::step, "step", "", FrameFieldKind::count, false, kAllFrameOutputs, "step index"},
-    {FrameFieldId::t, "t", "s", FrameFieldKind::number, false, kAllFrameOutputs, "time"},
-    {FrameFieldId::q, "q", "rad|m", FrameFieldKind::joints, false, kAllFrameOutputs, "joint positions at t"},
-    {FrameFieldId::qdot, "qdot", "rad/s|m/s", FrameFieldKind::joints, false, kAllFrameOutputs,
-     "joint velocities applied over [t, t + dt]"},
-    {FrameFieldId::ee, "ee", "m", FrameFieldKind::vec3, false, kAllFrameOutputs, "end-effector position"},
-    {FrameFieldId::ee_quat, "ee_quat", "", FrameFieldKind::quaternion, false, kAllFrameOutputs,
-     "end-effector orientation (w x y z)"},
-    {FrameFieldId::target, "target", "m", FrameFieldKind::vec3, false, kAllFrameOutputs, "desired position at t"},
-    {FrameFieldId::target_quat, "target_quat", "", FrameFieldKind::quaternion, false, kFrameJson,
-     "desired orientation at t (pose tasks, live frames only)"},
-    {FrameFieldId::task_error, "task_error", "m", FrameFieldKind::number, true, kAllFrameOutputs,
-     "position error norm"},
-    {FrameFieldId::orientation_error, "orientation_error", "rad", FrameFieldKind::number, true, kAllFrameOutputs,
-     "orientation error angle (pose tasks)"},
-    {FrameFieldId::min_distance, "min_distance", "m", FrameFieldKind::number, true, kAllFrameOutputs,
-     "signed distance from the arm to the nearest obstacle (null without obstacles)"},
-    {FrameFieldId::min_distance_link, "min_distance_link", "", FrameFieldKind::link, true, kAllFrameOutputs,
-     "the link nearest an obstacle, 1-based (0: none)"},
-    {FrameFieldId::collided, "collided", "", FrameFieldKind::flag, true, kAllFrameOutputs,
-     "the arm touches an obstacle"},
-    {FrameFieldId::joint_limit_margin, "joint_limit_margin", "rad|m", FrameFieldKind::number, true,
-     kAllFrameOutputs, "smallest distance of a bounded joint to its limit (null if none)"},
-    {FrameFieldId::manipulability, "manipulability", "", FrameFieldKind::number, true, kAllFrameOutputs,
-     "Yoshikawa's sqrt(det(J J^T)) of the task Jacobian"},
-    {FrameFieldId::condition_number, "condition_number", "", FrameFieldKind::number, true, kAllFrameOutputs,
-     "largest over smallest singular value of the task Jacobian"},
-    {FrameFieldId::step_us, "step_us", "us", FrameFieldKind::number, true, kFrameCsv | kFrameJson,
-     "compute time of the step (measured, not deterministic: live frames and `rrlab run --out` only)"},
-    {FrameFieldId::diagnostics, "diagnostics", "", FrameFieldKind::diagnostics, false, kAllFrameOutputs,
-     "the method's named scalars, in the order of diagnostic_names"},
-}};
+inline constexpr std::array kFrameFields{
+#define RRLAB_FRAME_FIELD_ROW(id, member, kind, metric, outputs, since, unit, description) \
+  FrameField{FrameFieldId::id, #id, unit, FrameFieldKind::kind, metric, outputs, since, description},
+    RRLAB_FRAME_FIELDS(RRLAB_FRAME_FIELD_ROW)
+#undef RRLAB_FRAME_FIELD_ROW
+};
 
 namespace detail {
-inline std::span<const double> one(double value, std::array<double, 4>& scratch) {
-  scratch[0] = value;
-  return {scratch.data(), 1};
-}
-
-inline std::span<const double> quaternion(const Eigen::Quaterniond& r, std::array<double, 4>& scratch) {
-  scratch = {r.w(), r.x(), r.y(), r.z()};
-  return {scratch.data(), 4};
-}
-
 [[noreturn]] void throw_bad_frame_field(const char* field);
 
 // An integer stored as a double, checked before the cast: casting a value
@@ -105,6 +113,57 @@ inline std::span<const double> quaternion(const Eigen::Quaterniond& r, std::arra
 inline long integer_value(double value, double low, double high, const char* field) {
   if (!(value >= low && value <= high) || value != std::floor(value)) throw_bad_frame_field(field);
   return long(value);
+}
+
+// A Frame member's numbers, by the member's type: a view of its own storage,
+// or of `scratch` for scalars and quaternions (w x y z).
+inline std::span<const double> one(double value, std::array<double, 4>& scratch) {
+  scratch[0] = value;
+  return {scratch.data(), 1};
+}
+inline std::span<const double> values_of(const double& v, std::array<double, 4>&) { return {&v, 1}; }
+inline std::span<const double> values_of(long v, std::array<double, 4>& s) { return one(double(v), s); }
+inline std::span<const double> values_of(int v, std::array<double, 4>& s) { return one(double(v), s); }
+inline std::span<const double> values_of(bool v, std::array<double, 4>& s) { return one(v ? 1.0 : 0.0, s); }
+inline std::span<const double> values_of(const Eigen::VectorXd& v, std::array<double, 4>&) {
+  return {v.data(), size_t(v.size())};
+}
+inline std::span<const double> values_of(const Eigen::Vector3d& v, std::array<double, 4>&) { return {v.data(), 3}; }
+inline std::span<const double> values_of(const Eigen::Quaterniond& r, std::array<double, 4>& s) {
+  s = {r.w(), r.x(), r.y(), r.z()};
+  return {s.data(), 4};
+}
+inline std::span<const double> values_of(const std::optional<Eigen::Quaterniond>& r, std::array<double, 4>& s) {
+  return values_of(r.value_or(Eigen::Quaterniond::Identity()), s);
+}
+
+// The member's own doubles, for readers that copy numbers straight in; nullptr
+// where the member is not a run of doubles.
+inline double* storage_of(double& v) { return &v; }
+inline double* storage_of(Eigen::VectorXd& v) { return v.data(); }
+inline double* storage_of(Eigen::Vector3d& v) { return v.data(); }
+template <typename T>
+double* storage_of(T&) { return nullptr; }
+
+// Sets the member from `v`; throws on a value it cannot hold.
+inline void assign(long& m, std::span<const double> v, const char* name) {
+  m = integer_value(v[0], -9007199254740992.0, 9007199254740992.0, name);
+}
+inline void assign(int& m, std::span<const double> v, const char* name) {  // a link index
+  m = int(integer_value(v[0], -1, 1e6, name));
+}
+inline void assign(double& m, std::span<const double> v, const char*) { m = v[0]; }
+inline void assign(bool& m, std::span<const double> v, const char*) { m = v[0] != 0.0; }
+inline void assign(Eigen::VectorXd& m, std::span<const double> v, const char*) {
+  if (size_t(m.size()) != v.size()) throw_bad_frame_field("size");
+  for (size_t i = 0; i < v.size(); ++i) m[Eigen::Index(i)] = v[i];
+}
+inline void assign(Eigen::Vector3d& m, std::span<const double> v, const char*) { m = {v[0], v[1], v[2]}; }
+inline void assign(Eigen::Quaterniond& m, std::span<const double> v, const char*) {
+  m = Eigen::Quaterniond(v[0], v[1], v[2], v[3]);
+}
+inline void assign(std::optional<Eigen::Quaterniond>& m, std::span<const double> v, const char*) {
+  m = Eigen::Quaterniond(v[0], v[1], v[2], v[3]);
 }
 }  // namespace detail
 
@@ -125,25 +184,10 @@ inline bool frame_writes(const FrameField& field, FrameOutput output, FrameOrigi
 // storage, or of `scratch` for scalars and quaternions (w x y z).
 inline std::span<const double> frame_values(const Frame& f, FrameFieldId id, std::array<double, 4>& scratch) {
   switch (id) {
-    case FrameFieldId::step: return detail::one(double(f.step), scratch);
-    case FrameFieldId::t: return detail::one(f.t, scratch);
-    case FrameFieldId::q: return {f.q.data(), size_t(f.q.size())};
-    case FrameFieldId::qdot: return {f.qdot.data(), size_t(f.qdot.size())};
-    case FrameFieldId::ee: return {f.ee_position.data(), 3};
-    case FrameFieldId::ee_quat: return detail::quaternion(f.ee_orientation, scratch);
-    case FrameFieldId::target: return {f.target.data(), 3};
-    case FrameFieldId::target_quat:
-      return detail::quaternion(f.target_orientation.value_or(Eigen::Quaterniond::Identity()), scratch);
-    case FrameFieldId::task_error: return detail::one(f.task_error, scratch);
-    case FrameFieldId::orientation_error: return detail::one(f.orientation_error, scratch);
-    case FrameFieldId::min_distance: return detail::one(f.min_distance, scratch);
-    case FrameFieldId::min_distance_link: return detail::one(double(f.min_distance_link), scratch);
-    case FrameFieldId::collided: return detail::one(f.collided ? 1.0 : 0.0, scratch);
-    case FrameFieldId::joint_limit_margin: return detail::one(f.joint_limit_margin, scratch);
-    case FrameFieldId::manipulability: return detail::one(f.manipulability, scratch);
-    case FrameFieldId::condition_number: return detail::one(f.condition_number, scratch);
-    case FrameFieldId::step_us: return detail::one(f.step_us, scratch);
-    case FrameFieldId::diagnostics: return {f.diagnostics.data(), size_t(f.diagnostics.size())};
+#define RRLAB_FRAME_FIELD_VALUES(id, member, kind, metric, outputs, since, unit, description) \
+  case FrameFieldId::id: return detail::values_of(f.member, scratch);
+    RRLAB_FRAME_FIELDS(RRLAB_FRAME_FIELD_VALUES)
+#undef RRLAB_FRAME_FIELD_VALUES
   }
   return {};
 }
@@ -168,24 +212,10 @@ inline constexpr int frame_value_count(FrameFieldKind kind, int dof, int diagnos
 // numbers straight in; nullptr for the other kinds (use set_frame_values).
 inline double* frame_storage(Frame& f, FrameFieldId id) {
   switch (id) {
-    case FrameFieldId::t: return &f.t;
-    case FrameFieldId::q: return f.q.data();
-    case FrameFieldId::qdot: return f.qdot.data();
-    case FrameFieldId::ee: return f.ee_position.data();
-    case FrameFieldId::target: return f.target.data();
-    case FrameFieldId::task_error: return &f.task_error;
-    case FrameFieldId::orientation_error: return &f.orientation_error;
-    case FrameFieldId::min_distance: return &f.min_distance;
-    case FrameFieldId::joint_limit_margin: return &f.joint_limit_margin;
-    case FrameFieldId::manipulability: return &f.manipulability;
-    case FrameFieldId::condition_number: return &f.condition_number;
-    case FrameFieldId::step_us: return &f.step_us;
-    case FrameFieldId::diagnostics: return f.diagnostics.data();
-    case FrameFieldId::step:
-    case FrameFieldId::ee_quat:
-    case FrameFieldId::target_quat:
-    case FrameFieldId::min_distance_link:
-    case FrameFieldId::collided: return nullptr;
+#define RRLAB_FRAME_FIELD_STORAGE(id, member, kind, metric, outputs, since, unit, description) \
+  case FrameFieldId::id: return detail::storage_of(f.member);
+    RRLAB_FRAME_FIELDS(RRLAB_FRAME_FIELD_STORAGE)
+#undef RRLAB_FRAME_FIELD_STORAGE
   }
   return nullptr;
 }
@@ -194,33 +224,12 @@ inline double* frame_storage(Frame& f, FrameFieldId id) {
 // diagnostics must already have their size. Throws std::runtime_error on a
 // value the field cannot hold (a count or link that is not an integer in range).
 inline void set_frame_values(Frame& f, FrameFieldId id, std::span<const double> v) {
-  const auto copy = [&](Eigen::VectorXd& to) {
-    if (size_t(to.size()) != v.size()) detail::throw_bad_frame_field("size");
-    for (size_t i = 0; i < v.size(); ++i) to[Eigen::Index(i)] = v[i];
-  };
   switch (id) {
-    case FrameFieldId::step: f.step = detail::integer_value(v[0], -9007199254740992.0, 9007199254740992.0, "step"); break;
-    case FrameFieldId::t: f.t = v[0]; break;
-    case FrameFieldId::q: copy(f.q); break;
-    case FrameFieldId::qdot: copy(f.qdot); break;
-    case FrameFieldId::ee: f.ee_position = {v[0], v[1], v[2]}; break;
-    case FrameFieldId::ee_quat: f.ee_orientation = Eigen::Quaterniond(v[0], v[1], v[2], v[3]); break;
-    case FrameFieldId::target: f.target = {v[0], v[1], v[2]}; break;
-    case FrameFieldId::target_quat: f.target_orientation = Eigen::Quaterniond(v[0], v[1], v[2], v[3]); break;
-    case FrameFieldId::task_error: f.task_error = v[0]; break;
-    case FrameFieldId::orientation_error: f.orientation_error = v[0]; break;
-    case FrameFieldId::min_distance: f.min_distance = v[0]; break;
-    case FrameFieldId::min_distance_link:
-      f.min_distance_link = int(detail::integer_value(v[0], -1, 1e6, "min_distance_link"));
-      break;
-    case FrameFieldId::collided: f.collided = v[0] != 0.0; break;
-    case FrameFieldId::joint_limit_margin: f.joint_limit_margin = v[0]; break;
-    case FrameFieldId::manipulability: f.manipulability = v[0]; break;
-    case FrameFieldId::condition_number: f.condition_number = v[0]; break;
-    case FrameFieldId::step_us: f.step_us = v[0]; break;
-    case FrameFieldId::diagnostics: copy(f.diagnostics); break;
+#define RRLAB_FRAME_FIELD_SET(id, member, kind, metric, outputs, since, unit, description) \
+  case FrameFieldId::id: detail::assign(f.member, v, #id); break;
+    RRLAB_FRAME_FIELDS(RRLAB_FRAME_FIELD_SET)
+#undef RRLAB_FRAME_FIELD_SET
   }
 }
-
 
 }  // namespace rrlab

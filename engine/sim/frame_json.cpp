@@ -1,6 +1,6 @@
-#include "sim/frame_json.hpp"
+#include <rrlab/sim/frame_json.hpp>
 
-#include "util/number_text.hpp"
+#include <rrlab/util/number_text.hpp>
 
 namespace rrlab {
 

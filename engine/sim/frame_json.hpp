@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "sim/frame_fields.hpp"
+#include <rrlab/sim/frame_fields.hpp>
 
 namespace rrlab {
 

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "sim/frame.hpp"
+#include <rrlab/sim/frame.hpp>
 
 namespace rrlab {
 

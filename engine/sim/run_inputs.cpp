@@ -1,10 +1,10 @@
-#include "sim/run_inputs.hpp"
+#include <rrlab/sim/run_inputs.hpp>
 
 #include <cmath>
 
-#include "scenario/json_reader.hpp"
-#include "scenario/physical_bounds.hpp"
-#include "sim/simulator.hpp"
+#include <rrlab/scenario/json_reader.hpp>
+#include <rrlab/scenario/physical_bounds.hpp>
+#include <rrlab/sim/simulator.hpp>
 
 namespace rrlab {
 

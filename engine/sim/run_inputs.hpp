@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "scenario/scenario.hpp"
+#include <rrlab/scenario/scenario.hpp>
 
 namespace rrlab {
 

@@ -1,7 +1,7 @@
-#include "sim/run_record.hpp"
+#include <rrlab/sim/run_record.hpp>
 
-#include "scenario/json_reader.hpp"
-#include "sim/run_inputs.hpp"
+#include <rrlab/scenario/json_reader.hpp>
+#include <rrlab/sim/run_inputs.hpp>
 
 namespace rrlab {
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "scenario/scenario.hpp"
+#include <rrlab/scenario/scenario.hpp>
 
 namespace rrlab {
 

@@ -1,11 +1,11 @@
-#include "sim/simulator.hpp"
+#include <rrlab/sim/simulator.hpp>
 
 #include <chrono>
 #include <cmath>
 #include <limits>
 #include <utility>
 
-#include "methods/registry.hpp"
+#include <rrlab/methods/registry.hpp>
 
 namespace rrlab {
 

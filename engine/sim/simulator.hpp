@@ -9,14 +9,14 @@
 #include <stdexcept>
 #include <string>
 
-#include "collision/collision_world.hpp"
-#include "kinematics/kinematics.hpp"
-#include "methods/method.hpp"
-#include "scenario/scenario.hpp"
-#include "sim/frame.hpp"
-#include "sim/recorder.hpp"
-#include "sim/step_time_histogram.hpp"
-#include "task/task.hpp"
+#include <rrlab/collision/collision_world.hpp>
+#include <rrlab/kinematics/kinematics.hpp>
+#include <rrlab/methods/method.hpp>
+#include <rrlab/scenario/scenario.hpp>
+#include <rrlab/sim/frame.hpp>
+#include <rrlab/sim/recorder.hpp>
+#include <rrlab/sim/step_time_histogram.hpp>
+#include <rrlab/task/task.hpp>
 
 namespace rrlab {
 

@@ -1,4 +1,4 @@
-#include "sim/step_time_histogram.hpp"
+#include <rrlab/sim/step_time_histogram.hpp>
 
 #include <algorithm>
 #include <cmath>

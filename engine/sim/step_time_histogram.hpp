@@ -5,7 +5,7 @@
 #include <array>
 #include <cstdint>
 
-#include "sim/frame.hpp"
+#include <rrlab/sim/frame.hpp>
 
 namespace rrlab {
 

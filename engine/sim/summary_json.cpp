@@ -1,6 +1,6 @@
 #include <cmath>
 
-#include "sim/frame.hpp"
+#include <rrlab/sim/frame.hpp>
 
 namespace rrlab {
 

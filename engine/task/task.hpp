@@ -5,8 +5,8 @@
 #include <Eigen/Geometry>
 #include <optional>
 
-#include "kinematics/kinematics.hpp"
-#include "task/trajectory.hpp"
+#include <rrlab/kinematics/kinematics.hpp>
+#include <rrlab/task/trajectory.hpp>
 
 namespace rrlab {
 

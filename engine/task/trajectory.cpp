@@ -1,4 +1,4 @@
-#include "task/trajectory.hpp"
+#include <rrlab/task/trajectory.hpp>
 
 #include <Eigen/Geometry>
 

@@ -1,4 +1,4 @@
-#include "task/witness.hpp"
+#include <rrlab/task/witness.hpp>
 
 #include <algorithm>
 #include <cmath>

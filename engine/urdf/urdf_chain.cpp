@@ -1,4 +1,4 @@
-#include "urdf/urdf_chain.hpp"
+#include <rrlab/urdf/urdf_chain.hpp>
 
 #include <tinyxml.h>
 
@@ -10,7 +10,7 @@
 #include <set>
 #include <urdf_parser/urdf_parser.h>
 
-#include "util/nesting_depth.hpp"
+#include <rrlab/util/nesting_depth.hpp>
 
 namespace rrlab {
 

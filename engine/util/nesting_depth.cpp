@@ -1,4 +1,4 @@
-#include "util/nesting_depth.hpp"
+#include <rrlab/util/nesting_depth.hpp>
 
 #include <nlohmann/json.hpp>
 

@@ -2,7 +2,7 @@
 // H = LLᵀ, J = L⁻ᵀQ with QR = L⁻¹N for the active normals N; J = [J₁ J₂]
 // splits at q (active count), z = J₂J₂ᵀn is the primal step direction and
 // r = R⁻¹J₁ᵀn the change of the active multipliers per unit of the new one.
-#include "util/qp_solver.hpp"
+#include <rrlab/util/qp_solver.hpp>
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "util/right_inverse.hpp"
+#include <rrlab/util/right_inverse.hpp>
 
 #include <algorithm>
 #include <cassert>

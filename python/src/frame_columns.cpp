@@ -2,8 +2,8 @@
 
 #include <array>
 
-#include "sim/frame_fields.hpp"
-#include "sim/simulator.hpp"
+#include <rrlab/sim/frame_fields.hpp>
+#include <rrlab/sim/simulator.hpp>
 
 namespace rrlab::python {
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "sim/recorder.hpp"
+#include <rrlab/sim/recorder.hpp>
 
 namespace rrlab::python {
 

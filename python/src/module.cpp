@@ -12,15 +12,16 @@
 #include <cstring>
 #include <memory>
 
+#include <rrlab/methods/registry.hpp>
+#include <rrlab/methods/registry_json.hpp>
+#include <rrlab/scenario/scenario.hpp>
+#include <rrlab/sim/frame.hpp>
+#include <rrlab/sim/run_inputs.hpp>
+#include <rrlab/sim/simulator.hpp>
+
 #include "frame_columns.hpp"
 #include "method_reentry.hpp"
-#include "methods/registry.hpp"
-#include "methods/registry_json.hpp"
 #include "python_method.hpp"
-#include "scenario/scenario.hpp"
-#include "sim/frame.hpp"
-#include "sim/run_inputs.hpp"
-#include "sim/simulator.hpp"
 #include "sweeps.hpp"
 #include "whole_number.hpp"
 

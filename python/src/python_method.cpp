@@ -7,8 +7,9 @@
 #include <memory>
 #include <sstream>
 
+#include <rrlab/methods/registry.hpp>
+
 #include "method_reentry.hpp"
-#include "methods/registry.hpp"
 
 namespace py = pybind11;
 

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "sim/simulator.hpp"
+#include <rrlab/sim/simulator.hpp>
 
 namespace rrlab::python {
 

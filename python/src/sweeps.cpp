@@ -8,19 +8,20 @@
 #include <future>
 #include <sstream>
 
+#include <rrlab/generators/generators.hpp>
+#include <rrlab/methods/registry.hpp>
+#include <rrlab/scenario/scenario.hpp>
+#include <rrlab/storage/resimulation.hpp>
+#include <rrlab/storage/run_store.hpp>
+#include <rrlab/sweep/summaries_csv.hpp>
+#include <rrlab/sweep/sweep_report.hpp>
+#include <rrlab/sweep/sweep_report_json.hpp>
+#include <rrlab/sweep/sweep_runner.hpp>
+#include <rrlab/sweep/sweep_spec.hpp>
+#include <rrlab/util/nesting_depth.hpp>
+
 #include "method_reentry.hpp"
-#include "methods/registry.hpp"
 #include "python_method.hpp"
-#include "scenario/generators.hpp"
-#include "scenario/scenario.hpp"
-#include "storage/resimulation.hpp"
-#include "storage/run_store.hpp"
-#include "sweep/summaries_csv.hpp"
-#include "sweep/sweep_report.hpp"
-#include "sweep/sweep_report_json.hpp"
-#include "sweep/sweep_runner.hpp"
-#include "sweep/sweep_spec.hpp"
-#include "util/nesting_depth.hpp"
 #include "whole_number.hpp"
 
 namespace py = pybind11;
@@ -41,6 +42,7 @@ std::string register_method(const py::object& method) {
   }
   info.make = python_method_factory(method, true);
   info.params = python_method_specs(method);
+  info.step_cost = unit_step_cost;  // Python methods run in the package's own process: no server admits them by cost
   info.python = true;
   register_external_method(std::move(info));
   return name;

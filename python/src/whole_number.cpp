@@ -1,6 +1,6 @@
 #include "whole_number.hpp"
 
-#include "scenario/scenario.hpp"
+#include <rrlab/scenario/scenario.hpp>
 
 namespace py = pybind11;
 

@@ -1,9 +1,9 @@
-#include "app/controller.hpp"
+#include <rrlab/server/app/controller.hpp>
 
 #include <cctype>
 #include <vector>
 
-#include "routes/api.hpp"
+#include <rrlab/server/routes/api.hpp>
 
 namespace rrlab::server {
 

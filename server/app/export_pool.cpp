@@ -1,4 +1,4 @@
-#include "app/export_pool.hpp"
+#include <rrlab/server/app/export_pool.hpp>
 
 namespace rrlab::server {
 

@@ -12,7 +12,7 @@
 #include <memory>
 #include <mutex>
 
-#include "app/worker_pool.hpp"
+#include <rrlab/server/app/worker_pool.hpp>
 
 namespace rrlab::server {
 

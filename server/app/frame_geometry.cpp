@@ -1,4 +1,4 @@
-#include "app/frame_geometry.hpp"
+#include <rrlab/server/app/frame_geometry.hpp>
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>

@@ -8,10 +8,10 @@
 #include <Eigen/Core>
 #include <cstdint>
 
-#include "collision/collision_world.hpp"
-#include "collision/scene.hpp"
-#include "kinematics/kinematics.hpp"
-#include "model/model.hpp"
+#include <rrlab/collision/collision_world.hpp>
+#include <rrlab/collision/scene.hpp>
+#include <rrlab/kinematics/kinematics.hpp>
+#include <rrlab/model/model.hpp>
 
 namespace rrlab::server {
 

@@ -1,4 +1,4 @@
-#include "app/free_memory.hpp"
+#include <rrlab/server/app/free_memory.hpp>
 
 #include <cstdlib>  // defines __GLIBC__ (through <features.h>) where glibc is the C library
 

@@ -1,16 +1,16 @@
-#include "app/replay_player.hpp"
+#include <rrlab/server/app/replay_player.hpp>
 
 #include <chrono>
 #include <cmath>
 #include <thread>
 
-#include "routes/api.hpp"
-#include "storage/resimulation.hpp"
-#include "app/stream_json.hpp"
-#include "scenario/json_reader.hpp"
-#include "sim/run_inputs.hpp"
-#include "storage/frame_codec.hpp"
-#include "util/nesting_depth.hpp"
+#include <rrlab/scenario/json_reader.hpp>
+#include <rrlab/server/app/stream_json.hpp>
+#include <rrlab/server/routes/api.hpp>
+#include <rrlab/sim/run_inputs.hpp>
+#include <rrlab/storage/frame_codec.hpp>
+#include <rrlab/storage/resimulation.hpp>
+#include <rrlab/util/nesting_depth.hpp>
 
 namespace rrlab::server {
 

@@ -12,10 +12,10 @@
 #include <string>
 #include <vector>
 
-#include "app/frame_geometry.hpp"
-#include "app/frame_source.hpp"
-#include "sim/simulator.hpp"
-#include "storage/run_store.hpp"
+#include <rrlab/server/app/frame_geometry.hpp>
+#include <rrlab/server/app/frame_source.hpp>
+#include <rrlab/sim/simulator.hpp>
+#include <rrlab/storage/run_store.hpp>
 
 namespace rrlab::server {
 

@@ -1,16 +1,16 @@
-#include "app/run_group.hpp"
+#include <rrlab/server/app/run_group.hpp>
 
-#include "routes/api.hpp"
-#include "storage/resimulation.hpp"
-#include "app/stream_json.hpp"
-#include "methods/registry_json.hpp"
-#include "scenario/json_reader.hpp"
-#include "sim/run_inputs.hpp"
-#include "storage/database.hpp"
-#include "methods/step_cost.hpp"
-#include "storage/frame_codec.hpp"
-#include "storage/frame_writer.hpp"
-#include "storage/run_store.hpp"
+#include <rrlab/methods/registry_json.hpp>
+#include <rrlab/scenario/json_reader.hpp>
+#include <rrlab/scenario/scenario_step_cost.hpp>
+#include <rrlab/server/app/stream_json.hpp>
+#include <rrlab/server/routes/api.hpp>
+#include <rrlab/sim/run_inputs.hpp>
+#include <rrlab/storage/database.hpp>
+#include <rrlab/storage/frame_codec.hpp>
+#include <rrlab/storage/frame_writer.hpp>
+#include <rrlab/storage/resimulation.hpp>
+#include <rrlab/storage/run_store.hpp>
 
 namespace rrlab::server {
 

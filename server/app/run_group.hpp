@@ -19,14 +19,14 @@
 #include <string>
 #include <vector>
 
-#include "app/controller.hpp"
-#include "app/frame_geometry.hpp"
-#include "app/frame_source.hpp"
-#include "storage/completion.hpp"
-#include "storage/quotas.hpp"
-#include "storage/run_store.hpp"
-#include "scenario/scenario.hpp"
-#include "sim/simulator.hpp"
+#include <rrlab/scenario/scenario.hpp>
+#include <rrlab/server/app/controller.hpp>
+#include <rrlab/server/app/frame_geometry.hpp>
+#include <rrlab/server/app/frame_source.hpp>
+#include <rrlab/sim/simulator.hpp>
+#include <rrlab/storage/completion.hpp>
+#include <rrlab/storage/quotas.hpp>
+#include <rrlab/storage/run_store.hpp>
 
 namespace rrlab::storage {
 class RunStore;

@@ -1,6 +1,6 @@
-#include "app/run_manager.hpp"
+#include <rrlab/server/app/run_manager.hpp>
 
-#include "app/sweep_jobs.hpp"
+#include <rrlab/server/app/sweep_jobs.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -10,10 +10,10 @@
 #include <sstream>
 #include <thread>
 
-#include "app/replay_player.hpp"
-#include "storage/database.hpp"
-#include "storage/run_store.hpp"
-#include "util/nesting_depth.hpp"
+#include <rrlab/server/app/replay_player.hpp>
+#include <rrlab/storage/database.hpp>
+#include <rrlab/storage/run_store.hpp>
+#include <rrlab/util/nesting_depth.hpp>
 
 namespace rrlab::server {
 

@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
-#include "routes/api.hpp"
-#include "app/run_group.hpp"
-#include "storage/quotas.hpp"
+#include <rrlab/server/app/run_group.hpp>
+#include <rrlab/server/routes/api.hpp>
+#include <rrlab/storage/quotas.hpp>
 
 namespace rrlab::storage {
 class RunStore;

@@ -1,7 +1,7 @@
-#include "app/socket_message.hpp"
+#include <rrlab/server/app/socket_message.hpp>
 
-#include "routes/api.hpp"
-#include "app/controller.hpp"
+#include <rrlab/server/app/controller.hpp>
+#include <rrlab/server/routes/api.hpp>
 
 namespace rrlab::server {
 

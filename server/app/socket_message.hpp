@@ -6,8 +6,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "app/frame_source.hpp"
-#include "storage/completion.hpp"
+#include <rrlab/server/app/frame_source.hpp>
+#include <rrlab/storage/completion.hpp>
 
 namespace rrlab::server {
 

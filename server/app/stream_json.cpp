@@ -1,13 +1,13 @@
-#include "app/stream_json.hpp"
+#include <rrlab/server/app/stream_json.hpp>
 
 #include <cmath>
 
-#include "collision/mesh_loader.hpp"
-#include "methods/registry_json.hpp"
-#include "sim/frame_json.hpp"
-#include "sim/run_inputs.hpp"
-#include "util/number_text.hpp"
-#include "util/nesting_depth.hpp"
+#include <rrlab/collision/mesh_loader.hpp>
+#include <rrlab/methods/registry_json.hpp>
+#include <rrlab/sim/frame_json.hpp>
+#include <rrlab/sim/run_inputs.hpp>
+#include <rrlab/util/nesting_depth.hpp>
+#include <rrlab/util/number_text.hpp>
 
 namespace rrlab::server {
 

@@ -8,9 +8,9 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "app/frame_geometry.hpp"
-#include "sim/frame.hpp"
-#include "sim/simulator.hpp"
+#include <rrlab/server/app/frame_geometry.hpp>
+#include <rrlab/sim/frame.hpp>
+#include <rrlab/sim/simulator.hpp>
 
 namespace rrlab::server {
 

@@ -1,22 +1,22 @@
-#include "app/sweep_jobs.hpp"
+#include <rrlab/server/app/sweep_jobs.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <map>
 #include <vector>
 
-#include "routes/api.hpp"
-#include "app/free_memory.hpp"
-#include "app/run_manager.hpp"
-#include "app/thread_priority.hpp"
-#include "scenario/scenario.hpp"
-#include "sweep/sweep_case.hpp"
-#include "sweep/sweep_expansion.hpp"
-#include "sweep/sweep_report.hpp"
-#include "sweep/sweep_report_json.hpp"
-#include "sweep/sweep_runner.hpp"
-#include "sweep/sweep_spec.hpp"
-#include "storage/run_store.hpp"
+#include <rrlab/scenario/scenario.hpp>
+#include <rrlab/server/app/free_memory.hpp>
+#include <rrlab/server/app/run_manager.hpp>
+#include <rrlab/server/app/thread_priority.hpp>
+#include <rrlab/server/routes/api.hpp>
+#include <rrlab/storage/run_store.hpp>
+#include <rrlab/sweep/sweep_case.hpp>
+#include <rrlab/sweep/sweep_expansion.hpp>
+#include <rrlab/sweep/sweep_report.hpp>
+#include <rrlab/sweep/sweep_report_json.hpp>
+#include <rrlab/sweep/sweep_runner.hpp>
+#include <rrlab/sweep/sweep_spec.hpp>
 
 namespace rrlab::server {
 

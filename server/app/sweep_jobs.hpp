@@ -16,7 +16,7 @@
 #include <string>
 #include <thread>
 
-#include "storage/run_store.hpp"
+#include <rrlab/storage/run_store.hpp>
 
 namespace rrlab::sweep {
 struct SweepSpec;

@@ -1,4 +1,4 @@
-#include "app/thread_priority.hpp"
+#include <rrlab/server/app/thread_priority.hpp>
 
 #include <sys/resource.h>
 #include <sys/syscall.h>

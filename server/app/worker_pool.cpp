@@ -1,8 +1,8 @@
-#include "app/worker_pool.hpp"
+#include <rrlab/server/app/worker_pool.hpp>
 
 #include <algorithm>
 
-#include "app/thread_priority.hpp"
+#include <rrlab/server/app/thread_priority.hpp>
 
 namespace rrlab::server {
 

@@ -1,4 +1,4 @@
-#include "net/auth_throttle.hpp"
+#include <rrlab/server/net/auth_throttle.hpp>
 
 #include <algorithm>
 

@@ -6,7 +6,6 @@
 // back onto the connection's strand. Streamed answers (frame exports) are
 // written chunk by chunk: each chunk is produced on an export worker, and the
 // next one only once the previous one has been written (send_stream).
-#include "net/sessions.hpp"
 #include <algorithm>
 #include <array>
 #include <fstream>
@@ -14,9 +13,11 @@
 #include <string_view>
 #include <thread>
 
-#include "app/controller.hpp"
-#include "app/replay_player.hpp"
-#include "net/static_files.hpp"
+#include <rrlab/server/net/sessions.hpp>
+
+#include <rrlab/server/app/controller.hpp>
+#include <rrlab/server/app/replay_player.hpp>
+#include <rrlab/server/net/static_files.hpp>
 
 namespace rrlab::server {
 

@@ -1,4 +1,4 @@
-#include "net/sessions.hpp"
+#include <rrlab/server/net/sessions.hpp>
 
 namespace rrlab::server {
 

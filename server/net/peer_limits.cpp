@@ -1,4 +1,4 @@
-#include "net/peer_limits.hpp"
+#include <rrlab/server/net/peer_limits.hpp>
 
 #include <vector>
 

@@ -1,4 +1,4 @@
-#include "net/request_guard.hpp"
+#include <rrlab/server/net/request_guard.hpp>
 
 #include <algorithm>
 #include <cctype>

@@ -5,13 +5,13 @@
 #include <chrono>
 #include <string>
 
-#include "app/export_pool.hpp"
-#include "app/run_manager.hpp"
-#include "app/worker_pool.hpp"
-#include "net/auth_throttle.hpp"
-#include "net/peer_limits.hpp"
-#include "net/request_guard.hpp"
-#include "routes/routes.hpp"
+#include <rrlab/server/app/export_pool.hpp>
+#include <rrlab/server/app/run_manager.hpp>
+#include <rrlab/server/app/worker_pool.hpp>
+#include <rrlab/server/net/auth_throttle.hpp>
+#include <rrlab/server/net/peer_limits.hpp>
+#include <rrlab/server/net/request_guard.hpp>
+#include <rrlab/server/routes/routes.hpp>
 
 namespace rrlab::server {
 

@@ -9,8 +9,8 @@
 #include <array>
 #include <memory>
 
-#include "app/frame_source.hpp"
-#include "net/server_state.hpp"
+#include <rrlab/server/app/frame_source.hpp>
+#include <rrlab/server/net/server_state.hpp>
 
 namespace rrlab::server {
 

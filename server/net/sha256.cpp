@@ -1,4 +1,4 @@
-#include "net/sha256.hpp"
+#include <rrlab/server/net/sha256.hpp>
 
 namespace rrlab::server {
 

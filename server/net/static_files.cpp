@@ -1,9 +1,9 @@
-#include "net/static_files.hpp"
+#include <rrlab/server/net/static_files.hpp>
 
 #include <cstdio>
 #include <filesystem>
 
-#include "net/sha256.hpp"
+#include <rrlab/server/net/sha256.hpp>
 
 namespace rrlab::server {
 

@@ -8,9 +8,9 @@
 #include <atomic>
 #include <deque>
 
-#include "app/controller.hpp"
-#include "app/socket_message.hpp"
-#include "net/sessions.hpp"
+#include <rrlab/server/app/controller.hpp>
+#include <rrlab/server/app/socket_message.hpp>
+#include <rrlab/server/net/sessions.hpp>
 
 namespace rrlab::server {
 

@@ -1,11 +1,11 @@
-#include "routes/api.hpp"
+#include <rrlab/server/routes/api.hpp>
 
-#include "methods/method.hpp"
-#include "scenario/scenario.hpp"
-#include "sim/run_inputs.hpp"
-#include "storage/completion.hpp"
-#include "storage/database.hpp"
-#include "util/nesting_depth.hpp"
+#include <rrlab/methods/method.hpp>
+#include <rrlab/scenario/scenario.hpp>
+#include <rrlab/sim/run_inputs.hpp>
+#include <rrlab/storage/completion.hpp>
+#include <rrlab/storage/database.hpp>
+#include <rrlab/util/nesting_depth.hpp>
 
 namespace rrlab::server {
 

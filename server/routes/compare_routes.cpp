@@ -1,7 +1,7 @@
 // Several methods on one scenario in lockstep: the same steps, and the same
 // scene, joystick and reset inputs applied to every lane.
-#include "routes/routes.hpp"
-#include "scenario/json_reader.hpp"
+#include <rrlab/scenario/json_reader.hpp>
+#include <rrlab/server/routes/routes.hpp>
 
 namespace rrlab::server {
 

@@ -7,11 +7,11 @@
 // "seq" and exact values (storage/frame_codec.hpp)]}.
 #include <algorithm>
 
-#include "util/nesting_depth.hpp"
-#include "routes/routes.hpp"
-#include "sim/frame_csv.hpp"
-#include "storage/frame_codec.hpp"
-#include "storage/run_store.hpp"
+#include <rrlab/server/routes/routes.hpp>
+#include <rrlab/sim/frame_csv.hpp>
+#include <rrlab/storage/frame_codec.hpp>
+#include <rrlab/storage/run_store.hpp>
+#include <rrlab/util/nesting_depth.hpp>
 
 namespace rrlab::server {
 

@@ -1,5 +1,5 @@
-#include "methods/registry_json.hpp"
-#include "routes/routes.hpp"
+#include <rrlab/methods/registry_json.hpp>
+#include <rrlab/server/routes/routes.hpp>
 
 namespace rrlab::server {
 

@@ -1,7 +1,10 @@
 // GET /api/openapi.json: the OpenAPI 3.1 document of the REST API, written by
 // hand in server/openapi.json; its Scenario schema is docs/scenario.schema.json
 // (one source for the file format and the API). Both are compiled in.
-#include "routes/routes.hpp"
+#include <rrlab/server/routes/routes.hpp>
+
+#include <rrlab/generators/generators.hpp>
+#include <rrlab/sim/frame_fields.hpp>
 
 namespace rrlab::server {
 
@@ -17,6 +20,71 @@ void move_refs(nlohmann::json& node) {
     }
   } else if (node.is_array()) {
     for (auto& item : node) move_refs(item);
+  }
+}
+// A frame field's JSON schema, from its kind (sim/frame_fields.hpp).
+nlohmann::json frame_field_schema(const FrameField& field) {
+  const nlohmann::json number = {{"type", {"number", "null"}}};
+  const auto array = [&](int size) {
+    nlohmann::json a = {{"type", "array"}, {"items", number}};
+    if (size > 0) a["minItems"] = size, a["maxItems"] = size;
+    return a;
+  };
+  nlohmann::json schema;
+  switch (field.kind) {
+    case FrameFieldKind::count: schema = {{"type", "integer"}}; break;
+    case FrameFieldKind::link: schema = {{"type", "integer"}, {"minimum", 0}}; break;
+    case FrameFieldKind::flag: schema = {{"type", "boolean"}}; break;
+    case FrameFieldKind::number: schema = number; break;
+    case FrameFieldKind::joints:
+    case FrameFieldKind::diagnostics: schema = array(0); break;
+    case FrameFieldKind::vec3: schema = array(3); break;
+    case FrameFieldKind::quaternion: schema = array(4); break;
+  }
+  std::string description(field.description);
+  if (!field.unit.empty()) description += " (" + std::string(field.unit) + ")";
+  schema["description"] = description;
+  return schema;
+}
+
+// The stored Frame's properties: the blob fields of the frame field table, the
+// metrics nested as the JSON writer nests them (sim/frame_json.cpp).
+void fill_frame_schema(nlohmann::json& frame) {
+  nlohmann::json properties = {{"seq", {{"type", "integer"}}}}, required = {"seq"};
+  nlohmann::json metrics = nlohmann::json::object(), metrics_required = nlohmann::json::array();
+  for (const FrameField& field : kFrameFields) {
+    if ((field.outputs & kFrameBlob) == 0 || (field.outputs & kFrameJson) == 0) continue;
+    const std::string name(field.name);
+    if (field.metric) {
+      metrics[name] = frame_field_schema(field);
+      metrics_required.push_back(name);
+    } else {
+      properties[name] = frame_field_schema(field);
+      required.push_back(name);
+    }
+  }
+  if (!metrics.empty()) {
+    properties["metrics"] = {{"type", "object"}, {"properties", metrics}, {"required", metrics_required},
+                             {"additionalProperties", false}};
+    required.push_back("metrics");
+  }
+  frame["properties"] = properties;
+  frame["required"] = required;
+  frame["additionalProperties"] = false;
+}
+
+// Lists the document takes from rrlab's tables rather than spelling out: every
+// "generator" property's enum is the generator registry's families.
+void fill_from_tables(nlohmann::json& node) {
+  if (node.is_object()) {
+    for (auto it = node.begin(); it != node.end(); ++it) {
+      if (it.key() == "generator" && it->is_object() && it->contains("enum"))
+        (*it)["enum"] = generator_families();
+      else
+        fill_from_tables(*it);
+    }
+  } else if (node.is_array()) {
+    for (auto& item : node) fill_from_tables(item);
   }
 }
 }  // namespace
@@ -41,6 +109,8 @@ const nlohmann::json& openapi_document() {
       schemas[it.key()] = it.value();
     }
     schemas["Scenario"] = scenario;
+    fill_from_tables(doc);
+    fill_frame_schema(schemas["Frame"]);  // the frame field table's stored fields
     return doc;
   }();
   return document;

@@ -4,13 +4,13 @@
 #include <algorithm>
 #include <thread>
 
-#include "app/replay_player.hpp"
-#include "storage/resimulation.hpp"
-#include "routes/routes.hpp"
-#include "scenario/json_reader.hpp"
-#include "storage/frame_codec.hpp"
-#include "storage/frame_writer.hpp"
-#include "storage/run_store.hpp"
+#include <rrlab/scenario/json_reader.hpp>
+#include <rrlab/server/app/replay_player.hpp>
+#include <rrlab/server/routes/routes.hpp>
+#include <rrlab/storage/frame_codec.hpp>
+#include <rrlab/storage/frame_writer.hpp>
+#include <rrlab/storage/resimulation.hpp>
+#include <rrlab/storage/run_store.hpp>
 
 namespace rrlab::server {
 

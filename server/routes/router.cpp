@@ -1,8 +1,8 @@
 #include <string_view>
 
-#include "routes/routes.hpp"
-#include "app/replay_player.hpp"
-#include "storage/run_store.hpp"
+#include <rrlab/server/app/replay_player.hpp>
+#include <rrlab/server/routes/routes.hpp>
+#include <rrlab/storage/run_store.hpp>
 
 namespace rrlab::server {
 

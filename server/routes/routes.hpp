@@ -9,10 +9,10 @@
 #include <string_view>
 #include <vector>
 
-#include "routes/api.hpp"
-#include "app/run_manager.hpp"
-#include "scenario/json_reader.hpp"
-#include "storage/run_store.hpp"
+#include <rrlab/scenario/json_reader.hpp>
+#include <rrlab/server/app/run_manager.hpp>
+#include <rrlab/server/routes/api.hpp>
+#include <rrlab/storage/run_store.hpp>
 
 namespace rrlab::server {
 

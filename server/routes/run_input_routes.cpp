@@ -3,8 +3,8 @@
 // another client controls the run: app/controller.hpp), applied, and
 // answered once stored as an event with the step at which it takes effect
 // (the frame writer stores it; no I/O thread waits for SQLite).
-#include "routes/routes.hpp"
-#include "storage/completion.hpp"
+#include <rrlab/server/routes/routes.hpp>
+#include <rrlab/storage/completion.hpp>
 
 namespace rrlab::server {
 

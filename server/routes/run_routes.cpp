@@ -1,7 +1,7 @@
-#include "routes/routes.hpp"
-#include "scenario/json_reader.hpp"
-#include "storage/run_store.hpp"
-#include "util/nesting_depth.hpp"
+#include <rrlab/server/routes/routes.hpp>
+#include <rrlab/scenario/json_reader.hpp>
+#include <rrlab/storage/run_store.hpp>
+#include <rrlab/util/nesting_depth.hpp>
 
 namespace rrlab::server {
 

@@ -1,4 +1,4 @@
-#include "routes/routes.hpp"
+#include <rrlab/server/routes/routes.hpp>
 
 namespace rrlab::server {
 

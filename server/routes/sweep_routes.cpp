@@ -3,8 +3,8 @@
 #include <iterator>
 #include <optional>
 
-#include "app/sweep_jobs.hpp"
-#include "routes/routes.hpp"
+#include <rrlab/server/app/sweep_jobs.hpp>
+#include <rrlab/server/routes/routes.hpp>
 
 namespace rrlab::server {
 

@@ -6,10 +6,11 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include <rrlab/generators/generators.hpp>
+#include <rrlab/generators/perturbation.hpp>
+#include <rrlab/scenario/scenario.hpp>
+
 #include "rrlab_command.hpp"
-#include "scenario/generators.hpp"
-#include "scenario/perturbation.hpp"
-#include "scenario/scenario.hpp"
 
 namespace {
 

@@ -6,9 +6,9 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
-#include "scenario/scenario.hpp"
-#include "methods/registry.hpp"
-#include "sim/simulator.hpp"
+#include <rrlab/methods/registry.hpp>
+#include <rrlab/scenario/scenario.hpp>
+#include <rrlab/sim/simulator.hpp>
 
 namespace rrlab::test {
 

@@ -6,8 +6,8 @@
 #include <sstream>
 #include <string>
 
-#include "model/model.hpp"
-#include "scenario/scenario.hpp"
+#include <rrlab/model/model.hpp>
+#include <rrlab/scenario/scenario.hpp>
 
 namespace rrlab::test {
 

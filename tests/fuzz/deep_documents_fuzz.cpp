@@ -17,8 +17,9 @@
 #include <string>
 #include <vector>
 
+#include <rrlab/scenario/scenario.hpp>
+
 #include "fuzz_support.hpp"
-#include "scenario/scenario.hpp"
 
 namespace {
 

@@ -8,9 +8,10 @@
 #include <stdexcept>
 #include <string_view>
 
+#include <rrlab/sim/frame_csv.hpp>
+#include <rrlab/storage/frame_codec.hpp>
+
 #include "fuzz_support.hpp"
-#include "sim/frame_csv.hpp"
-#include "storage/frame_codec.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   rrlab::Frame frame;

@@ -7,14 +7,14 @@
 #include <stdexcept>
 #include <unistd.h>
 
-#include "app/run_manager.hpp"
-#include "app/socket_message.hpp"
-#include "methods/method.hpp"
-#include "routes/routes.hpp"
-#include "scenario/scenario.hpp"
-#include "sim/run_inputs.hpp"
-#include "storage/frame_writer.hpp"
-#include "storage/run_store.hpp"
+#include <rrlab/methods/method.hpp>
+#include <rrlab/scenario/scenario.hpp>
+#include <rrlab/server/app/run_manager.hpp>
+#include <rrlab/server/app/socket_message.hpp>
+#include <rrlab/server/routes/routes.hpp>
+#include <rrlab/sim/run_inputs.hpp>
+#include <rrlab/storage/frame_writer.hpp>
+#include <rrlab/storage/run_store.hpp>
 
 namespace rrlab::fuzz {
 

@@ -16,7 +16,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "routes/api.hpp"
+#include <rrlab/server/routes/api.hpp>
 
 namespace rrlab::fuzz {
 

@@ -2,10 +2,11 @@
 // record (or a plain scenario), its simulator, and every recorded event applied.
 #include <limits>
 
+#include <rrlab/sim/run_record.hpp>
+#include <rrlab/sim/simulator.hpp>
+#include <rrlab/util/nesting_depth.hpp>
+
 #include "fuzz_support.hpp"
-#include "sim/run_record.hpp"
-#include "sim/simulator.hpp"
-#include "util/nesting_depth.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   nlohmann::json doc;

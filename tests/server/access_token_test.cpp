@@ -9,7 +9,8 @@
 #include <cstdlib>
 #include <fstream>
 
-#include "net/request_guard.hpp"
+#include <rrlab/server/net/request_guard.hpp>
+
 #include "server_fixture.hpp"
 
 namespace rrlab::testing {

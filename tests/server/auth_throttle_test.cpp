@@ -1,5 +1,5 @@
 // net/auth_throttle: wrong tokens per address within a window, with given times.
-#include "net/auth_throttle.hpp"
+#include <rrlab/server/net/auth_throttle.hpp>
 
 #include <gtest/gtest.h>
 

@@ -2,12 +2,13 @@
 // steer holds control, others get 409 "not_controller" until it releases,
 // disconnects, or another client takes over (the holder is told). Unnamed
 // REST requests (scripts) are no party to it.
-#include "app/controller.hpp"
+#include <rrlab/server/app/controller.hpp>
 
 #include <deque>
 #include <map>
 
-#include "routes/api.hpp"
+#include <rrlab/server/routes/api.hpp>
+
 #include "server_fixture.hpp"
 
 namespace rrlab::testing {

@@ -1,8 +1,9 @@
 // A live run with obstacle moves, weight changes and joystick input is
 // re-simulated from its stored events with identical frames; a server killed
 // mid-run leaves a sound database.
+#include <rrlab/storage/run_store.hpp>
+
 #include "server_fixture.hpp"
-#include "storage/run_store.hpp"
 
 namespace rrlab::testing {
 namespace {

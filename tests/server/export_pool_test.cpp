@@ -1,5 +1,5 @@
 // app/export_pool.hpp: the budget of bytes that exports reserve, and the workers.
-#include "app/export_pool.hpp"
+#include <rrlab/server/app/export_pool.hpp>
 
 #include <gtest/gtest.h>
 

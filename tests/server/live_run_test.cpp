@@ -2,7 +2,7 @@
 // show in later frames, in the run's parameters and in its events.
 #include "server_fixture.hpp"
 
-#include "routes/routes.hpp"
+#include <rrlab/server/routes/routes.hpp>
 
 namespace rrlab::testing {
 namespace {

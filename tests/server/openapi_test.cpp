@@ -6,7 +6,8 @@
 #include <regex>
 #include <set>
 
-#include "routes/routes.hpp"
+#include <rrlab/server/routes/routes.hpp>
+
 #include "server_fixture.hpp"
 
 namespace rrlab::testing {

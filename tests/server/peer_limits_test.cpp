@@ -3,7 +3,7 @@
 // without a token cannot use, a reserve for new clients that addresses past
 // their fair share cannot use, and at an address's connection cap its oldest
 // connection that waits for a request is closed for the new one.
-#include "net/peer_limits.hpp"
+#include <rrlab/server/net/peer_limits.hpp>
 
 #include <gtest/gtest.h>
 

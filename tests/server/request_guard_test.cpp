@@ -2,7 +2,7 @@
 // foreign Hosts (DNS rebinding), changes and WebSockets from foreign Origins,
 // a second Host or Origin, and API bodies that are not JSON; --allow-host and
 // --allow-origin widen that. Then the decision table itself.
-#include "net/request_guard.hpp"
+#include <rrlab/server/net/request_guard.hpp>
 
 #include "raw_connection.hpp"
 #include "server_fixture.hpp"

@@ -1,7 +1,7 @@
 // Every REST route: success, and each error code with the bad field named.
 #include "server_fixture.hpp"
 
-#include "scenario/scenario.hpp"
+#include <rrlab/scenario/scenario.hpp>
 
 namespace rrlab::testing {
 namespace {

@@ -1,5 +1,5 @@
 // RunGroup (server/app/run_group.cpp) on its own, without a server.
-#include "app/run_group.hpp"
+#include <rrlab/server/app/run_group.hpp>
 
 #include <gtest/gtest.h>
 #include <stdlib.h>
@@ -10,9 +10,9 @@
 #include <future>
 #include <thread>
 
-#include "scenario/scenario.hpp"
-#include "storage/frame_writer.hpp"
-#include "storage/run_store.hpp"
+#include <rrlab/scenario/scenario.hpp>
+#include <rrlab/storage/frame_writer.hpp>
+#include <rrlab/storage/run_store.hpp>
 
 namespace rrlab::server {
 namespace {

@@ -1,8 +1,8 @@
 // Static files carry a Content-Security-Policy that allows this server only
 // and no inline script but the page's import map, by its hash
 // (net/static_files.hpp); API answers carry no CORS header by default.
-#include "net/sha256.hpp"
-#include "net/static_files.hpp"
+#include <rrlab/server/net/sha256.hpp>
+#include <rrlab/server/net/static_files.hpp>
 
 #include <fstream>
 #include <sstream>

@@ -3,8 +3,9 @@
 // failed with the reason in its summary, new runs get 503 storage_full while
 // the condition lasts, reads keep working, and nothing stored before is
 // damaged (PRAGMA integrity_check, `rrlab replay --verify`).
+#include <rrlab/storage/database.hpp>
+
 #include "server_fixture.hpp"
-#include "storage/database.hpp"
 
 namespace rrlab::testing {
 namespace {

@@ -1,6 +1,6 @@
 // Background threads lower their priority relative to their starter: under a
 // server started at nice 19 they stay at 19 (absolute 10 and 5 outranked it).
-#include "app/thread_priority.hpp"
+#include <rrlab/server/app/thread_priority.hpp>
 
 #include <gtest/gtest.h>
 #include <sys/resource.h>

@@ -1,4 +1,4 @@
-#include "storage/frame_codec.hpp"
+#include <rrlab/storage/frame_codec.hpp>
 
 #include <gtest/gtest.h>
 
@@ -32,7 +32,7 @@ Frame sample_frame() {
 TEST(FrameCodec, RoundTripIsBitExact) {
   const Frame f = sample_frame();
   const std::string packed = pack_frame(f);
-  EXPECT_EQ(packed.size(), 16u + 8u * (19u + 14u + 3u));
+  EXPECT_EQ(packed.size(), 4u + 16u + 8u * (19u + 14u + 3u));  // version word, n, k, the fields
   const Frame back = unpack_frame(packed);
   EXPECT_EQ(back.step, 42);
   EXPECT_EQ(std::memcmp(back.q.data(), f.q.data(), 7 * sizeof(double)), 0);
@@ -70,7 +70,7 @@ TEST(FrameCodec, RejectsBlobsOfTheWrongSize) {
 // (undefined behaviour); a corrupt blob is now an error like a wrong size.
 TEST(FrameCodec, RejectsALinkIndexThatIsNotOne) {
   const std::string packed = pack_frame(sample_frame());
-  const size_t link_offset = 16 + 8 * (1 + 7 + 7 + 3 + 4 + 3 + 3);  // step, t, q, qdot, ee, quat, target, 3 metrics
+  const size_t link_offset = 4 + 16 + 8 * (1 + 7 + 7 + 3 + 4 + 3 + 3);  // step, t, q, qdot, ee, quat, target, 3 metrics
   for (const double bad : {5.04759e+223, -2.0, 0.5, std::numeric_limits<double>::quiet_NaN()}) {
     std::string corrupt = packed;
     std::memcpy(corrupt.data() + link_offset, &bad, sizeof bad);
@@ -103,7 +103,35 @@ TEST(FrameCodec, BlobLayoutIsTheStoredOne) {
                          f.manipulability, f.condition_number})
     put(m);
   for (int i = 0; i < 3; ++i) put(f.diagnostics[i]);
-  EXPECT_EQ(pack_frame(f), expected);
+  std::string v1;
+  pack_frame(f, v1, 1);
+  EXPECT_EQ(v1, expected);  // version 1: no version word
+  std::string v2;
+  const std::uint32_t word = 0x52460002u;  // "RF", version 2
+  v2.append(reinterpret_cast<const char*>(&word), sizeof word);
+  EXPECT_EQ(pack_frame(f), v2 + expected);  // version 2: the word, then the same fields
+}
+
+// Runs stored before the blob had a version still read, as what they are;
+// a blob of a version this build does not know is refused, naming it.
+TEST(FrameCodec, ReadsEveryVersionItKnowsAndNamesOneItDoesNot) {
+  const Frame f = sample_frame();
+  std::string v1;
+  pack_frame(f, v1, 1);
+  EXPECT_EQ(frame_blob_version(v1), 1);
+  EXPECT_EQ(frame_blob_version(pack_frame(f)), kFrameBlobVersion);
+  EXPECT_EQ(pack_frame(unpack_frame(v1)), pack_frame(f));  // read as version 1, written as the current one
+  std::string future = pack_frame(f);
+  future[0] = char(kFrameBlobVersion + 1);
+  try {
+    unpack_frame(future);
+    FAIL() << "a future version was read";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("version " + std::to_string(kFrameBlobVersion + 1)), std::string::npos)
+        << e.what();
+  }
+  std::string out;
+  EXPECT_THROW(pack_frame(f, out, kFrameBlobVersion + 1), std::invalid_argument);
 }
 
 TEST(FrameCodec, StoredJsonIsTheStreamShapeWithExactValues) {

@@ -1,6 +1,6 @@
 // The frame writer (storage/frame_writer.hpp): input events share the frames'
 // queue and transactions, never wait for room, and say when they are stored.
-#include "storage/frame_writer.hpp"
+#include <rrlab/storage/frame_writer.hpp>
 
 #include <chrono>
 #include <future>

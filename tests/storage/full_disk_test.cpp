@@ -9,9 +9,10 @@
 
 #include "support/small_disk.hpp"
 
-#include "storage/database.hpp"
-#include "storage/disk_reserve.hpp"
-#include "storage/run_store.hpp"
+#include <rrlab/storage/database.hpp>
+#include <rrlab/storage/disk_reserve.hpp>
+#include <rrlab/storage/run_store.hpp>
+
 #include "temp_store_test.hpp"
 
 namespace rrlab::storage {

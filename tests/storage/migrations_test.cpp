@@ -1,7 +1,7 @@
 // A database written by an older rrlab opens in this one: the committed
 // fixture is a real version-1 file (batch runs, a sweep, a live run with
 // events), dumped as SQL by sqlite3.
-#include "storage/migrations.hpp"
+#include <rrlab/storage/migrations.hpp>
 
 #include <gtest/gtest.h>
 #include <stdlib.h>
@@ -10,10 +10,11 @@
 #include <fstream>
 #include <sstream>
 
+#include <rrlab/storage/database.hpp>
+#include <rrlab/storage/frame_codec.hpp>
+#include <rrlab/storage/run_store.hpp>
+
 #include "temp_store_test.hpp"
-#include "storage/database.hpp"
-#include "storage/frame_codec.hpp"
-#include "storage/run_store.hpp"
 
 namespace rrlab::storage {
 namespace {

@@ -5,7 +5,10 @@
 #include <fstream>
 #include <sstream>
 
-#include "storage/resimulation.hpp"
+#include <rrlab/storage/frame_codec.hpp>
+#include <rrlab/storage/frame_writer.hpp>
+#include <rrlab/storage/resimulation.hpp>
+
 #include "temp_store_test.hpp"
 
 namespace rrlab::storage {
@@ -57,6 +60,32 @@ TEST_F(Resimulation, ASummaryThatDiffersIsNamed) {
   EXPECT_FALSE(result.identical());
   EXPECT_EQ(result.summary_mismatch.rfind("min_distance ", 0), 0u) << result.summary_mismatch;
   EXPECT_EQ(verification_json(result)["mismatch"].get<std::string>().rfind("summary: min_distance", 0), 0u);
+}
+
+// A run stored before frame blobs had a version word (version 1) is compared
+// in its own format, and matches.
+TEST_F(Resimulation, ARunStoredInAnOlderBlobFormatMatchesInThatFormat) {
+  RunStore store(path_);
+  std::ifstream in(std::string(RRLAB_SOURCE_DIR) + "/scenarios/01_planar7_obstacles.json");
+  std::stringstream text;
+  text << in.rdbuf();
+  const Scenario scenario = parse_scenario_text(text.str());
+  Simulator sim(scenario, "dls");
+  const std::int64_t id = store.create_run(new_run_of(scenario, sim, "batch"));
+  {
+    FrameWriter writer(store);
+    std::string v1;
+    for (std::int64_t seq = 0; seq < 50; ++seq) {
+      sim.step();
+      pack_frame(sim.frame(), v1, 1);
+      writer.push(id, stored_frame(seq, sim.frame(), v1));
+    }
+    writer.flush();
+  }
+  store.finish_run(id, "completed", summary_to_json(sim.summary()).dump());
+  const ResimulationResult result = resimulate(store, *store.run(id), {});
+  EXPECT_EQ(result.frames_compared, 50);
+  EXPECT_FALSE(result.first_mismatch) << result.mismatch;
 }
 
 TEST_F(Resimulation, ARunWithNeitherFramesNorStepsHasNothingToCompare) {

@@ -8,10 +8,11 @@
 #include <filesystem>
 #include <string>
 
+#include <rrlab/storage/database.hpp>
+#include <rrlab/storage/frame_writer.hpp>
+#include <rrlab/storage/run_store.hpp>
+
 #include "temp_store_test.hpp"
-#include "storage/database.hpp"
-#include "storage/frame_writer.hpp"
-#include "storage/run_store.hpp"
 
 namespace rrlab::storage {
 namespace {

@@ -1,4 +1,4 @@
-#include "storage/run_store.hpp"
+#include <rrlab/storage/run_store.hpp>
 
 #include <gtest/gtest.h>
 #include <stdlib.h>
@@ -7,8 +7,9 @@
 #include <filesystem>
 #include <limits>
 
-#include "storage/database.hpp"
-#include "storage/frame_writer.hpp"
+#include <rrlab/storage/database.hpp>
+#include <rrlab/storage/frame_writer.hpp>
+
 #include "temp_store_test.hpp"
 
 namespace rrlab::storage {

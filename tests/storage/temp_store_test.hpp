@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <string>
 
-#include "storage/run_store.hpp"
+#include <rrlab/storage/run_store.hpp>
 
 namespace rrlab::storage {
 

@@ -1,5 +1,5 @@
 // A failed run's first failure mode and its time, watched frame by frame.
-#include "sweep/failure_watch.hpp"
+#include <rrlab/sweep/failure_watch.hpp>
 
 #include <gtest/gtest.h>
 
@@ -8,8 +8,8 @@
 #include <tuple>
 #include <utility>
 
-#include "scenario/scenario.hpp"
-#include "sim/simulator.hpp"
+#include <rrlab/scenario/scenario.hpp>
+#include <rrlab/sim/simulator.hpp>
 
 namespace rrlab::sweep {
 namespace {

@@ -3,8 +3,9 @@
 
 #include <set>
 
-#include "scenario/generators.hpp"
-#include "sweep/sweep_expansion.hpp"
+#include <rrlab/generators/generators.hpp>
+#include <rrlab/sweep/sweep_expansion.hpp>
+
 #include "sweep_test_support.hpp"
 
 namespace rrlab::sweep {

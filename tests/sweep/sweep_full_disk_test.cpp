@@ -4,10 +4,11 @@
 // resumed sweep goes on from there once runs are deleted.
 #include <gtest/gtest.h>
 
-#include "storage/database.hpp"
-#include "storage/disk_reserve.hpp"
+#include <rrlab/storage/database.hpp>
+#include <rrlab/storage/disk_reserve.hpp>
+#include <rrlab/sweep/sweep_runner.hpp>
+
 #include "support/small_disk.hpp"
-#include "sweep/sweep_runner.hpp"
 #include "sweep_test_support.hpp"
 
 namespace rrlab::sweep {

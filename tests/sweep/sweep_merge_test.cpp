@@ -1,8 +1,9 @@
 // Merging is idempotent: the (sweep, key) of a run decides.
 #include <gtest/gtest.h>
 
-#include "sweep/sweep_merge.hpp"
-#include "sweep/sweep_runner.hpp"
+#include <rrlab/sweep/sweep_merge.hpp>
+#include <rrlab/sweep/sweep_runner.hpp>
+
 #include "sweep_test_support.hpp"
 
 namespace rrlab::sweep {

@@ -5,11 +5,11 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "sweep/sweep_report.hpp"
-#include "sweep/sweep_report_html.hpp"
-#include "sweep/sweep_report_json.hpp"
-#include "sweep/sweep_report_text.hpp"
-#include "sweep/sweep_stats.hpp"
+#include <rrlab/sweep/sweep_report.hpp>
+#include <rrlab/sweep/sweep_report_html.hpp>
+#include <rrlab/sweep/sweep_report_json.hpp>
+#include <rrlab/sweep/sweep_report_text.hpp>
+#include <rrlab/sweep/sweep_stats.hpp>
 
 namespace rrlab::sweep {
 namespace {

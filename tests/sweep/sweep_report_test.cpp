@@ -5,10 +5,10 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "sweep/sweep_report.hpp"
-#include "sweep/sweep_report_html.hpp"
-#include "sweep/sweep_report_text.hpp"
-#include "sweep/sweep_stats.hpp"
+#include <rrlab/sweep/sweep_report.hpp>
+#include <rrlab/sweep/sweep_report_html.hpp>
+#include <rrlab/sweep/sweep_report_text.hpp>
+#include <rrlab/sweep/sweep_stats.hpp>
 
 namespace rrlab::sweep {
 namespace {

@@ -4,8 +4,9 @@
 
 #include <thread>
 
-#include "sweep/sweep_merge.hpp"
-#include "sweep/sweep_runner.hpp"
+#include <rrlab/sweep/sweep_merge.hpp>
+#include <rrlab/sweep/sweep_runner.hpp>
+
 #include "sweep_test_support.hpp"
 
 namespace rrlab::sweep {

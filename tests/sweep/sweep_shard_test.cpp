@@ -3,8 +3,8 @@
 
 #include <map>
 
-#include "scenario/scenario.hpp"
-#include "sweep/sweep_shard.hpp"
+#include <rrlab/scenario/scenario.hpp>
+#include <rrlab/sweep/sweep_shard.hpp>
 
 namespace rrlab::sweep {
 namespace {

@@ -1,7 +1,8 @@
 // Sweep specs: what parses, and errors that name the JSON path.
 #include <gtest/gtest.h>
 
-#include "sweep/sweep_spec.hpp"
+#include <rrlab/sweep/sweep_spec.hpp>
+
 #include "sweep_test_support.hpp"
 
 namespace rrlab::sweep {

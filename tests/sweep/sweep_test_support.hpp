@@ -15,9 +15,10 @@
 #include <sstream>
 #include <string>
 
+#include <rrlab/storage/run_store.hpp>
+#include <rrlab/sweep/sweep_spec.hpp>
+
 #include "server/support/rrlab_command.hpp"
-#include "storage/run_store.hpp"
-#include "sweep/sweep_spec.hpp"
 
 namespace rrlab::sweep::testing {
 

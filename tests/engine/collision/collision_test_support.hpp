@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "collision/collision_world.hpp"
+#include <rrlab/collision/collision_world.hpp>
 
 namespace rrlab::collision_testing {
 

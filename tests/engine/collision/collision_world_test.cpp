@@ -1,4 +1,4 @@
-#include "collision/collision_world.hpp"
+#include <rrlab/collision/collision_world.hpp>
 
 #include <gtest/gtest.h>
 
@@ -6,9 +6,10 @@
 #include <numbers>
 #include <random>
 
-#include "collision/polygon.hpp"
-#include "kinematics/kinematics.hpp"
-#include "model/model.hpp"
+#include <rrlab/collision/polygon.hpp>
+#include <rrlab/kinematics/kinematics.hpp>
+#include <rrlab/model/model.hpp>
+
 #include "engine/collision/collision_test_support.hpp"
 
 namespace rrlab {

@@ -2,7 +2,7 @@
 // against sampling (golden-section search along the segment), the sign
 // inside and outside, and the penetration depth against translations
 // sampled over directions; spheres and walls in closed form.
-#include "collision/convex_polytope.hpp"
+#include <rrlab/collision/convex_polytope.hpp>
 
 #include <gtest/gtest.h>
 

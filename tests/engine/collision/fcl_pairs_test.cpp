@@ -1,13 +1,13 @@
 // The FCL adapters on known poses: a capsule against each of FCL's shapes
 // (the reference backend), the inflation of thin capsules, and a mesh link
 // against a box and a mesh (contact without depth).
-#include "collision/fcl_pairs.hpp"
+#include <rrlab/collision/fcl_pairs.hpp>
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "collision/mesh_shapes.hpp"
+#include <rrlab/collision/mesh_shapes.hpp>
 
 namespace rrlab::collision {
 namespace {

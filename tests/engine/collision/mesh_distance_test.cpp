@@ -3,7 +3,7 @@
 // walls and spheres; then mesh links (a URDF <collision><mesh>, read with
 // assimp) against the same shape as an analytic capsule, and against FCL's
 // own BVH distance.
-#include "collision/mesh_distance.hpp"
+#include <rrlab/collision/mesh_distance.hpp>
 
 #include <fcl/fcl.h>
 #include <gtest/gtest.h>
@@ -14,11 +14,11 @@
 #include <iostream>
 #include <random>
 
-#include "collision/collision_world.hpp"
-#include "collision/segment_geometry.hpp"
-#include "collision/mesh_loader.hpp"
-#include "collision/mesh_shapes.hpp"
-#include "scenario/scenario.hpp"
+#include <rrlab/collision/collision_world.hpp>
+#include <rrlab/collision/mesh_loader.hpp>
+#include <rrlab/collision/mesh_shapes.hpp>
+#include <rrlab/collision/segment_geometry.hpp>
+#include <rrlab/scenario/scenario.hpp>
 
 namespace rrlab {
 namespace {

@@ -1,6 +1,6 @@
 // Mesh files: read back what write_obj wrote, scaled; posed appends; the
 // faults named. (A URDF link's mesh: mesh_distance_test.cpp, MeshLink.)
-#include "collision/mesh_loader.hpp"
+#include <rrlab/collision/mesh_loader.hpp>
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -9,7 +9,7 @@
 #include <fstream>
 #include <string>
 
-#include "collision/mesh_shapes.hpp"
+#include <rrlab/collision/mesh_shapes.hpp>
 
 namespace rrlab {
 namespace {

@@ -8,12 +8,13 @@
 #include <iostream>
 #include <random>
 
-#include "collision/collision_world.hpp"
+#include <rrlab/collision/collision_world.hpp>
+#include <rrlab/collision/mesh_loader.hpp>
+#include <rrlab/collision/mesh_shapes.hpp>
+#include <rrlab/kinematics/kinematics.hpp>
+
 #include "engine/collision/collision_test_support.hpp"
-#include "collision/mesh_loader.hpp"
-#include "collision/mesh_shapes.hpp"
 #include "engine/test_models.hpp"
-#include "kinematics/kinematics.hpp"
 
 namespace rrlab {
 namespace {

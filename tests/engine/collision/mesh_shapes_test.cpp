@@ -1,12 +1,12 @@
 // Generated meshes: every vertex on the solid's surface, triangles facing out.
-#include "collision/mesh_shapes.hpp"
+#include <rrlab/collision/mesh_shapes.hpp>
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 
-#include "collision/mesh_distance.hpp"
+#include <rrlab/collision/mesh_distance.hpp>
 
 namespace rrlab {
 namespace {

@@ -1,6 +1,6 @@
 // Each obstacle kind's geometry, built from its scenario description, and a
 // known distance of a segment to it through the kind's own function.
-#include "collision/obstacle_geometry.hpp"
+#include <rrlab/collision/obstacle_geometry.hpp>
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "collision/mesh_shapes.hpp"
+#include <rrlab/collision/mesh_shapes.hpp>
 
 namespace rrlab::collision {
 namespace {

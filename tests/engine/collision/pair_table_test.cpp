@@ -1,7 +1,7 @@
 // The dispatch table: every (backend, link shape, obstacle shape) entry is
 // set, and on random poses the analytic entries agree with the FCL reference
 // (capsule links) and with the capsule a mesh link tessellates (mesh links).
-#include "collision/pair_table.hpp"
+#include <rrlab/collision/pair_table.hpp>
 
 #include <gtest/gtest.h>
 
@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "collision/fcl_pairs.hpp"
-#include "collision/mesh_shapes.hpp"
+#include <rrlab/collision/fcl_pairs.hpp>
+#include <rrlab/collision/mesh_shapes.hpp>
 
 namespace rrlab::collision {
 namespace {

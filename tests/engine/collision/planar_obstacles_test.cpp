@@ -1,15 +1,16 @@
 // The planar obstacle distances (the multi_preview GA's potential) against
 // the collision world's 3D routines: the same signed distance for segments
 // in z = 0, separated and overlapping, for every obstacle kind they accept.
-#include "collision/planar_obstacles.hpp"
+#include <rrlab/collision/planar_obstacles.hpp>
 
 #include <gtest/gtest.h>
 
 #include <random>
 
-#include "collision/collision_world.hpp"
+#include <rrlab/collision/collision_world.hpp>
+#include <rrlab/methods/multi_preview_avoidance.hpp>
+
 #include "engine/collision/collision_test_support.hpp"
-#include "methods/multi_preview_avoidance.hpp"
 
 namespace rrlab {
 namespace {

@@ -1,4 +1,4 @@
-#include "collision/polygon.hpp"
+#include <rrlab/collision/polygon.hpp>
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // Scenes: obstacles by id, their motion at constant velocity, shape names.
-#include "collision/scene.hpp"
+#include <rrlab/collision/scene.hpp>
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // Closest points of segments, points and triangles against brute force:
 // golden-section search over one segment's parameter (the distance to a
 // convex set is convex along a segment) with the test's own projections.
-#include "collision/segment_geometry.hpp"
+#include <rrlab/collision/segment_geometry.hpp>
 
 #include <gtest/gtest.h>
 

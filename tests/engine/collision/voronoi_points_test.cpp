@@ -1,6 +1,6 @@
 // Voronoi-boundary control points and nearest obstacle vertices on the
 // geometry of Sezgin et al. Ex2 and Ex3.
-#include "collision/voronoi_points.hpp"
+#include <rrlab/collision/voronoi_points.hpp>
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "kinematics/kinematics.hpp"
+#include <rrlab/kinematics/kinematics.hpp>
 
 #include <gtest/gtest.h>
 

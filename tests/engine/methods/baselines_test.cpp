@@ -3,10 +3,11 @@
 
 #include <map>
 
+#include <rrlab/generators/generators.hpp>
+#include <rrlab/methods/registry.hpp>
+
 #include "engine/sim_helpers.hpp"
 #include "engine/test_models.hpp"
-#include "methods/registry.hpp"
-#include "scenario/generators.hpp"
 
 namespace rrlab {
 namespace {

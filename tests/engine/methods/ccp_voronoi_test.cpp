@@ -7,9 +7,10 @@
 #include <fstream>
 #include <limits>
 
+#include <rrlab/methods/registry.hpp>
+
 #include "engine/sim_helpers.hpp"
 #include "engine/test_models.hpp"
-#include "methods/registry.hpp"
 
 namespace rrlab {
 namespace {

@@ -1,12 +1,13 @@
 // Method's parameter slots: a method reads its parameters by name, so a name
 // its spec list lacks fails when the method is built, never a silent read of
 // another parameter's value.
-#include "methods/method.hpp"
+#include <rrlab/methods/method.hpp>
 
 #include <gtest/gtest.h>
 
+#include <rrlab/methods/registry.hpp>
+
 #include "engine/test_models.hpp"
-#include "methods/registry.hpp"
 
 namespace rrlab {
 namespace {

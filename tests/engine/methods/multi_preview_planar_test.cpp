@@ -1,14 +1,15 @@
 // The GA's closed-form planar arm and the AMSI path without directions
 // against the general code they replace: kinematics, the damped Newton step
 // and AMSI agree to rounding, also near singular configurations.
-#include "methods/multi_preview_planar.hpp"
+#include <rrlab/methods/multi_preview_planar.hpp>
 
 #include <gtest/gtest.h>
 
+#include <rrlab/methods/multi_preview_avoidance.hpp>
+#include <rrlab/methods/multi_preview_ga.hpp>
+#include <rrlab/util/right_inverse.hpp>
+
 #include "engine/test_models.hpp"
-#include "methods/multi_preview_avoidance.hpp"
-#include "methods/multi_preview_ga.hpp"
-#include "util/right_inverse.hpp"
 
 namespace rrlab {
 namespace {

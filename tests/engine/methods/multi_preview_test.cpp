@@ -5,11 +5,12 @@
 #include <Eigen/SVD>
 #include <cstring>
 
+#include <rrlab/methods/multi_preview_avoidance.hpp>
+#include <rrlab/methods/multi_preview_ga.hpp>
+#include <rrlab/methods/registry.hpp>
+
 #include "engine/sim_helpers.hpp"
 #include "engine/test_models.hpp"
-#include "methods/multi_preview_avoidance.hpp"
-#include "methods/multi_preview_ga.hpp"
-#include "methods/registry.hpp"
 
 namespace rrlab {
 namespace {

@@ -5,11 +5,12 @@
 #include <cstdio>
 #include <fstream>
 
+#include <rrlab/generators/generators.hpp>
+#include <rrlab/methods/posture_generation_criteria.hpp>
+#include <rrlab/methods/registry.hpp>
+
 #include "engine/sim_helpers.hpp"
 #include "engine/test_models.hpp"
-#include "methods/posture_generation_criteria.hpp"
-#include "methods/registry.hpp"
-#include "scenario/generators.hpp"
 
 namespace rrlab {
 namespace {

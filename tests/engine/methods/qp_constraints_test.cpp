@@ -5,9 +5,10 @@
 
 #include <cmath>
 
+#include <rrlab/methods/registry.hpp>
+
 #include "engine/sim_helpers.hpp"
 #include "engine/test_models.hpp"
-#include "methods/registry.hpp"
 
 namespace rrlab {
 namespace {

@@ -1,12 +1,16 @@
 // External methods (the Python package's): found by name once registered, by
 // scenarios too; built-in names refused; a stored scenario whose Python
 // method this process lacks says so.
-#include "methods/registry.hpp"
+#include <rrlab/methods/registry.hpp>
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <sstream>
+
+#include <rrlab/scenario/scenario.hpp>
+
 #include "engine/test_models.hpp"
-#include "scenario/scenario.hpp"
 
 namespace rrlab {
 namespace {
@@ -26,6 +30,10 @@ TEST(MethodRegistry, AnExternalMethodIsFoundByNameOnceRegistered) {
   info.params = {{"gain", "Gain", "", "", 1.0, 0.0, 2.0, 0.1, {}}};
   info.make = [](const MethodContext& ctx) { return find_method("pinv")->make(ctx); };
   info.python = true;
+  MethodInfo costless = info;  // a row without a step cost does not register
+  EXPECT_THROW(register_external_method(costless), std::invalid_argument);
+  EXPECT_EQ(find_method("registry_test_method"), nullptr);
+  info.step_cost = unit_step_cost;
   register_external_method(info);
   const MethodInfo* found = find_method("registry_test_method");
   ASSERT_NE(found, nullptr);
@@ -43,6 +51,20 @@ TEST(MethodRegistry, AnExternalMethodIsFoundByNameOnceRegistered) {
   EXPECT_EQ(found->params.size(), 1u);
   info.name = "pinv";
   EXPECT_THROW(register_external_method(info), std::invalid_argument);
+}
+
+// Each built-in row names its section of docs/methods.md, and the section is there.
+TEST(MethodRegistry, EveryBuiltInMethodHasAStepCostAndItsDocumentation) {
+  std::ifstream file(test::source_path("docs/methods.md"));
+  std::stringstream text;
+  text << file.rdbuf();
+  for (const MethodInfo& info : method_registry()) {
+    EXPECT_NE(info.step_cost, nullptr) << info.name;
+    const std::string prefix = "docs/methods.md#";
+    ASSERT_EQ(info.docs.rfind(prefix, 0), 0u) << info.name << ": " << info.docs;
+    EXPECT_EQ(info.docs.substr(prefix.size()), info.name);
+    EXPECT_NE(text.str().find("\n## `" + info.name + "`"), std::string::npos) << "no section for " << info.name;
+  }
 }
 
 TEST(MethodRegistry, AStoredPythonMethodThisProcessLacksIsNamedAsSuch) {

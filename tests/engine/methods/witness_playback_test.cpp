@@ -1,12 +1,12 @@
 // The "witness" lane: it lands on the witness at every step, and refuses a
 // scenario without one by name.
-#include "methods/witness_playback.hpp"
+#include <rrlab/methods/witness_playback.hpp>
 
 #include <gtest/gtest.h>
 
-#include "scenario/generators.hpp"
-#include "scenario/scenario.hpp"
-#include "sim/simulator.hpp"
+#include <rrlab/generators/generators.hpp>
+#include <rrlab/scenario/scenario.hpp>
+#include <rrlab/sim/simulator.hpp>
 
 namespace rrlab {
 namespace {

@@ -1,8 +1,8 @@
-#include "model/model.hpp"
+#include <rrlab/model/model.hpp>
 
 #include <gtest/gtest.h>
 
-#include "kinematics/kinematics.hpp"
+#include <rrlab/kinematics/kinematics.hpp>
 
 namespace rrlab {
 namespace {

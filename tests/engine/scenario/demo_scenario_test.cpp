@@ -9,9 +9,10 @@
 #include <nlohmann/json.hpp>
 #include <tuple>
 
+#include <rrlab/scenario/scenario.hpp>
+#include <rrlab/sim/simulator.hpp>
+
 #include "engine/test_models.hpp"
-#include "scenario/scenario.hpp"
-#include "sim/simulator.hpp"
 
 namespace rrlab {
 namespace {

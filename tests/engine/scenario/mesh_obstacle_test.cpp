@@ -1,7 +1,7 @@
 // The "mesh" obstacle shape of scenarios: the file found like a URDF robot's
 // (confined to the scenario's directory), size limits, scale, and errors
 // naming the JSON path and the file.
-#include "scenario/mesh_obstacle.hpp"
+#include <rrlab/scenario/mesh_obstacle.hpp>
 
 #include <gtest/gtest.h>
 
@@ -9,10 +9,11 @@
 #include <filesystem>
 #include <fstream>
 
-#include "collision/mesh_shapes.hpp"
+#include <rrlab/collision/mesh_shapes.hpp>
+#include <rrlab/scenario/scenario.hpp>
+#include <rrlab/sim/run_inputs.hpp>
+
 #include "engine/test_models.hpp"
-#include "scenario/scenario.hpp"
-#include "sim/run_inputs.hpp"
 
 namespace rrlab {
 namespace {

@@ -1,14 +1,14 @@
 // One set of physical bounds for scenario files and live inputs: each value
 // refused with its JSON path and the bound in the user's units.
-#include "scenario/physical_bounds.hpp"
+#include <rrlab/scenario/physical_bounds.hpp>
 
 #include <gtest/gtest.h>
 
 #include <functional>
 
-#include "scenario/scenario.hpp"
-#include "sim/run_inputs.hpp"
-#include "sim/simulator.hpp"
+#include <rrlab/scenario/scenario.hpp>
+#include <rrlab/sim/run_inputs.hpp>
+#include <rrlab/sim/simulator.hpp>
 
 namespace rrlab {
 namespace {

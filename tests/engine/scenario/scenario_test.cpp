@@ -1,4 +1,4 @@
-#include "scenario/scenario.hpp"
+#include <rrlab/scenario/scenario.hpp>
 
 #include <gtest/gtest.h>
 

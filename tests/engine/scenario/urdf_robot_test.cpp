@@ -1,13 +1,14 @@
 // The "urdf" robot kind of scenarios: files confined to the scenario's
 // directory, inline text, link radii, limits, and errors naming the path.
-#include "scenario/urdf_robot.hpp"
+#include <rrlab/scenario/urdf_robot.hpp>
 
 #include <gtest/gtest.h>
 
 #include <filesystem>
 
-#include "kinematics/kinematics.hpp"
-#include "scenario/scenario.hpp"
+#include <rrlab/kinematics/kinematics.hpp>
+#include <rrlab/scenario/scenario.hpp>
+
 #include "engine/test_models.hpp"
 
 namespace rrlab {

@@ -1,5 +1,5 @@
 // The frame CSV (sim/frame_csv.hpp): columns from the field table, one per number.
-#include "sim/frame_csv.hpp"
+#include <rrlab/sim/frame_csv.hpp>
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // The frame field table (sim/frame_fields.hpp): its invariants, its accessors
 // against the Frame they read, and docs/api.md's table against it.
-#include "sim/frame_fields.hpp"
+#include <rrlab/sim/frame_fields.hpp>
 
 #include <gtest/gtest.h>
 

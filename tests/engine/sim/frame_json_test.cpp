@@ -1,5 +1,5 @@
 // The one JSON shape of a frame (sim/frame_json.hpp).
-#include "sim/frame_json.hpp"
+#include <rrlab/sim/frame_json.hpp>
 
 #include <gtest/gtest.h>
 

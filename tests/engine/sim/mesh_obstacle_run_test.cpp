@@ -5,11 +5,12 @@
 #include <cmath>
 #include <iostream>
 
+#include <rrlab/methods/registry.hpp>
+#include <rrlab/scenario/scenario.hpp>
+#include <rrlab/sim/run_inputs.hpp>
+#include <rrlab/sim/simulator.hpp>
+
 #include "engine/test_models.hpp"
-#include "methods/registry.hpp"
-#include "scenario/scenario.hpp"
-#include "sim/run_inputs.hpp"
-#include "sim/simulator.hpp"
 
 namespace rrlab {
 namespace {

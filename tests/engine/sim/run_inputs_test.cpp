@@ -1,8 +1,9 @@
-#include "sim/run_inputs.hpp"
+#include <rrlab/sim/run_inputs.hpp>
 
 #include <gtest/gtest.h>
 
-#include "sim/run_record.hpp"
+#include <rrlab/sim/run_record.hpp>
+
 #include "engine/sim_helpers.hpp"
 
 namespace rrlab {

@@ -1,5 +1,5 @@
-#include "sim/simulator.hpp"
-#include "methods/registry.hpp"
+#include <rrlab/sim/simulator.hpp>
+#include <rrlab/methods/registry.hpp>
 
 #include <gtest/gtest.h>
 

@@ -9,9 +9,10 @@
 #include <cmath>
 #include <map>
 
-#include "methods/registry.hpp"
-#include "scenario/scenario.hpp"
-#include "sim/simulator.hpp"
+#include <rrlab/methods/registry.hpp>
+#include <rrlab/scenario/scenario.hpp>
+#include <rrlab/sim/simulator.hpp>
+
 #include "engine/test_models.hpp"
 
 namespace rrlab {

@@ -1,4 +1,4 @@
-#include "task/task.hpp"
+#include <rrlab/task/task.hpp>
 
 #include <gtest/gtest.h>
 

@@ -1,13 +1,14 @@
 // The three shipped URDF arms against forward kinematics written separately
 // from the same published parameters, and the URDF faults that must be named.
-#include "urdf/urdf_chain.hpp"
+#include <rrlab/urdf/urdf_chain.hpp>
 
 #include <gtest/gtest.h>
 
 #include <functional>
 #include <random>
 
-#include "kinematics/kinematics.hpp"
+#include <rrlab/kinematics/kinematics.hpp>
+
 #include "engine/test_models.hpp"
 
 namespace rrlab {

@@ -1,4 +1,4 @@
-#include "util/extreme_eigenvalues.hpp"
+#include <rrlab/util/extreme_eigenvalues.hpp>
 
 #include <gtest/gtest.h>
 

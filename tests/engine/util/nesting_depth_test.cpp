@@ -1,7 +1,7 @@
 // The depth checks run before any recursive parser: they must find the level
 // too many at the right byte, ignore brackets and tags inside strings,
 // comments and attribute values, and take deep input without recursion.
-#include "util/nesting_depth.hpp"
+#include <rrlab/util/nesting_depth.hpp>
 
 #include <gtest/gtest.h>
 

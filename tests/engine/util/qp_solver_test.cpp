@@ -1,6 +1,6 @@
 // Goldfarb–Idnani QP: random strictly convex problems against the KKT
 // conditions, closed-form solutions, degenerate and infeasible problems.
-#include "util/qp_solver.hpp"
+#include <rrlab/util/qp_solver.hpp>
 
 #include <gtest/gtest.h>
 

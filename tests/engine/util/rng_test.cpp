@@ -1,5 +1,5 @@
 // The seeded RNG: reference values, repeatability and its distributions.
-#include "util/rng.hpp"
+#include <rrlab/util/rng.hpp>
 
 #include <gtest/gtest.h>
 

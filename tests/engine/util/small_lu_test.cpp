@@ -1,4 +1,4 @@
-#include "util/small_lu.hpp"
+#include <rrlab/util/small_lu.hpp>
 
 #include <gtest/gtest.h>
 

@@ -1,0 +1,42 @@
+// Clearance of generated cases, measured by the engine's own collision code
+// (CollisionWorld over capsules), so "clear of an obstacle" in a generated
+// case means what a run of it measures.
+#pragma once
+
+#include <Eigen/Core>
+#include <limits>
+#include <vector>
+
+#include <rrlab/collision/scene.hpp>
+#include <rrlab/model/model.hpp>
+
+namespace rrlab {
+
+// A segment grown by a radius: an arm link, or a stretch of the hand's path.
+struct CapsuleSegment {
+  Eigen::Vector3d a = Eigen::Vector3d::Zero(), b = Eigen::Vector3d::Zero();
+  double radius = 0;
+};
+
+// Smallest signed distance (m, < 0 when penetrating) from the capsules to the
+// obstacle placed at its position0 (t = 0).
+double capsules_clearance(const std::vector<CapsuleSegment>& capsules, const Obstacle& obstacle);
+
+// The arm's link capsules at every step of a witness.
+struct ArmSweep {
+  int links = 0;
+  double dt = 0;
+  std::vector<CapsuleSegment> capsules;  // step k's links at [k * links, (k + 1) * links)
+};
+ArmSweep arm_sweep(const Model& model, const std::vector<Eigen::VectorXd>& steps, double dt);
+
+// Smallest signed distance between the swept arm and `obstacle` moving as a
+// run moves it (position0 + velocity t), by the engine's collision code.
+// Capsules whose bounding distance exceeds the best found so far (or
+// `enough`, when finite: then a result above it only says "more than
+// enough", and one at or below it may be an upper bound, found without
+// measuring) are not measured.
+double sweep_clearance(const ArmSweep& sweep, const Obstacle& obstacle,
+                       double enough = std::numeric_limits<double>::infinity());
+
+}  // namespace rrlab
