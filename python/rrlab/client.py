@@ -18,8 +18,10 @@ Every request says `Content-Type: application/json` when it has a body (the
 server refuses other bodies with 415), names the server in `Host` (urllib does)
 and sends no `Origin` (the server refuses foreign ones). `token` is sent as
 `Authorization: Bearer TOKEN` when given (servers that check no token ignore it).
-Errors are raised as `RrlabError` with the server's status, code, message and
-JSON path. The routes and their bodies: GET /api/openapi.json.
+An error answer is raised as `ApiError` (rrlab.ApiError, a rrlab.Error; the
+name `RrlabError` still works) with the server's status, code, message and
+JSON path; a wait that runs out raises `Timeout` (a TimeoutError too). The
+routes and their bodies: GET /api/openapi.json.
 """
 
 import json
@@ -28,7 +30,9 @@ import urllib.error
 import urllib.parse
 import urllib.request
 
-__all__ = ["Client", "RrlabError"]
+from .errors import ApiError, ArgumentError, Error, Timeout
+
+__all__ = ["ApiError", "Client", "Error", "RrlabError", "Timeout"]
 
 try:  # optional: frames as arrays
     import numpy as _np
@@ -38,16 +42,9 @@ except ImportError:  # pragma: no cover - depends on the machine
 _ENDED = ("completed", "stopped", "failed", "interrupted")
 
 
-class RrlabError(Exception):
-    """An error answer of the server: {"error": {"code", "message", "path"}}."""
-
-    def __init__(self, status, code, message, path="", body=None):
-        super().__init__(f"{status} {code}: {message}" + (f" (at {path})" if path else ""))
-        self.status = status
-        self.code = code
-        self.message = message
-        self.path = path
-        self.body = body
+# the client's errors are rrlab's (rrlab.errors): an error answer is an
+# ApiError, a wait that ran out a Timeout (a TimeoutError too), both rrlab.Error
+RrlabError = ApiError  # the earlier name of ApiError
 
 
 class Client:
@@ -62,7 +59,7 @@ class Client:
     def __init__(self, url="http://127.0.0.1:8080", token=None, timeout=300.0):
         parsed = urllib.parse.urlsplit(url)
         if parsed.scheme not in ("http", "https") or not parsed.netloc:
-            raise ValueError(f"url must be http://HOST:PORT, got {url!r}")
+            raise ArgumentError(f"url must be http://HOST:PORT, got {url!r}")
         self.url = f"{parsed.scheme}://{parsed.netloc}"
         self.token = token
         self.timeout = timeout
@@ -101,8 +98,8 @@ class Client:
             try:
                 error = json.loads(text)["error"]
             except (ValueError, KeyError, TypeError):
-                raise RrlabError(e.code, "http", text.strip() or e.reason) from None
-            raise RrlabError(e.code, error.get("code", ""), error.get("message", ""), error.get("path", ""), text) from None
+                raise ApiError(e.code, "http", text.strip() or e.reason) from None
+            raise ApiError(e.code, error.get("code", ""), error.get("message", ""), error.get("path", ""), text) from None
         if kind.startswith("application/json"):
             return json.loads(text)
         return text
@@ -141,7 +138,7 @@ class Client:
         return self.request("GET", "/api/scenarios/" + urllib.parse.quote(name, safe=""))
 
     def validate_scenario(self, scenario):
-        """Checks a scenario object as a run would (RrlabError 422 naming the path); stores nothing."""
+        """Checks a scenario object as a run would (ApiError 422 naming the path); stores nothing."""
         return self.request("POST", "/api/scenarios/validate", scenario)
 
     def add_scenario(self, scenario):
@@ -205,7 +202,7 @@ class Client:
             if run["status"] in _ENDED:
                 return run
             if deadline is not None and time.monotonic() > deadline:
-                raise TimeoutError(f"run {run_id} is still {run['status']} after {timeout} s")
+                raise Timeout(f"run {run_id} is still {run['status']} after {timeout} s")
             time.sleep(poll)
 
     def frames(self, run_id, start=0, stop=None, stride=1, arrays=None):
@@ -361,7 +358,7 @@ class Client:
                 try:
                     text = loop.run_until_complete(asyncio.wait_for(socket.recv(), timeout))
                 except asyncio.TimeoutError:
-                    raise TimeoutError(f"no message from {path} for {timeout} s") from None
+                    raise Timeout(f"no message from {path} for {timeout} s") from None
                 except websockets.ConnectionClosed:
                     return
                 message = json.loads(text)
@@ -390,7 +387,7 @@ class Client:
         deadline = None if timeout is None else time.monotonic() + timeout
         while status["status"] == "running":
             if deadline is not None and time.monotonic() > deadline:
-                raise TimeoutError(f"sweep {status['id']} still running after {timeout} s")
+                raise Timeout(f"sweep {status['id']} still running after {timeout} s")
             time.sleep(poll)
             status = self.request("GET", f"/api/sweeps/{int(status['id'])}")
         return status
