@@ -10,6 +10,8 @@ method may be written in Python (rrlab.Method); rrlab.client talks to a
 running `rrlab serve`. Every exception rrlab raises is an rrlab.Error
 (rrlab.errors). docs/python.md has the rest.
 """
+from typing import NoReturn
+
 from . import errors
 from .errors import (ApiError, ArgumentError, EngineError, Error, InputStateError, MethodError, ParamError,
                      ScenarioError, Timeout)
@@ -24,7 +26,7 @@ try:
 except ImportError as _missing:  # no engine module (a source tree) or no numpy: rrlab.client still works
     _engine_error = _missing
 
-    def __getattr__(name):
+    def __getattr__(name: str) -> NoReturn:
         raise ImportError(f"rrlab.{name} needs rrlab's engine module, which did not load ({_engine_error}); "
                           "install the package as docs/python.md says") from _engine_error
 
