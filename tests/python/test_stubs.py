@@ -5,7 +5,8 @@ and the same ones defaulted; and the stub names nothing the module lacks.
 The module's signatures are pybind11's, the first line of each docstring
 (`run(scenario: object, method: object = None, ...) -> dict`), or its
 numbered lines for an overloaded function. Also: every public binding has a
-docstring beyond its signature."""
+docstring beyond its signature, and so has every public function and class
+of the pure-Python modules."""
 import ast
 import os
 import re
@@ -192,3 +193,25 @@ def test_every_public_binding_has_a_docstring(name):
                 assert documented(getattr(value, member).__doc__, True), f"{name}.{member}"
     elif callable(value):
         assert documented(value.__doc__, True), name
+
+
+def test_every_public_function_and_class_of_the_pure_python_modules_has_a_docstring():
+    import inspect
+
+    import rrlab._sweep
+    import rrlab.client
+    import rrlab.errors
+    import rrlab.method
+
+    missing = []
+    for module in (rrlab, rrlab._sweep, rrlab.client, rrlab.errors, rrlab.method):
+        for name, value in vars(module).items():
+            if name.startswith("_") or getattr(value, "__module__", None) != module.__name__:
+                continue
+            if inspect.isclass(value) or inspect.isfunction(value):
+                if not (value.__doc__ or "").strip():
+                    missing.append(f"{module.__name__}.{name}")
+                members = vars(value).items() if inspect.isclass(value) else []
+                missing += [f"{module.__name__}.{name}.{m}" for m, f in members
+                            if not m.startswith("_") and inspect.isfunction(f) and not (f.__doc__ or "").strip()]
+    assert not missing, missing
