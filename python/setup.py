@@ -1,7 +1,9 @@
 """Installs the rrlab package: setup.py builds the engine module (_rrlab) with
 CMake, in the project's Release build directory (../build, or the directory
 RRLAB_BUILD_DIR names), then installs it with the pure-Python files of
-python/rrlab. numpy comes from Debian (python3-numpy); nothing is downloaded.
+python/rrlab, its stubs (_rrlab.pyi) and py.typed. The metadata is
+pyproject.toml's [project] table. numpy comes from Debian (python3-numpy);
+nothing is downloaded.
 
     pip install --no-build-isolation ./python
 """
@@ -24,6 +26,12 @@ def project_version():
     """The project(rrlab VERSION x.y.z) of CMakeLists.txt, which `rrlab --version` prints too."""
     with open(os.path.join(ROOT, "CMakeLists.txt"), encoding="utf-8") as f:
         return re.search(r"project\(rrlab VERSION ([0-9.]+)", f.read()).group(1)
+
+
+def package_version():
+    """The [project] version of pyproject.toml (the metadata pip installs)."""
+    with open(os.path.join(HERE, "pyproject.toml"), encoding="utf-8") as f:
+        return re.search(r'^version = "([^"]+)"', f.read(), re.M).group(1)
 
 
 # before anything else (pip runs this file first to read the metadata): the
@@ -60,13 +68,10 @@ class EngineDistribution(Distribution):
         return True  # a wheel for this platform and Python: it holds a compiled module
 
 
-setup(
-    name="rrlab",
-    version=project_version(),
-    description="Redundancy-resolution lab: the engine in-process, methods in Python, the REST client",
-    packages=["rrlab"],
-    python_requires=">=3.9",
-    cmdclass={"build_py": BuildWithEngine},
-    distclass=EngineDistribution,
-    zip_safe=False,
-)
+# the metadata is pyproject.toml's [project] table; its version must be the
+# engine's, which rrlab.__version__ reports
+if package_version() != project_version():
+    sys.exit(f"rrlab: python/pyproject.toml says version {package_version()}, CMakeLists.txt {project_version()}: "
+             "make them one")
+
+setup(cmdclass={"build_py": BuildWithEngine}, distclass=EngineDistribution)

@@ -12,7 +12,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))  # python/: rrlab.client uninstalled
-from rrlab.client import Client, RrlabError  # noqa: E402
+from rrlab.client import ApiError, Client  # noqa: E402
 
 
 def number(value, digits=4):
@@ -33,7 +33,7 @@ def main():
     options = {"steps": args.steps} if args.steps else {}
     try:
         result = client.compare(args.scenario, args.methods, **options)
-    except RrlabError as e:
+    except ApiError as e:
         print(f"compare failed: {e}", file=sys.stderr)
         return 2
 

@@ -7,10 +7,14 @@
 
 The engine runs in this process (the GIL is released while it steps); a
 method may be written in Python (rrlab.Method); rrlab.client talks to a
-running `rrlab serve`. docs/python.md has the rest.
+running `rrlab serve`. Every exception rrlab raises is an rrlab.Error
+(rrlab.errors). docs/python.md has the rest.
 """
+from typing import NoReturn
+
 from . import errors
-from .errors import InputStateError, MethodError, ParamError, ScenarioError
+from .errors import (ApiError, ArgumentError, EngineError, Error, InputStateError, MethodError, ParamError,
+                     ScenarioError, Timeout)
 from ._sweep import sweep
 from .method import Method, Param
 
@@ -22,12 +26,12 @@ try:
 except ImportError as _missing:  # no engine module (a source tree) or no numpy: rrlab.client still works
     _engine_error = _missing
 
-    def __getattr__(name):
+    def __getattr__(name: str) -> NoReturn:
         raise ImportError(f"rrlab.{name} needs rrlab's engine module, which did not load ({_engine_error}); "
                           "install the package as docs/python.md says") from _engine_error
 
 __all__ = [
-    "InputStateError", "Method", "MethodError", "Param", "ParamError", "Scenario", "ScenarioError",
-    "Simulator", "StepState", "__version__", "errors", "generate", "load_scenario", "methods", "register_method",
-    "replay", "run", "sweep",
+    "ApiError", "ArgumentError", "EngineError", "Error", "InputStateError", "Method", "MethodError", "Param",
+    "ParamError", "Scenario", "ScenarioError", "Simulator", "StepState", "Timeout", "__version__", "errors",
+    "generate", "load_scenario", "methods", "register_method", "replay", "run", "sweep",
 ]

@@ -1,38 +1,53 @@
 """rrlab.sweep: a sweep spec (docs/cli.md, "sweep") run in this process, with
 methods written in Python beside the built-in ones."""
+from __future__ import annotations
+
 import copy
 import csv
 import io
 import json
 import os
 import tempfile
+from types import ModuleType
+from typing import Any, Iterable, Mapping, Union
+
+from .method import Method
+
+# a "methods" entry of a sweep: a name, a {"name", "params"} configuration
+# (its name may be a Python method), or a Python method
+MethodEntry = Union[str, Mapping[str, Any], Method]
 
 
-def _method_entry(entry, engine):
+def _method_entry(entry: MethodEntry, engine: ModuleType) -> str | dict[str, Any]:
     """A spec "methods" entry with Python methods registered and named."""
     if isinstance(entry, str):
         return entry
-    if isinstance(entry, dict):
-        entry = dict(entry)
-        if not isinstance(entry.get("name"), str):
-            entry["name"] = engine.register_method(entry["name"])
-        return entry
-    return engine.register_method(entry)
+    if isinstance(entry, Mapping):
+        config = dict(entry)
+        if not isinstance(config.get("name"), str):
+            config["name"] = engine.register_method(config["name"])
+        return config
+    name: str = engine.register_method(entry)
+    return name
 
 
-def _typed(value):
+def _typed(value: str) -> int | float | str | None:
     """A per-run CSV cell as a number where it is one ("" is None)."""
     if value == "":
         return None
-    for kind in (int, float):
-        try:
-            return kind(value)
-        except ValueError:
-            pass
-    return value
+    try:
+        return int(value)
+    except ValueError:
+        pass
+    try:
+        return float(value)
+    except ValueError:
+        return value
 
 
-def sweep(spec, methods=None, jobs=2, db=None, scenarios_dir=None, frames=False):
+def sweep(spec: Mapping[str, Any] | str | os.PathLike[str], methods: Iterable[MethodEntry] | None = None,
+          jobs: int = 2, db: str | os.PathLike[str] | None = None,
+          scenarios_dir: str | os.PathLike[str] | None = None, frames: bool = False) -> dict[str, Any]:
     """Runs a sweep spec (a dict or a JSON file) in this process.
 
     methods: replaces the spec's "methods": names, {"name", "params"} configs
@@ -55,7 +70,7 @@ def sweep(spec, methods=None, jobs=2, db=None, scenarios_dir=None, frames=False)
     if isinstance(spec, (str, os.PathLike)):
         path = os.fspath(spec)
         with open(path, encoding="utf-8") as f:
-            doc = json.load(f)
+            doc: dict[str, Any] = json.load(f)
         spec_dir = os.path.dirname(os.path.abspath(path))
     else:
         doc = copy.deepcopy(dict(spec))

@@ -18,19 +18,27 @@ Every request says `Content-Type: application/json` when it has a body (the
 server refuses other bodies with 415), names the server in `Host` (urllib does)
 and sends no `Origin` (the server refuses foreign ones). `token` is sent as
 `Authorization: Bearer TOKEN` when given (servers that check no token ignore it).
-Errors are raised as `RrlabError` with the server's status, code, message and
-JSON path. The routes and their bodies: GET /api/openapi.json.
+An error answer is raised as `ApiError` (rrlab.ApiError, a rrlab.Error; the
+name `RrlabError` still works) with the server's status, code, message and
+JSON path; a wait that runs out raises `Timeout` (a TimeoutError too). The
+routes and their bodies: GET /api/openapi.json.
 """
+from __future__ import annotations
 
+import importlib
 import json
 import time
 import urllib.error
 import urllib.parse
 import urllib.request
+from typing import Any, Dict, Iterable, Iterator, Mapping, Sequence, Union
 
-__all__ = ["Client", "RrlabError"]
+from .errors import ApiError, ArgumentError, Error, Timeout
 
-try:  # optional: frames as arrays
+__all__ = ["ApiError", "Client", "Error", "RrlabError", "Timeout"]
+
+_np: Any  # optional: frames as arrays
+try:
     import numpy as _np
 except ImportError:  # pragma: no cover - depends on the machine
     _np = None
@@ -38,16 +46,18 @@ except ImportError:  # pragma: no cover - depends on the machine
 _ENDED = ("completed", "stopped", "failed", "interrupted")
 
 
-class RrlabError(Exception):
-    """An error answer of the server: {"error": {"code", "message", "path"}}."""
+# the client's errors are rrlab's (rrlab.errors): an error answer is an
+# ApiError, a wait that ran out a Timeout (a TimeoutError too), both rrlab.Error
+RrlabError = ApiError  # the earlier name of ApiError
 
-    def __init__(self, status, code, message, path="", body=None):
-        super().__init__(f"{status} {code}: {message}" + (f" (at {path})" if path else ""))
-        self.status = status
-        self.code = code
-        self.message = message
-        self.path = path
-        self.body = body
+# A JSON value as the server answers it (json.loads): dicts, lists, numbers, strings
+JSON = Any
+# A run or sweep id as the server gives it (an int; a string of one is accepted)
+RunId = Union[int, str]
+# a method as a run or a comparison names it: a name, or {"name", "params"}
+MethodConfig = Union[str, Mapping[str, Any]]
+# frames as columns (Client.frames): numpy arrays, or lists; "diagnostics" a dict of them
+Columns = Dict[str, Any]
 
 
 class Client:
@@ -59,23 +69,24 @@ class Client:
     ended, so keep it generous).
     """
 
-    def __init__(self, url="http://127.0.0.1:8080", token=None, timeout=300.0):
+    def __init__(self, url: str = "http://127.0.0.1:8080", token: str | None = None, timeout: float = 300.0) -> None:
         parsed = urllib.parse.urlsplit(url)
         if parsed.scheme not in ("http", "https") or not parsed.netloc:
-            raise ValueError(f"url must be http://HOST:PORT, got {url!r}")
+            raise ArgumentError(f"url must be http://HOST:PORT, got {url!r}")
         self.url = f"{parsed.scheme}://{parsed.netloc}"
         self.token = token
         self.timeout = timeout
 
     # ---- plumbing ----
 
-    def _headers(self):
+    def _headers(self) -> dict[str, str]:
         headers = {"Accept": "application/json"}
         if self.token:
             headers["Authorization"] = f"Bearer {self.token}"
         return headers
 
-    def request(self, verb, path, body=None, query=None, accept=None):
+    def request(self, verb: str, path: str, body: JSON = None, query: Mapping[str, Any] | None = None,
+                accept: str | None = None) -> JSON:
         """One REST request; returns the parsed JSON answer (text for CSV).
 
         verb: GET, POST, PUT, PATCH or DELETE; path: "/api/..."; body: a JSON
@@ -87,7 +98,7 @@ class Client:
         headers = self._headers()
         if accept:
             headers["Accept"] = accept
-        data = None
+        data: bytes | None = None
         if body is not None:
             data = json.dumps(body).encode("utf-8")
             headers["Content-Type"] = "application/json"
@@ -101,56 +112,57 @@ class Client:
             try:
                 error = json.loads(text)["error"]
             except (ValueError, KeyError, TypeError):
-                raise RrlabError(e.code, "http", text.strip() or e.reason) from None
-            raise RrlabError(e.code, error.get("code", ""), error.get("message", ""), error.get("path", ""), text) from None
+                raise ApiError(e.code, "http", text.strip() or e.reason) from None
+            raise ApiError(e.code, error.get("code", ""), error.get("message", ""), error.get("path", ""), text) from None
         if kind.startswith("application/json"):
             return json.loads(text)
         return text
 
     # ---- catalogue ----
 
-    def health(self):
+    def health(self) -> JSON:
         """{status, version, api_version, uptime_s, websockets, building}"""
         return self.request("GET", "/api/health")
 
-    def openapi(self):
+    def openapi(self) -> JSON:
         """The server's OpenAPI 3.1 document."""
         return self.request("GET", "/api/openapi.json")
 
-    def methods(self):
+    def methods(self) -> JSON:
         """Every method with its parameter specs (default, min, max, unit, choices)."""
         return self.request("GET", "/api/methods")
 
-    def scenarios(self):
+    def scenarios(self) -> list[JSON]:
         """The whole catalogue as summaries: [{name, title, description (at most
         200 characters), source, builtin, kind, dof, obstacles, bytes}, ...],
         fetched a page at a time (scenario_page)."""
-        out = []
+        out: list[JSON] = []
         while True:
             page = self.scenario_page(limit=1000, offset=len(out))
             out.extend(page["scenarios"])
             if not page["scenarios"] or len(out) >= page["total"]:
                 return out
 
-    def scenario_page(self, limit=100, offset=0):
+    def scenario_page(self, limit: int = 100, offset: int = 0) -> JSON:
         """One page of the catalogue: {scenarios: [summary, ...], total, offset, limit}."""
         return self.request("GET", "/api/scenarios?limit=%d&offset=%d" % (limit, offset))
 
-    def scenario(self, name):
+    def scenario(self, name: str) -> JSON:
         """One scenario's JSON."""
         return self.request("GET", "/api/scenarios/" + urllib.parse.quote(name, safe=""))
 
-    def validate_scenario(self, scenario):
-        """Checks a scenario object as a run would (RrlabError 422 naming the path); stores nothing."""
+    def validate_scenario(self, scenario: Mapping[str, Any]) -> JSON:
+        """Checks a scenario object as a run would (ApiError 422 naming the path); stores nothing."""
         return self.request("POST", "/api/scenarios/validate", scenario)
 
-    def add_scenario(self, scenario):
+    def add_scenario(self, scenario: Mapping[str, Any]) -> JSON:
         """Stores a scenario object with a new `name` in the server's database."""
         return self.request("POST", "/api/scenarios", scenario)
 
     # ---- runs ----
 
-    def run(self, scenario, method=None, params=None, mode="batch", **options):
+    def run(self, scenario: str | Mapping[str, Any], method: str | None = None,
+            params: Mapping[str, Any] | None = None, mode: str = "batch", **options: Any) -> JSON:
         """Starts a run. scenario: a catalogue name or a scenario dict.
 
         mode "batch" (default here): waits until the run has ended and returns
@@ -159,7 +171,7 @@ class Client:
         set_params, move_obstacle, joystick, control, and watch it with stream.
         options: rate, paused, steps, wait, display_hz (see POST /api/runs).
         """
-        body = {"scenario": scenario, "mode": mode}
+        body: dict[str, Any] = {"scenario": scenario, "mode": mode}
         if method is not None:
             body["method"] = method
         if params:
@@ -167,37 +179,41 @@ class Client:
         body.update(options)
         return self.request("POST", "/api/runs", body)
 
-    def compare(self, scenario, methods, mode="batch", **options):
+    def compare(self, scenario: str | Mapping[str, Any], methods: Iterable[MethodConfig], mode: str = "batch",
+                **options: Any) -> JSON:
         """Runs 2 to 8 methods on one scenario in lockstep.
 
         methods: names or {"name", "params"} dicts. batch (default): waits and
         returns {group, runs, comparison}; live: returns {group, runs} at once.
         options: steps, wait, rate, paused.
         """
-        body = {"scenario": scenario, "methods": list(methods), "mode": mode}
+        body: dict[str, Any] = {"scenario": scenario, "methods": list(methods), "mode": mode}
         body.update(options)
         return self.request("POST", "/api/compare", body)
 
-    def runs(self, scenario=None, method=None, status=None, limit=None, offset=None):
+    def runs(self, scenario: str | None = None, method: str | None = None, status: str | None = None,
+             limit: int | None = None, offset: int | None = None) -> JSON:
         """Stored runs, newest first."""
         return self.request("GET", "/api/runs", query={"scenario": scenario, "method": method, "status": status,
                                                        "limit": limit, "offset": offset})
 
-    def get_run(self, run_id):
+    def get_run(self, run_id: RunId) -> JSON:
         """One stored run (with `live` status while it runs)."""
         return self.request("GET", f"/api/runs/{int(run_id)}")
 
-    def delete_run(self, run_id):
+    def delete_run(self, run_id: RunId) -> JSON:
+        """Deletes a stored run with its frames and events (ApiError 409 while it is live)."""
         return self.request("DELETE", f"/api/runs/{int(run_id)}")
 
-    def events(self, run_id):
+    def events(self, run_id: RunId) -> JSON:
+        """The input events the run received, in order."""
         return self.request("GET", f"/api/runs/{int(run_id)}/events")
 
-    def record(self, run_id):
+    def record(self, run_id: RunId) -> JSON:
         """The run as a record `rrlab run FILE` runs again."""
         return self.request("GET", f"/api/runs/{int(run_id)}/record")
 
-    def wait(self, run_id, timeout=None, poll=0.1):
+    def wait(self, run_id: RunId, timeout: float | None = None, poll: float = 0.1) -> JSON:
         """Waits until a run has ended; returns the stored run."""
         deadline = None if timeout is None else time.monotonic() + timeout
         while True:
@@ -205,10 +221,11 @@ class Client:
             if run["status"] in _ENDED:
                 return run
             if deadline is not None and time.monotonic() > deadline:
-                raise TimeoutError(f"run {run_id} is still {run['status']} after {timeout} s")
+                raise Timeout(f"run {run_id} is still {run['status']} after {timeout} s")
             time.sleep(poll)
 
-    def frames(self, run_id, start=0, stop=None, stride=1, arrays=None):
+    def frames(self, run_id: RunId, start: int = 0, stop: int | None = None, stride: int = 1,
+               arrays: bool | None = None) -> Columns:
         """A run's stored frames, exact values, as columns.
 
         Returns a dict: "seq", "step", "t", "task_error", ... one entry per
@@ -221,7 +238,8 @@ class Client:
             arrays = _np is not None
         if arrays and _np is None:
             raise RuntimeError("arrays=True needs numpy (Debian: python3-numpy)")
-        rows, names = [], []
+        rows: list[dict[str, Any]] = []
+        names: list[str] = []
         first = int(start)
         while True:
             page = self.request("GET", f"/api/runs/{int(run_id)}/frames",
@@ -236,7 +254,7 @@ class Client:
             first = last + stride
         # a frame is {seq, step, t, q, ..., metrics: {...}, diagnostics: [...]}
         # (docs/api.md, Frames): the metrics become columns of their own
-        columns = {}
+        columns: Columns = {}
         first_row = rows[0] if rows else {}
         for key in first_row:
             if key == "metrics":
@@ -246,7 +264,7 @@ class Client:
                 columns[key] = [row.get(key) for row in rows]
         columns["diagnostics"] = {name: [row["diagnostics"][i] for row in rows] for i, name in enumerate(names)}
         if arrays:
-            def to_array(values):  # null (a non-finite number) becomes nan
+            def to_array(values: list[Any]) -> Any:  # null (a non-finite number) becomes nan
                 if values and isinstance(values[0], list):
                     return _np.array([[_np.nan if x is None else x for x in v] for v in values], dtype=float)
                 return _np.array([_np.nan if v is None else v for v in values], dtype=float)
@@ -263,35 +281,39 @@ class Client:
 
     # ---- live runs ----
 
-    def control(self, run_id, action=None, rate=None):
+    def control(self, run_id: RunId, action: str | None = None, rate: float | None = None) -> JSON:
         """action: start, pause, step, reset or stop; rate: real-time factor (0: as fast as possible)."""
-        body = {}
+        body: dict[str, Any] = {}
         if action is not None:
             body["action"] = action
         if rate is not None:
             body["rate"] = rate
         return self.request("POST", f"/api/runs/{int(run_id)}/control", body)
 
-    def pause(self, run_id):
+    def pause(self, run_id: RunId) -> JSON:
+        """Pauses a live run."""
         return self.control(run_id, "pause")
 
-    def resume(self, run_id):
+    def resume(self, run_id: RunId) -> JSON:
+        """Starts or resumes a live run."""
         return self.control(run_id, "start")
 
-    def step(self, run_id):
+    def step(self, run_id: RunId) -> JSON:
+        """Advances a paused live run by one step."""
         return self.control(run_id, "step")
 
-    def stop(self, run_id):
+    def stop(self, run_id: RunId) -> JSON:
         """Stops a run; answers once it has ended and its frames are stored."""
         return self.control(run_id, "stop")
 
-    def set_params(self, run_id, params=None, **named):
+    def set_params(self, run_id: RunId, params: Mapping[str, Any] | None = None, **named: Any) -> JSON:
         """Sets method parameters of a live run: set_params(id, {"gain": 8}) or set_params(id, gain=8)."""
         body = dict(params or {})
         body.update(named)
         return self.request("PATCH", f"/api/runs/{int(run_id)}/params", body)
 
-    def move_obstacle(self, run_id, obstacle_id, position=None, velocity=None, **fields):
+    def move_obstacle(self, run_id: RunId, obstacle_id: str, position: Sequence[float] | None = None,
+                      velocity: Sequence[float] | None = None, **fields: Any) -> JSON:
         """Moves (position, now) or reshapes (size, radius, points, normal, z) an obstacle of a live run."""
         body = dict(fields)
         if position is not None:
@@ -301,31 +323,34 @@ class Client:
         return self.request("PUT", f"/api/runs/{int(run_id)}/obstacles/" + urllib.parse.quote(obstacle_id, safe=""),
                             body)
 
-    def add_obstacle(self, run_id, obstacle):
+    def add_obstacle(self, run_id: RunId, obstacle: Mapping[str, Any]) -> JSON:
         """Adds an obstacle in scenario syntax (with a new `id`) to a live run."""
         return self.request("POST", f"/api/runs/{int(run_id)}/obstacles", obstacle)
 
-    def remove_obstacle(self, run_id, obstacle_id):
+    def remove_obstacle(self, run_id: RunId, obstacle_id: str) -> JSON:
+        """Removes an obstacle from a live run."""
         return self.request("DELETE", f"/api/runs/{int(run_id)}/obstacles/" + urllib.parse.quote(obstacle_id, safe=""))
 
-    def joystick(self, run_id, linear, angular=None):
+    def joystick(self, run_id: RunId, linear: Sequence[float], angular: Sequence[float] | None = None) -> JSON:
         """Velocity command to a live joystick run: linear [vx, vy(, vz)] m/s, angular rad/s; held until the next."""
-        body = {"linear": list(linear)}
+        body: dict[str, Any] = {"linear": list(linear)}
         if angular is not None:
             body["angular"] = list(angular)
         return self.request("POST", f"/api/runs/{int(run_id)}/joystick", body)
 
-    def switch_method(self, run_id, name, params=None):
-        body = {"name": name}
+    def switch_method(self, run_id: RunId, name: str, params: Mapping[str, Any] | None = None) -> JSON:
+        """Switches a live run to method `name` (with `params`) from its next step."""
+        body: dict[str, Any] = {"name": name}
         if params:
             body["params"] = params
         return self.request("POST", f"/api/runs/{int(run_id)}/method", body)
 
-    def replay(self, run_id, mode="resimulate", **options):
+    def replay(self, run_id: RunId, mode: str = "resimulate", **options: Any) -> JSON:
         """resimulate: re-runs it and compares every frame ({identical, ...}); frames: starts a replay."""
         return self.request("POST", f"/api/runs/{int(run_id)}/replay", dict(options, mode=mode))
 
-    def stream(self, run_id, replay=False, snapshots=False, max_frames=None, timeout=30.0):
+    def stream(self, run_id: RunId, replay: bool = False, snapshots: bool = False, max_frames: int | None = None,
+               timeout: float = 30.0) -> Iterator[dict[str, Any]]:
         """A generator of the frames a live run (or, with replay=True, a replay) streams.
 
         Frames come at the display rate, latest wins (a slow reader skips
@@ -337,9 +362,9 @@ class Client:
         obstacles, parameters), which come first and after each change.
         Needs the `websockets` package (Debian: python3-websockets).
         """
+        import asyncio
         try:
-            import asyncio
-            import websockets
+            websockets: Any = importlib.import_module("websockets")  # dynamic: its API moved between versions
         except ImportError as e:
             raise RuntimeError("Client.stream needs the websockets package (Debian: python3-websockets)") from e
         scheme = "wss" if self.url.startswith("https") else "ws"
@@ -347,9 +372,9 @@ class Client:
         url = scheme + self.url[self.url.index("://"):] + path
         headers = {"Authorization": f"Bearer {self.token}"} if self.token else {}
         loop = asyncio.new_event_loop()
-        socket = None
+        socket: Any = None
         try:
-            async def connect():  # created inside the loop: websockets binds to the running loop
+            async def connect() -> Any:  # created inside the loop: websockets binds to the running loop
                 try:
                     return await websockets.connect(url, extra_headers=headers, max_size=2 ** 24)
                 except TypeError:  # websockets >= 14 renamed extra_headers
@@ -361,10 +386,10 @@ class Client:
                 try:
                     text = loop.run_until_complete(asyncio.wait_for(socket.recv(), timeout))
                 except asyncio.TimeoutError:
-                    raise TimeoutError(f"no message from {path} for {timeout} s") from None
+                    raise Timeout(f"no message from {path} for {timeout} s") from None
                 except websockets.ConnectionClosed:
                     return
-                message = json.loads(text)
+                message: dict[str, Any] = json.loads(text)
                 kind = message.get("type")
                 if kind == "snapshot" and snapshots:
                     yield message
@@ -380,7 +405,8 @@ class Client:
 
     # ---- sweeps ----
 
-    def sweep(self, spec, jobs=1, wait=True, poll=0.5, timeout=None):
+    def sweep(self, spec: Mapping[str, Any], jobs: int = 1, wait: bool = True, poll: float = 0.5,
+              timeout: float | None = None) -> JSON:
         """Starts a sweep (a spec dict, as `rrlab sweep` takes; scenarios by
         catalogue name or generator). wait=True: polls until it has ended and
         returns its status with the report; wait=False: returns {id, ...} at once."""
@@ -390,10 +416,11 @@ class Client:
         deadline = None if timeout is None else time.monotonic() + timeout
         while status["status"] == "running":
             if deadline is not None and time.monotonic() > deadline:
-                raise TimeoutError(f"sweep {status['id']} still running after {timeout} s")
+                raise Timeout(f"sweep {status['id']} still running after {timeout} s")
             time.sleep(poll)
             status = self.request("GET", f"/api/sweeps/{int(status['id'])}")
         return status
 
-    def stop_sweep(self, sweep_id):
+    def stop_sweep(self, sweep_id: RunId) -> JSON:
+        """Stops a running sweep (the runs already stored stay)."""
         return self.request("POST", f"/api/sweeps/{int(sweep_id)}/control", {"action": "stop"})

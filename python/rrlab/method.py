@@ -5,8 +5,20 @@ Subclass Method, give it a `name` (no built-in method's) and a
 numbers); rrlab.run and rrlab.Simulator then run it like a built-in method:
 the same integration, limit and collision checks, metrics and frames.
 """
+from __future__ import annotations
+
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, Dict, List, Optional, Sequence, Union
+
+if TYPE_CHECKING:  # the engine module imports this one: no import of it at run time
+    import numpy
+    import numpy.typing as npt
+
+    from ._rrlab import StepState
+
+# What step() returns: n joint velocities, as a numpy array or a sequence of numbers
+JointVelocity = Union["npt.NDArray[numpy.floating[Any]]", Sequence[float]]
 
 
 @dataclass
@@ -36,13 +48,14 @@ class Method:
              per-link distances, points, normals and distance Jacobians)
     """
 
-    name = None
-    params = []
-    param_values = {}
+    name: Optional[str] = None
+    params: List[Param] = []
+    param_values: Dict[str, float] = {}  # set by the engine, per object
 
-    def param(self, name):
+    def param(self, name: str) -> float:
         """The current value of parameter `name` (set by the engine)."""
         return self.param_values[name]
 
-    def step(self, state):
+    def step(self, state: StepState) -> JointVelocity:
+        """The joint velocity (n numbers) to apply over [t, t + dt]."""
         raise NotImplementedError("a rrlab.Method needs a step(self, state) that returns the joint velocity")

@@ -243,6 +243,11 @@ struct PySimulator {
   }
 };
 
+// The engine's exceptions as rrlab.errors' classes, all rrlab.Error (and each
+// the built-in exception pybind11 would have raised: ValueError, RuntimeError),
+// so that `except rrlab.Error` catches whatever rrlab raises. pybind11's own
+// (a Python error passing through, a failed cast) and running out of memory
+// stay what they are.
 void translate_errors() {
   py::register_exception_translator([](std::exception_ptr error) {
     if (!error) return;
@@ -260,6 +265,14 @@ void translate_errors() {
       raise("MethodError", errors.attr("MethodError")(e.what()));
     } catch (const InputStateError& e) {
       raise("InputStateError", errors.attr("InputStateError")(e.what()));
+    } catch (const py::builtin_exception&) {
+      throw;  // pybind11's translator raises these
+    } catch (const std::bad_alloc&) {
+      throw;  // MemoryError
+    } catch (const std::invalid_argument& e) {
+      raise("ArgumentError", errors.attr("ArgumentError")(e.what()));
+    } catch (const std::exception& e) {
+      raise("EngineError", errors.attr("EngineError")(e.what()));
     }
   });
 }
@@ -278,19 +291,25 @@ PYBIND11_MODULE(_rrlab, m) {
   register_sweeps(m);
 
   py::class_<Scenario>(m, "Scenario", "A loaded, validated scenario (rrlab.load_scenario)")
-      .def_property_readonly("name", [](const Scenario& s) { return s.name; })
-      .def_property_readonly("dof", [](const Scenario& s) { return s.model.dof(); })
-      .def_property_readonly("dt", [](const Scenario& s) { return s.dt; })
-      .def_property_readonly("duration", [](const Scenario& s) { return s.duration; })
-      .def_property_readonly("steps", [](const Scenario& s) { return s.steps(); })
-      .def_property_readonly("task_space", [](const Scenario& s) { return std::string(to_string(s.task.space)); })
-      .def_property_readonly("method", [](const Scenario& s) { return s.method.name; })
-      .def_property_readonly("params", [](const Scenario& s) {
-        py::dict out;
-        for (const auto& [name, value] : s.method.params) out[py::str(name)] = value;
-        return out;
-      })
-      .def_property_readonly("q0", [](const Scenario& s) { return Eigen::VectorXd(s.q0); })
+      .def_property_readonly("name", [](const Scenario& s) { return s.name; }, "the scenario's name")
+      .def_property_readonly("dof", [](const Scenario& s) { return s.model.dof(); }, "the robot's number of joints n")
+      .def_property_readonly("dt", [](const Scenario& s) { return s.dt; }, "step length (s)")
+      .def_property_readonly("duration", [](const Scenario& s) { return s.duration; }, "the run's length (s)")
+      .def_property_readonly("steps", [](const Scenario& s) { return s.steps(); }, "steps in a run: duration / dt")
+      .def_property_readonly(
+          "task_space", [](const Scenario& s) { return std::string(to_string(s.task.space)); },
+          "the task's space: xy, xyz or pose")
+      .def_property_readonly("method", [](const Scenario& s) { return s.method.name; }, "the scenario's method's name")
+      .def_property_readonly(
+          "params",
+          [](const Scenario& s) {
+            py::dict out;
+            for (const auto& [name, value] : s.method.params) out[py::str(name)] = value;
+            return out;
+          },
+          "the parameters the scenario sets for its method, by name (numbers)")
+      .def_property_readonly(
+          "q0", [](const Scenario& s) { return Eigen::VectorXd(s.q0); }, "the initial joint positions (n,)")
       .def("__repr__", [](const Scenario& s) {
         return "<rrlab.Scenario " + s.name + ": " + std::to_string(s.model.dof()) + " joints, " +
                to_string(s.task.space) + " task, " + std::to_string(s.steps()) + " steps, method " + s.method.name + ">";
@@ -325,7 +344,10 @@ PYBIND11_MODULE(_rrlab, m) {
              s->sim = make_simulator(scenario_of(scenario), method, params, s->python_method);
              return s;
            }),
-           py::arg("scenario"), py::arg("method") = py::none(), py::arg("params") = py::none())
+           py::arg("scenario"), py::arg("method") = py::none(), py::arg("params") = py::none(),
+           "A run of `scenario` (a Scenario, a file path, a dict or a JSON string) with `method` (None: the "
+           "scenario's own with its parameters; a built-in method's name, from its defaults; or a Python method "
+           "object) and `params` (a dict of numbers, or labels for enumerations), before its first step")
       .def(
           "step",
           [](PySimulator& s, const py::object& count) {
@@ -335,21 +357,27 @@ PYBIND11_MODULE(_rrlab, m) {
             step_without_gil(*s.sim, steps, nullptr);
           },
           py::arg("count") = 1, "Advances `count` steps (fewer at the end of the run)")
-      .def_property_readonly("done",
-                             [](const PySimulator& s) {
-                               const PySimulator::Use use(s);
-                               return s.sim->done();
-                             })
-      .def_property_readonly("method",
-                             [](const PySimulator& s) {
-                               const PySimulator::Use use(s);
-                               return s.sim->method_name();
-                             })
-      .def_property_readonly("params",
-                             [](const PySimulator& s) {
-                               const PySimulator::Use use(s);
-                               return to_python(param_values_json(s.sim->method()));
-                             })
+      .def_property_readonly(
+          "done",
+          [](const PySimulator& s) {
+            const PySimulator::Use use(s);
+            return s.sim->done();
+          },
+          "True once the run has taken all its steps (step() then does nothing)")
+      .def_property_readonly(
+          "method",
+          [](const PySimulator& s) {
+            const PySimulator::Use use(s);
+            return s.sim->method_name();
+          },
+          "the name of the method that steps the run now")
+      .def_property_readonly(
+          "params",
+          [](const PySimulator& s) {
+            const PySimulator::Use use(s);
+            return to_python(param_values_json(s.sim->method()));
+          },
+          "the method's current parameter values, by name (enumerations as labels)")
       .def_property_readonly("state",
                              [](const PySimulator& s) {
                                const PySimulator::Use use(s);
@@ -362,11 +390,13 @@ PYBIND11_MODULE(_rrlab, m) {
                              },
                              "the state the next step starts from: t, step, q, qdot")
       .def_property_readonly("frame", &PySimulator::frame, "the last step's frame (the CSV's columns)")
-      .def("summary",
-           [](const PySimulator& s) {
-             const PySimulator::Use use(s);
-             return to_python(summary_to_json(s.sim->summary()));
-           })
+      .def(
+          "summary",
+          [](const PySimulator& s) {
+            const PySimulator::Use use(s);
+            return to_python(summary_to_json(s.sim->summary()));
+          },
+          "The run's summary so far: the keys of rrlab run's (steps, max_tracking_error, collided, final_q, ...)")
       .def("apply", &PySimulator::apply, py::arg("kind"), py::arg("payload") = py::none(),
            "A live input as the server takes it: params, obstacle, obstacle_add, obstacle_remove, joystick, method, "
            "reset (docs/api.md)")
@@ -376,7 +406,9 @@ PYBIND11_MODULE(_rrlab, m) {
             const PySimulator::Use use(s);
             set_method_param(*s.sim, s.python_method, name, value);
           },
-          py::arg("name"), py::arg("value"))
+          py::arg("name"), py::arg("value"),
+          "Sets a parameter of the method: a number, or a label for an enumeration; out of range raises "
+          "rrlab.ScenarioError (rrlab.ParamError for a Python method's)")
       .def(
           "move_obstacle",
           [](PySimulator& s, const std::string& id, const py::object& position, const py::object& velocity) {
@@ -386,7 +418,9 @@ PYBIND11_MODULE(_rrlab, m) {
             if (!velocity.is_none()) payload["velocity"] = velocity;
             s.apply("obstacle", payload);
           },
-          py::arg("id"), py::arg("position") = py::none(), py::arg("velocity") = py::none())
+          py::arg("id"), py::arg("position") = py::none(), py::arg("velocity") = py::none(),
+          "Moves obstacle `id` to `position` now and/or gives it a constant `velocity` (m/s): "
+          "apply(\"obstacle\", {...})")
       .def(
           "joystick",
           [](PySimulator& s, const py::object& linear, const py::object& angular) {
@@ -395,6 +429,10 @@ PYBIND11_MODULE(_rrlab, m) {
             if (!angular.is_none()) payload["angular"] = angular;
             s.apply("joystick", payload);
           },
-          py::arg("linear"), py::arg("angular") = py::none())
-      .def("reset", [](PySimulator& s) { s.apply("reset", py::none()); });
+          py::arg("linear"), py::arg("angular") = py::none(),
+          "Velocity command to a joystick task: `linear` [vx, vy(, vz)] m/s, `angular` rad/s (pose tasks); held "
+          "until the next. rrlab.InputStateError when the task is not a joystick")
+      .def(
+          "reset", [](PySimulator& s) { s.apply("reset", py::none()); },
+          "Starts the run over from its first step, with the method's current parameters");
 }

@@ -136,7 +136,9 @@ void register_sweeps(py::module_& m) {
   m.def("register_method", &register_method, py::arg("method"),
         "Makes a Python method known by its name to scenarios and sweep specs in this process; returns the name");
   m.def("_run_sweep", &run_sweep_spec, py::arg("spec"), py::arg("spec_dir"), py::arg("scenarios_dir"),
-        py::arg("jobs"), py::arg("db"), py::arg("frames"));
+        py::arg("jobs"), py::arg("db"), py::arg("frames"),
+        "rrlab.sweep's engine (private): runs a spec (JSON text) into the database `db`; returns (report JSON "
+        "text, per-run CSV text, {sweep, runs, stored, already_stored, failures})");
   m.def(
       "generate",
       [](const std::string& family, const py::object& seed_argument, const py::object& count_argument,

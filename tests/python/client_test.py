@@ -21,7 +21,8 @@ sys.path.insert(0, os.path.join(SOURCE_DIR, "python"))
 sys.path.insert(0, os.path.join(SOURCE_DIR, "tests", "support"))
 
 import rrlab_serve  # noqa: E402
-from rrlab.client import Client, RrlabError  # noqa: E402
+import rrlab  # noqa: E402
+from rrlab.client import ApiError, Client, RrlabError  # noqa: E402
 
 BINARY = None
 HAVE_NUMPY = importlib.util.find_spec("numpy") is not None
@@ -133,19 +134,31 @@ class ClientTest(unittest.TestCase):
         self.assertIn("ranking", status["report"])
 
     def test_errors(self):
-        with self.assertRaises(RrlabError) as caught:
+        # an error answer is an rrlab.ApiError, an rrlab.Error like every exception rrlab raises
+        self.assertIs(RrlabError, ApiError)  # the earlier name
+        self.assertIs(ApiError, rrlab.ApiError)
+        with self.assertRaises(rrlab.Error) as caught:
             self.client.run("01_planar7_obstacles", "dls", {"lambda": -1})
+        self.assertIsInstance(caught.exception, ApiError)
         self.assertEqual(caught.exception.status, 400)
         self.assertEqual(caught.exception.path, "params.lambda")
-        with self.assertRaises(RrlabError) as caught:
+        with self.assertRaises(ApiError) as caught:
             self.client.run("no_such_scenario")
         self.assertEqual(caught.exception.status, 404)
         with self.assertRaises(RrlabError) as caught:
             self.client.validate_scenario({"robot": {"kind": "planar", "links": [{"length": -1}]},
                                            "task": {"trajectory": {"type": "joystick"}}})
         self.assertEqual((caught.exception.status, caught.exception.path), (422, "robot.links[0].length"))
+        with self.assertRaises(rrlab.ArgumentError):  # a ValueError too
+            Client("127.0.0.1:8080")
         with self.assertRaises(ValueError):
             Client("127.0.0.1:8080")
+        live = self.client.run("01_planar7_obstacles", mode="live", paused=True)
+        try:
+            with self.assertRaises(rrlab.Timeout):  # a TimeoutError too
+                self.client.wait(live["id"], timeout=0)
+        finally:
+            self.client.stop(live["id"])
 
     @staticmethod
     def python_block(path, after):
