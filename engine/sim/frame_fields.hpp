@@ -167,6 +167,21 @@ inline void assign(std::optional<Eigen::Quaterniond>& m, std::span<const double>
 }
 }  // namespace detail
 
+// The kind's name in the field list of GET /api/frame-fields.
+inline constexpr std::string_view frame_field_kind_name(FrameFieldKind kind) {
+  switch (kind) {
+    case FrameFieldKind::count: return "count";
+    case FrameFieldKind::number: return "number";
+    case FrameFieldKind::flag: return "flag";
+    case FrameFieldKind::link: return "link";
+    case FrameFieldKind::joints: return "joints";
+    case FrameFieldKind::vec3: return "vec3";
+    case FrameFieldKind::quaternion: return "quaternion";
+    case FrameFieldKind::diagnostics: return "diagnostics";
+  }
+  return "";
+}
+
 // Where the frame comes from: a stored frame (decoded from its blob) has only
 // the blob's fields; a live one has them all.
 enum class FrameOrigin : std::uint8_t { stored, live };

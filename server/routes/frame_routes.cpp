@@ -9,6 +9,7 @@
 
 #include <rrlab/server/routes/routes.hpp>
 #include <rrlab/sim/frame_csv.hpp>
+#include <rrlab/sim/frame_fields.hpp>
 #include <rrlab/storage/frame_codec.hpp>
 #include <rrlab/storage/run_store.hpp>
 #include <rrlab/util/nesting_depth.hpp>
@@ -102,6 +103,26 @@ ApiResponse get_frames(RouteContext& c) {
   response.stream = std::make_shared<FrameExport>(c.runs.store(), run.id, from, to, stride, std::move(names),
                                                   format == "csv", run.dof);
   return response;
+}
+
+ApiResponse get_frame_fields(RouteContext&) {
+  static const json fields = [] {
+    json list = json::array();
+    for (const FrameField& field : kFrameFields) {
+      json outputs = json::array();
+      if (field.outputs & kFrameBlob) outputs.push_back("stored");
+      if (field.outputs & kFrameCsv) outputs.push_back("csv");
+      if (field.outputs & kFrameJson) outputs.push_back("json");
+      list.push_back({{"name", field.name},
+                      {"unit", field.unit},
+                      {"kind", frame_field_kind_name(field.kind)},
+                      {"metric", field.metric},
+                      {"outputs", outputs},
+                      {"description", field.description}});
+    }
+    return json{{"blob_version", kFrameBlobVersion}, {"fields", list}};
+  }();
+  return json_response(200, fields);
 }
 
 }  // namespace rrlab::server

@@ -22,6 +22,7 @@ constexpr Route kRoutes[] = {
     {"GET", "/api/health", get_health},
     {"GET", "/api/methods", get_methods},
     {"GET", "/api/openapi.json", get_openapi},
+    {"GET", "/api/frame-fields", get_frame_fields},
     {"GET", "/api/scenarios", list_scenarios, true},
     {"POST", "/api/scenarios", post_scenario, true},
     {"POST", "/api/scenarios/validate", validate_scenario, true},  // the literal before the {} pattern

@@ -85,6 +85,8 @@ ApiResponse post_joystick(RouteContext&);
 ApiResponse post_method(RouteContext&);
 // frame_routes.cpp
 ApiResponse get_frames(RouteContext&);
+// The frame field table (sim/frame_fields.hpp): what the page charts and exports.
+ApiResponse get_frame_fields(RouteContext&);
 // replay_routes.cpp
 ApiResponse post_replay(RouteContext&);
 ApiResponse get_replay(RouteContext&);
