@@ -57,10 +57,10 @@ await suite('dashboard', [
     const clearance = 0.1 + radius + snapshot.model.links[2].radius;
     const goal = [mid[0] + normal[0] * clearance, mid[1] + normal[1] * clearance];
     const a = await pageState.toClient(t.page, from), b = await pageState.toClient(t.page, goal);
-    // the position the page sends at the drop (its last move, sent at the release)
+    // where the page drops the disc: its last move (sent at the release, unless the frames showed it already)
     await t.page.evaluate(() => {
       const view = window.__rrlab.session.lanes[0].view, sendMove = view.onObstacleDrag;
-      view.onObstacleDrag = (i, position, phase) => { if (phase === 'end') window.__dropped = position; sendMove(i, position, phase); };
+      view.onObstacleDrag = (i, position, phase) => { window.__dropped = position; sendMove(i, position, phase); };
     });
     await drag(t.page, a, b, 10);
     const dropped = await t.page.evaluate(() => window.__dropped);
