@@ -5,7 +5,7 @@
 // plots) and the stream's frames per second.
 // Usage (from tests/web, where playwright-core is installed):
 //   node ../../bench/web/page_fps.mjs
-import { startServer, launchBrowser, until } from '../../tests/web/harness.mjs';
+import { startServer, launchBrowser, eventually } from '../../tests/web/harness.mjs';
 
 const server = await startServer();
 const browser = await launchBrowser();
@@ -13,7 +13,7 @@ const browser = await launchBrowser();
 async function measure(label, path) {
   const page = await browser.newPage({ viewport: { width: 1400, height: 900 } });
   await page.goto(server.base + path);
-  await until(() => page.evaluate(() => window.__rrlab.session && window.__rrlab.session.lanes.every((l) => l.frame && l.view)), 'frames', 30000);
+  await eventually(() => page.evaluate(() => window.__rrlab.session && window.__rrlab.session.lanes.every((l) => l.frame && l.view)), { message: 'frames', timeout: 30000 });
   await page.waitForTimeout(1500);
   const result = await page.evaluate(async () => {
     const lanes = window.__rrlab.session.lanes;

@@ -4,7 +4,7 @@
 // when there is none); 2–4 lanes lay out without empty cells; the plots keep
 // their height beside the summary; a layout change applies to the group.
 // Usage: node compare_test.mjs   (RRLAB_BINARY, RRLAB_SCREENSHOTS, CHROMIUM)
-import { suite, until, check } from './harness.mjs';
+import { suite, eventually, check } from './harness.mjs';
 
 const summaryCells = (page) => page.evaluate(() => [...document.querySelectorAll('#summary-table tr')].map((tr) => ({
   row: tr.dataset.row || tr.className,
@@ -21,7 +21,7 @@ await suite('compare', [
     check(preset.join() === 'pinv,closest_point', `the preset compares pinv with an avoidance method (${preset})`);
     await t.page.selectOption('#rate', '0');  // as fast as possible: the group ends at once
     await t.page.click('#start-compare');
-    await until(async () => !(await t.page.isHidden('#compare-summary')), 'the summary at the end');
+    await eventually(async () => !(await t.page.isHidden('#compare-summary')), 'the summary at the end');
     check((await t.page.textContent('.verdict-headline')) === 'closest_point passes; pinv fails.', `the headline: ${await t.page.textContent('.verdict-headline')}`);
     const rows = await summaryCells(t.page);
     const verdict = rows.find((r) => r.row === 'verdict-row');
@@ -37,9 +37,9 @@ await suite('compare', [
     // a stricter criterion, typed on the page: both fail
     await t.page.fill('#crit-error', '0.001');
     await t.page.locator('#crit-error').dispatchEvent('change');
-    await until(async () => (await t.page.textContent('.verdict-headline')) === 'All fail the criterion.', 'the verdict under a 1 mm criterion');
+    await eventually(async () => (await t.page.textContent('.verdict-headline')) === 'All fail the criterion.', 'the verdict under a 1 mm criterion');
     await t.page.click('#crit-default');
-    await until(async () => (await t.page.textContent('.verdict-headline')).startsWith('closest_point passes'), 'the default criterion back');
+    await eventually(async () => (await t.page.textContent('.verdict-headline')).startsWith('closest_point passes'), 'the default criterion back');
     await t.screenshot('criterion');
   }],
 
@@ -47,7 +47,7 @@ await suite('compare', [
     // damped least squares without damping is the pseudoinverse
     const group = await t.post('/api/compare', { scenario: '01_planar7_obstacles', methods: ['pinv', { name: 'dls', params: { lambda: 0 } }], mode: 'batch' });
     await t.page.goto(`${t.base}/?compare=${group.runs.map((r) => r.id).join(',')}`);
-    await until(async () => !(await t.page.isHidden('#compare-summary')), 'the summary of a stored group');
+    await eventually(async () => !(await t.page.isHidden('#compare-summary')), 'the summary of a stored group');
     const headline = await t.page.textContent('.verdict-headline');
     check(headline.startsWith('No difference'), `the headline: ${headline}`);
     check(await t.page.locator('#summary-table tr:not([data-row^="step"]) td.best').count() === 0, 'no result is marked best (only the faster step time)');
@@ -57,7 +57,7 @@ await suite('compare', [
     for (const methods of [['pinv', 'dls', 'closest_point'], ['pinv', 'dls', 'closest_point', 'gpm']]) {
       const group = await t.post('/api/compare', { scenario: '00_demo_avoidance', methods, mode: 'batch', steps: 50 });
       await t.page.goto(`${t.base}/?compare=${group.runs.map((r) => r.id).join(',')}&frame=10`);
-      await until(() => t.page.evaluate((n) => window.__rrlab.session && window.__rrlab.session.lanes.filter((l) => l.view).length === n, methods.length), `${methods.length} views`);
+      await eventually(() => t.page.evaluate((n) => window.__rrlab.session && window.__rrlab.session.lanes.filter((l) => l.view).length === n, methods.length), `${methods.length} views`);
       const cells = await t.page.locator('#views .view-cell').evaluateAll((els) => els.map((e) => { const r = e.getBoundingClientRect(); return { x: r.x, y: r.y, w: r.width, h: r.height }; }));
       const views = await t.page.locator('#views').evaluate((e) => { const r = e.getBoundingClientRect(); return { x: r.x, y: r.y, w: r.width, h: r.height }; });
       const area = cells.reduce((a, c) => a + c.w * c.h, 0);
@@ -66,8 +66,8 @@ await suite('compare', [
     }
     await t.page.click('#compare-setup > summary');  // the panel folds away while a session is on screen
     await t.page.selectOption('#compare-layout', 'overlay');
-    await until(async () => (await t.page.locator('#views .view-cell').count()) === 1, 'the group on screen overlaid');
-    await until(() => t.page.evaluate(() => window.__rrlab.replay.seq === 10), 'the frame kept across the layout change');
+    await eventually(async () => (await t.page.locator('#views .view-cell').count()) === 1, 'the group on screen overlaid');
+    await eventually(() => t.page.evaluate(() => window.__rrlab.replay.seq === 10), 'the frame kept across the layout change');
     await t.screenshot('overlaid');
   }],
 ]);

@@ -3,14 +3,14 @@
 // the keyboard joystick, compare, the replay scrubber, the run list, and
 // reconnecting after the socket drops.
 // Usage: node dashboard_test.mjs   (RRLAB_BINARY, RRLAB_SCREENSHOTS, CHROMIUM)
-import { suite, until, check, pageState, longScenario, storedLongScenario } from './harness.mjs';
+import { suite, eventually, check, pageState, longScenario, storedLongScenario, drag } from './harness.mjs';
 
 const canvasPixels = (page, lane = 0) => page.evaluate((i) => window.__rrlab.session.lanes[i].view.canvas.toDataURL(), lane);
 
 async function openLive(t, scenario, extra = {}) {
   const run = await t.post('/api/runs', { scenario, mode: 'live', rate: 1, ...extra });
   await t.page.goto(`${t.base}/?run=${run.id}`);
-  await until(() => pageState.lane(t.page), 'the first frame');
+  await eventually(() => pageState.lane(t.page), 'the first frame');
   return run.id;
 }
 
@@ -20,14 +20,14 @@ await suite('dashboard', [
     const first = await pageState.lane(t.page);
     const before = await canvasPixels(t.page);
     await t.screenshot('live');
-    await until(async () => (await pageState.lane(t.page)).step > first.step + 30, 'frames to advance');
+    await eventually(async () => (await pageState.lane(t.page)).step > first.step + 30, 'frames to advance');
     check((await canvasPixels(t.page)) !== before, 'the canvas changes while the run plays');
     check(t.page.url().endsWith(`/?run=${id}`), `the address names the run: ${t.page.url()}`);
     // the run list shows it live, with Watch, and a frame count that grows
     const frames = async () => Number(await t.page.textContent(`#runs li[data-run="${id}"] .frames`));
-    await until(async () => (await t.page.locator(`#runs li[data-run="${id}"] button`, { hasText: 'Watch' }).count()) === 1, 'a Watch button');
+    await eventually(async () => (await t.page.locator(`#runs li[data-run="${id}"] button`, { hasText: 'Watch' }).count()) === 1, 'a Watch button');
     const n = await frames();
-    await until(async () => (await frames()) > n, 'the frame count to grow');
+    await eventually(async () => (await frames()) > n, 'the frame count to grow');
     // the scale bar is drawn in metres and the view fits the scene: the arm spans a good part of the canvas
     const span = await t.page.evaluate(() => {
       const lane = window.__rrlab.session.lanes[0], v = lane.view;
@@ -57,26 +57,34 @@ await suite('dashboard', [
     const clearance = 0.1 + radius + snapshot.model.links[2].radius;
     const goal = [mid[0] + normal[0] * clearance, mid[1] + normal[1] * clearance];
     const a = await pageState.toClient(t.page, from), b = await pageState.toClient(t.page, goal);
-    await t.page.mouse.move(a.x, a.y);
-    await t.page.mouse.down();
-    for (let i = 1; i <= 10; ++i) { await t.page.mouse.move(a.x + ((b.x - a.x) * i) / 10, a.y + ((b.y - a.y) * i) / 10); await t.page.waitForTimeout(60); }
-    await t.page.mouse.up();
+    // where the page drops the disc: its last move (sent at the release, unless the frames showed it already)
+    await t.page.evaluate(() => {
+      const view = window.__rrlab.session.lanes[0].view, sendMove = view.onObstacleDrag;
+      view.onObstacleDrag = (i, position, phase) => { window.__dropped = position; sendMove(i, position, phase); };
+    });
+    await drag(t.page, a, b, 10);
+    const dropped = await t.page.evaluate(() => window.__dropped);
+    // the step comes after the drop has reached the server: its distances count the disc where it was dropped
+    await eventually(async () => {
+      const last = (await t.get(`/api/runs/${id}/events`)).filter((e) => e.kind === 'obstacle').at(-1);
+      return last && Math.hypot(last.payload.position[0] - dropped[0], last.payload.position[1] - dropped[1]) < 1e-9;
+    }, 'the drop to reach the server');
     await t.post(`/api/runs/${id}/control`, { action: 'step' });
-    const moved = await until(async () => {
+    const moved = await eventually(async () => {
       const l = await pageState.lane(t.page);
       return Math.hypot(l.obstacles[index][0] - goal[0], l.obstacles[index][1] - goal[1]) < 0.02 ? l : null;
     }, 'the page to show the server at the dragged position');
     // the stored events carry the drag; the step's distance reflects the new place
     const events = await t.get(`/api/runs/${id}/events`);
     check(events.some((e) => e.kind === 'obstacle'), 'obstacle events are stored');
-    const frame = await until(async () => {
+    const frame = await eventually(async () => {
       const f = await t.page.evaluate(() => window.__rrlab.session.lanes[0].frame);
       return f.metrics.min_distance <= discDistance(f) + 1e-6 ? f : null;
     }, 'a stepped frame whose minimum distance counts the dragged disc');
     const disc = discDistance(frame);
     check(disc < 0.2 && disc < before - 0.05, `the disc's distance reflects the drag (${before.toFixed(3)} m before, ${disc.toFixed(3)} m after)`);
-    // it does not jump back: still there half a second later, as drawn
-    await t.page.waitForTimeout(500);
+    // it does not jump back: once the page draws the server's frames rather than the dragged position, it is there
+    await eventually(() => t.page.evaluate(() => window.__rrlab.session.lanes[0].view.pending === null), 'the page to let go of the dragged position');
     const drawn = await t.page.evaluate((i) => window.__rrlab.session.lanes[0].view.positionOf(i), index);
     check(Math.hypot(drawn[0] - moved.obstacles[index][0], drawn[1] - moved.obstacles[index][1]) < 1e-6, 'the drawn obstacle stays where it was dropped');
     await t.screenshot('dragged');
@@ -84,15 +92,15 @@ await suite('dashboard', [
 
   ['a 3D scenario renders in WebGL on the page, changes while it runs, and its obstacles drag in 3D', async (t) => {
     const id = await openLive(t, '17_chen_sim2_spatial16_window');
-    await until(() => t.page.evaluate(() => window.__rrlab.session.lanes[0].view && window.__rrlab.session.lanes[0].view.renderer), 'the three.js view');
+    await eventually(() => t.page.evaluate(() => window.__rrlab.session.lanes[0].view && window.__rrlab.session.lanes[0].view.renderer), 'the three.js view');
     check(await t.page.evaluate(() => window.__rrlab.session.lanes[0].view.renderer.getContext() instanceof WebGL2RenderingContext), 'a WebGL 2 context');
     const cell = t.page.locator('#views .view-cell').first();
     const first = await cell.screenshot();
     await t.screenshot('3d');
-    await until(async () => !(await cell.screenshot()).equals(first), 'the 3D picture to change while the run plays');
+    await eventually(async () => !(await cell.screenshot()).equals(first), 'the 3D picture to change while the run plays');
     // the drag acts on a paused run (inputs to it are applied): live however slow the machine (the run lasts 75 s)
     await t.post(`/api/runs/${id}/control`, { action: 'pause' });
-    await until(async () => (await t.get(`/api/runs/${id}`)).status === 'paused', 'the run to pause');
+    await eventually(async () => (await t.get(`/api/runs/${id}`)).status === 'paused', 'the run to pause');
     const grab = await t.page.evaluate(() => {
       const lane = window.__rrlab.session.lanes[0], view = lane.view;
       const index = lane.snapshot.obstacles.findIndex((o) => o.id === 'target_block');
@@ -104,33 +112,30 @@ await suite('dashboard', [
       return null;
     });
     check(grab, 'the cube can be grabbed near its centre');
-    await t.page.mouse.move(grab.x, grab.y);
-    await t.page.mouse.down();
-    for (let i = 1; i <= 8; ++i) { await t.page.mouse.move(grab.x + 6 * i, grab.y - 4 * i); await t.page.waitForTimeout(60); }
-    await t.page.mouse.up();
-    await until(async () => (await t.get(`/api/runs/${id}/events`)).some((e) => e.kind === 'obstacle' && e.payload.id === 'target_block'), 'the 3D drag to reach the server');
+    await drag(t.page, grab, { x: grab.x + 48, y: grab.y - 32 }, 8);
+    await eventually(async () => (await t.get(`/api/runs/${id}/events`)).some((e) => e.kind === 'obstacle' && e.payload.id === 'target_block'), 'the 3D drag to reach the server');
     await t.screenshot('3d-dragged');
     await t.post(`/api/runs/${id}/control`, { action: 'stop' });
   }],
 
   ['multi_preview ghosts are drawn as arms from the server\'s link segments', async (t) => {
     await openLive(t, '31_zhang_multi_preview');
-    const ghosts = await until(() => t.page.evaluate(() => {
+    const ghosts = await eventually(() => t.page.evaluate(() => {
       const f = window.__rrlab.session.lanes[0].frame;
       return f.overlays && f.overlays.ghost_links && f.overlays.ghost_links.length ? f.overlays.ghost_links : null;
     }), 'ghost link segments in the frames');
     check(ghosts.every((links) => links.length > 0), 'every ghost has its links');
     check(await t.page.isChecked('input[data-overlay=ghosts]'), 'the ghosts toggle is on');
-    await t.page.waitForTimeout(300);
+    const drawn = () => t.page.evaluate(() => !window.__rrlab.session.lanes[0].view.dirty);
+    await eventually(drawn, 'a frame with ghosts drawn');
     await t.screenshot('ghosts');
     // the toggle turns them off and on: the picture changes with it
     await t.page.click('[data-action=pause]');
-    await t.page.waitForTimeout(300);
+    await eventually(async () => (await t.page.textContent('#connection')) === 'paused' && drawn(), 'the paused run\'s last frame drawn');
     const cell = t.page.locator('#views .view-cell').first();
     const on = await cell.screenshot();
     await t.page.uncheck('input[data-overlay=ghosts]');
-    await t.page.waitForTimeout(200);
-    check(!(await cell.screenshot()).equals(on), 'turning the ghosts off changes the picture');
+    await eventually(async () => !(await cell.screenshot()).equals(on), 'turning the ghosts off to change the picture');
     await t.page.check('input[data-overlay=ghosts]');
   }],
 
@@ -147,19 +152,19 @@ await suite('dashboard', [
     const value = Number((spec.min + (spec.max - spec.min) * 0.37).toPrecision(6));
     await typed.fill(String(value));
     await typed.dispatchEvent('change');
-    await until(async () => (await t.get(`/api/runs/${id}/events`)).some((e) => e.kind === 'params'), 'a params event');
+    await eventually(async () => (await t.get(`/api/runs/${id}/events`)).some((e) => e.kind === 'params'), 'a params event');
     const stored = (await t.get(`/api/runs/${id}/events`)).find((e) => e.kind === 'params');
     check(Math.abs(stored.payload[name] - value) <= 1e-6 * Math.max(1, Math.abs(value)), `the stored ${name} is the typed value: ${JSON.stringify(stored.payload)}`);
-    await until(async () => (await t.page.locator(`.param.changed:has(#param-${name})`).count()) === 1, 'the parameter marked changed');
+    await eventually(async () => (await t.page.locator(`.param.changed:has(#param-${name})`).count()) === 1, 'the parameter marked changed');
     // another client's change comes as a params message: the same controls show it (the panel is not rebuilt)
     await slider.evaluate((el) => { el.dataset.kept = 'yes'; });
     await t.request('PATCH', `/api/runs/${id}/params`, { [name]: spec.max });
-    await until(async () => Number(await typed.inputValue()) === spec.max && Number(await slider.inputValue()) === Number(await slider.getAttribute('max')), `the controls to show ${spec.max}`);
+    await eventually(async () => Number(await typed.inputValue()) === spec.max && Number(await slider.inputValue()) === Number(await slider.getAttribute('max')), `the controls to show ${spec.max}`);
     check(await slider.evaluate((el) => el.dataset.kept === 'yes'), 'the panel was updated in place, not rebuilt');
     // a slider moved by the mouse sends its value (3 significant digits on a log slider)
     const box = await slider.boundingBox();
     await slider.click({ position: { x: box.width * 0.5, y: box.height / 2 } });
-    await until(async () => {
+    await eventually(async () => {
       const events = await t.get(`/api/runs/${id}/events`);
       const last = events[events.length - 1].payload[name];
       return Math.abs(last - Number(await typed.inputValue())) <= 1e-9 * Math.max(1, Math.abs(last)) && last !== spec.max;
@@ -167,14 +172,14 @@ await suite('dashboard', [
     // back to the run's starting value
     const count = (await t.get(`/api/runs/${id}/events`)).length;
     await t.page.locator(`button.reset[aria-label="reset ${name} to its starting value"]`).click();
-    await until(async () => {
+    await eventually(async () => {
       const events = await t.get(`/api/runs/${id}/events`);
       return events.length > count && events[events.length - 1].payload[name] === start;
     }, 'the reset to the starting value to be stored');
-    await until(async () => (await t.page.locator('.param.changed').count()) === 0, 'nothing marked changed after the reset');
+    await eventually(async () => (await t.page.locator('.param.changed').count()) === 0, 'nothing marked changed after the reset');
     await t.page.selectOption('#switch-method', 'dls');
     await t.page.click('#switch-method-go');
-    await until(async () => (await pageState.lane(t.page)).method === 'dls', 'the stream to report the new method');
+    await eventually(async () => (await pageState.lane(t.page)).method === 'dls', 'the stream to report the new method');
     check((await t.get(`/api/runs/${id}/events`)).some((e) => e.kind === 'method'), 'the method switch is stored');
     check((await t.page.textContent('#params-lane')).includes('dls'), 'the parameter panel shows the new method');
     await t.screenshot('switched');
@@ -185,12 +190,12 @@ await suite('dashboard', [
     const before = (await pageState.lane(t.page)).target;
     await t.page.locator('#views').click({ position: { x: 5, y: 5 } });
     await t.page.keyboard.down('ArrowUp');  // held until the target has moved
-    await until(async () => (await pageState.lane(t.page)).target[1] > before[1] + 0.01, 'the target to move up');
+    await eventually(async () => (await pageState.lane(t.page)).target[1] > before[1] + 0.01, 'the target to move up');
     await t.page.keyboard.up('ArrowUp');
     check((await t.get(`/api/runs/${id}/events`)).some((e) => e.kind === 'joystick'), 'joystick events are stored');
     // the release is sent too (rate-limited, maybe later): stopping before it
     // arrives would refuse it (409) on a slow or busy machine
-    await until(async () => {
+    await eventually(async () => {
       const events = (await t.get(`/api/runs/${id}/events`)).filter((e) => e.kind === 'joystick');
       return events.length && events.at(-1).payload.linear.every((v) => v === 0);
     }, 'the released key to send a zero command');
@@ -201,28 +206,25 @@ await suite('dashboard', [
     const group = await t.post('/api/compare', { scenario: await longScenario(t), methods: ['pinv', 'closest_point'], mode: 'live', rate: 1, paused: true });
     const [a, b] = group.runs.map((r) => r.id);
     await t.page.goto(`${t.base}/?compare=${a},${b}`);
-    await until(async () => (await pageState.lane(t.page, 0)) && (await pageState.lane(t.page, 1)), 'frames of both lanes');
+    await eventually(async () => (await pageState.lane(t.page, 0)) && (await pageState.lane(t.page, 1)), 'frames of both lanes');
     await t.page.click('[data-action=start]');
     const s0 = (await pageState.lane(t.page, 0)).step, s1 = (await pageState.lane(t.page, 1)).step;
-    await until(async () => (await pageState.lane(t.page, 0)).step > s0 + 20 && (await pageState.lane(t.page, 1)).step > s1 + 20, 'both arms to animate');
+    await eventually(async () => (await pageState.lane(t.page, 0)).step > s0 + 20 && (await pageState.lane(t.page, 1)).step > s1 + 20, 'both arms to animate');
     // paused for the drag (inputs to a paused run are applied): the arms stand still under the mouse
     await t.post(`/api/runs/${a}/control`, { action: 'pause' });
-    await until(async () => (await t.get(`/api/runs/${a}`)).status === 'paused' && (await t.get(`/api/runs/${b}`)).status === 'paused', 'the group to pause');
+    await eventually(async () => (await t.get(`/api/runs/${a}`)).status === 'paused' && (await t.get(`/api/runs/${b}`)).status === 'paused', 'the group to pause');
     check(await t.page.evaluate(() => document.querySelectorAll('#views .view-cell canvas').length) === 2, 'two views side by side');
     const lane = await pageState.lane(t.page, 1);
     const index = 1;
     const from = lane.obstacles[index];
     const p = await pageState.toClient(t.page, from, 1);
-    await t.page.mouse.move(p.x, p.y);
-    await t.page.mouse.down();
-    for (let i = 1; i <= 6; ++i) { await t.page.mouse.move(p.x + 8 * i, p.y + 5 * i); await t.page.waitForTimeout(60); }
-    await t.page.mouse.up();
-    await until(async () => (await t.get(`/api/runs/${a}/events`)).some((e) => e.kind === 'obstacle') &&
+    await drag(t.page, p, { x: p.x + 48, y: p.y + 30 }, 6);
+    await eventually(async () => (await t.get(`/api/runs/${a}/events`)).some((e) => e.kind === 'obstacle') &&
       (await t.get(`/api/runs/${b}/events`)).some((e) => e.kind === 'obstacle'), 'the drag to reach both runs');
     check((await t.page.locator('#metrics th').count()) === 3, 'the metrics table has a column per method');
     await t.screenshot('compare');
     await t.post(`/api/runs/${a}/control`, { action: 'stop' });
-    await until(async () => !(await t.page.isHidden('#compare-summary')), 'the summary table at the end');
+    await eventually(async () => !(await t.page.isHidden('#compare-summary')), 'the summary table at the end');
     check((await t.page.locator('#summary-table tr').count()) > 5, 'the summary lists the metrics');
     await t.screenshot('compare-summary');
   }],
@@ -237,12 +239,15 @@ await suite('dashboard', [
     await t.page.locator('#compare-rows .compare-row input').nth(1).fill('lambda=0.2');
     await t.page.selectOption('#compare-layout', 'overlay');
     await t.page.click('#start-compare');
-    await until(async () => (await pageState.lane(t.page, 2)) !== null, 'three lanes');
+    await eventually(async () => (await pageState.lane(t.page, 2)) !== null, 'three lanes');
     check(await t.page.evaluate(() => document.querySelectorAll('#views .view-cell').length) === 1, 'one view');
     check(t.page.url().includes('compare='), 'the address names the group');
     const params = await t.page.evaluate(() => window.__rrlab.session.lanes[1].snapshot.params.lambda);
     check(Math.abs(params - 0.2) < 1e-12, `the typed parameter reached the lane: ${params}`);
-    await t.page.waitForTimeout(500);
+    await eventually(() => t.page.evaluate(() => {
+      const s = window.__rrlab.session, view = s.lanes[0].view;
+      return s.lanes.every((l) => l.frame) && view.lanes.length === 2 && !view.dirty;
+    }), 'every arm drawn on the one view');
     await t.screenshot('overlay');
     await t.post(`/api/runs/${await t.page.evaluate(() => window.__rrlab.session.runIds[0])}/control`, { action: 'stop' });  // the whole group
   }],
@@ -253,11 +258,11 @@ await suite('dashboard', [
     await t.page.waitForSelector('#compare-rows .compare-row');
     await t.page.selectOption('#compare-layout', 'overlay');
     await t.page.click('#start-compare');
-    await until(async () => (await pageState.lane(t.page, 1)) !== null, 'both lanes');
+    await eventually(async () => (await pageState.lane(t.page, 1)) !== null, 'both lanes');
     check(await t.page.evaluate(() => document.querySelectorAll('#views .view-cell').length) === 1, 'one 3D view');
     for (const key of ['nearest', 'manipulability', 'trace']) { await t.page.uncheck(`input[data-overlay=${key}]`); await t.page.check(`input[data-overlay=${key}]`); }
     const points = async () => (await t.page.evaluate(() => window.__rrlab.plots.pointCounts()));
-    await until(async () => { const c = await points(); return Object.keys(c).length && Object.values(c).every((n) => n > 0); },
+    await eventually(async () => { const c = await points(); return Object.keys(c).length && Object.values(c).every((n) => n > 0); },
       'plots to gain points for both lanes');
     await t.screenshot('3d-overlay');
     await t.post(`/api/runs/${await t.page.evaluate(() => window.__rrlab.session.runIds[0])}/control`, { action: 'stop' });  // the whole group
@@ -266,7 +271,7 @@ await suite('dashboard', [
   ['an ended run takes no more inputs; a run with no frames says so', async (t) => {
     const id = await openLive(t, '04_planar7_joystick');
     await t.post(`/api/runs/${id}/control`, { action: 'stop' });
-    await until(async () => (await t.page.textContent('#connection')).startsWith('ended'), 'the page to show the run ended');
+    await eventually(async () => (await t.page.textContent('#connection')).startsWith('ended'), 'the page to show the run ended');
     check(await t.page.isHidden('#joystick-section'), 'the joystick is hidden');
     check(await t.page.isDisabled('[data-action=start]'), 'the controls are disabled');
     await t.page.keyboard.press('ArrowUp');  // nothing may be sent: a 409 would be a console error
@@ -280,36 +285,36 @@ await suite('dashboard', [
   ['a stored run replays and the scrubber shows frame k exactly', async (t) => {
     const run = await t.post('/api/runs', { scenario: '01_planar7_obstacles', method: 'dls', mode: 'batch' });
     await t.page.goto(`${t.base}/?run=${run.id}`);
-    await until(() => pageState.lane(t.page), 'the replay to start');
+    await eventually(() => pageState.lane(t.page), 'the replay to start');
     await t.page.waitForSelector('#replay-bar:not([hidden])');
     const k = 137;
     await t.page.locator('#scrubber').fill(String(k));
     await t.page.locator('#scrubber').dispatchEvent('change');
-    const shown = await until(async () => { const l = await pageState.lane(t.page); return l.seq === k ? l : null; }, `frame ${k}`);
+    const shown = await eventually(async () => { const l = await pageState.lane(t.page); return l.seq === k ? l : null; }, `frame ${k}`);
     const stored = (await t.get(`/api/runs/${run.id}/frames?from=${k}&to=${k}`)).frames[0];
     shown.q.forEach((q, i) => check(Math.abs(q - stored.q[i]) <= 1e-6 * Math.max(1, Math.abs(stored.q[i])), `q${i + 1} drawn ${q} vs stored ${stored.q[i]}`));
     check(t.page.url().includes(`frame=${k}`), `the frame is in the address: ${t.page.url()}`);
     // one frame forward with the keyboard
     await t.page.locator('#views').click({ position: { x: 5, y: 5 } });
     await t.page.keyboard.press('.');
-    await until(async () => (await pageState.lane(t.page)).seq === k + 1, 'frame k + 1');
+    await eventually(async () => (await pageState.lane(t.page)).seq === k + 1, 'frame k + 1');
     await t.screenshot('replay');
     // the link reopens that frame
     await t.page.goto(`${t.base}/?run=${run.id}&frame=40`);
-    await until(async () => { const l = await pageState.lane(t.page); return l && l.seq === 40; }, 'the linked frame');
+    await eventually(async () => { const l = await pageState.lane(t.page); return l && l.seq === 40; }, 'the linked frame');
   }],
 
   ['a scenario and method are preselected from the address; runs can be filtered and deleted', async (t) => {
     const run = await t.post('/api/runs', { scenario: '01_planar7_obstacles', method: 'pinv', mode: 'batch' });
     await t.page.goto(`${t.base}/?scenario=04_planar7_joystick&method=dls`);
     await t.page.waitForSelector('#scenario option', { state: 'attached' });
-    await until(async () => (await t.page.inputValue('#scenario')) === '04_planar7_joystick', 'the scenario preselected');
+    await eventually(async () => (await t.page.inputValue('#scenario')) === '04_planar7_joystick', 'the scenario preselected');
     check((await t.page.inputValue('#method')) === 'dls', 'the method preselected');
     await t.page.selectOption('#filter-status', 'completed');
-    await until(async () => (await t.page.locator(`#runs li[data-run="${run.id}"]`).count()) === 1, 'the stored run in the filtered list');
+    await eventually(async () => (await t.page.locator(`#runs li[data-run="${run.id}"]`).count()) === 1, 'the stored run in the filtered list');
     t.page.once('dialog', (d) => d.accept());
     await t.page.locator(`#runs li[data-run="${run.id}"] button`, { hasText: 'Delete' }).click();
-    await until(async () => (await t.page.locator(`#runs li[data-run="${run.id}"]`).count()) === 0, 'the run to leave the list');
+    await eventually(async () => (await t.page.locator(`#runs li[data-run="${run.id}"]`).count()) === 0, 'the run to leave the list');
     const gone = await t.request('GET', `/api/runs/${run.id}`).then(() => false, () => true);
     check(gone, 'the run is deleted on the server');
   }],
@@ -317,10 +322,10 @@ await suite('dashboard', [
   ['the stream reconnects after it drops and resyncs', async (t) => {
     const id = await openLive(t, await longScenario(t));  // outlives the drop and the back-off however slow the machine
     await t.page.evaluate(() => window.__rrlab.session.lanes[0].stream.socket.close());
-    await until(async () => (await t.page.textContent('#connection')) !== 'live', 'the drop to show');
+    await eventually(async () => (await t.page.textContent('#connection')) !== 'live', 'the drop to show');
     const step = (await pageState.lane(t.page)).step;
-    await until(async () => (await t.page.textContent('#connection')) === 'live', 'the stream to reconnect');
-    await until(async () => (await pageState.lane(t.page)).step > step + 10, 'frames after reconnecting');
+    await eventually(async () => (await t.page.textContent('#connection')) === 'live', 'the stream to reconnect');
+    await eventually(async () => (await pageState.lane(t.page)).step > step + 10, 'frames after reconnecting');
     await t.post(`/api/runs/${id}/control`, { action: 'stop' });
   }],
 ]);

@@ -5,7 +5,7 @@
 // Usage: node exports_test.mjs   (RRLAB_BINARY, RRLAB_SCREENSHOTS, CHROMIUM)
 import { readFileSync, copyFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { suite, until, check, pageState, screenshotDir } from './harness.mjs';
+import { suite, eventually, check, pageState, screenshotDir } from './harness.mjs';
 import { webmFrames } from './webm.mjs';
 
 // The width and height in a PNG's IHDR chunk.
@@ -22,7 +22,7 @@ async function exportFile(t, what, fields = {}) {
   const [download] = await Promise.all([t.page.waitForEvent('download', { timeout: 120000 }), t.page.click('#export-go')]);
   const file = await download.path();
   copyFileSync(file, join(screenshotDir, `exports-${download.suggestedFilename()}`));
-  await until(async () => !(await t.page.isDisabled('#export-go')), 'the export to finish');
+  await eventually(async () => !(await t.page.isDisabled('#export-go')), 'the export to finish');
   await t.page.click('#export-cancel');
   return { bytes: readFileSync(file), name: download.suggestedFilename() };
 }
@@ -46,8 +46,8 @@ await suite('exports', [
   ['a view, a chart and a figure download as PNGs of the requested size', async (t) => {
     const run = await t.post('/api/runs', { scenario: '00_demo_avoidance', method: 'pinv', mode: 'batch' });
     await t.page.goto(`${t.base}/?run=${run.id}&frame=300`);
-    await until(async () => { const l = await pageState.lane(t.page); return l && l.seq === 300; }, 'frame 300');
-    await until(() => t.page.evaluate(() => window.__rrlab.plots.charts.has('distance')), 'the charts');
+    await eventually(async () => { const l = await pageState.lane(t.page); return l && l.seq === 300; }, 'frame 300');
+    await eventually(() => t.page.evaluate(() => window.__rrlab.plots.charts.has('distance')), 'the charts');
     const view = await exportFile(t, 'view', { width: 1234, height: 567 });
     const size = pngSize(view.bytes);
     check(size.width === 1234 && size.height === 567, `the view PNG is 1234×567 (${size.width}×${size.height})`);
@@ -64,7 +64,7 @@ await suite('exports', [
   ['a replay exports as a WebM with one frame per stored frame of the range', async (t) => {
     const run = await t.post('/api/runs', { scenario: '01_planar7_obstacles', method: 'dls', mode: 'batch', steps: 300 });
     await t.page.goto(`${t.base}/?run=${run.id}&frame=0`);
-    await until(() => pageState.lane(t.page), 'the replay');
+    await eventually(() => pageState.lane(t.page), 'the replay');
     const video = await exportFile(t, 'video', { from: 100, to: 139, stride: 1, fps: 30, width: 320, height: 240 });
     const webm = webmFrames(video.bytes);
     check(webm.frames === 40, `40 stored frames give 40 video frames (${webm.frames})`);
@@ -79,14 +79,14 @@ await suite('exports', [
     await t.page.fill('#export-from', '200');
     await t.page.fill('#export-to', '100');
     await t.page.click('#export-go');
-    await until(async () => (await t.page.textContent('#export-progress')).includes('from ≤ to'), 'the refusal');
+    await eventually(async () => (await t.page.textContent('#export-progress')).includes('from ≤ to'), 'the refusal');
     t.errors.length = 0;  // the refusal is shown as the page's error message too
   }],
 
   ['a compare group exports side by side, every second frame', async (t) => {
     const group = await t.post('/api/compare', { scenario: '00_demo_avoidance', methods: ['pinv', 'closest_point'], mode: 'batch', steps: 100 });
     await t.page.goto(`${t.base}/?compare=${group.runs.map((r) => r.id).join(',')}&frame=0`);
-    await until(() => t.page.evaluate(() => window.__rrlab.session && window.__rrlab.session.lanes.every((l) => l.view && l.frame)), 'both lanes');
+    await eventually(() => t.page.evaluate(() => window.__rrlab.session && window.__rrlab.session.lanes.every((l) => l.view && l.frame)), 'both lanes');
     const video = await exportFile(t, 'video', { from: 0, to: 19, stride: 2, fps: 10, width: 640, height: 240 });
     const webm = webmFrames(video.bytes);
     check(webm.frames === 10, `frames 0, 2, …, 18: 10 video frames (${webm.frames})`);

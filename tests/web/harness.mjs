@@ -1,7 +1,8 @@
 // Shared harness of the browser tests: starts a real `rrlab serve --port 0`
 // on a temporary database, drives Debian's chromium with playwright-core,
 // fails a test on any console error, page error, failed request or 5xx
-// answer, and saves screenshots under $RRLAB_SCREENSHOTS.
+// answer, and saves screenshots under $RRLAB_SCREENSHOTS. Tests wait for
+// conditions, never for a while: eventually(condition, {timeout, message}).
 // Usage in a test file:
 //   import { suite } from './harness.mjs';
 //   await suite('dashboard', [['opens a live run', async (t) => { … }], …]);
@@ -97,15 +98,39 @@ export async function launchBrowser() {
   });
 }
 
-// Polls fn until it returns a truthy value (or throws after `timeout` ms).
-export async function until(fn, what, timeout = 15000) {
+// The one way a browser test waits: polls condition() (sync or async) every
+// 100 ms until it returns a truthy value, and returns that value; after
+// `timeout` ms (15 s by default) it throws "timed out waiting for <message>",
+// with the last error the condition threw. `options` is {timeout, message},
+// or the message alone. A test waits for what it needs (a frame, an event on
+// the server, a redraw), never for a fixed time.
+export async function eventually(condition, options = {}) {
+  const { timeout = 15000, message = 'a condition' } = typeof options === 'string' ? { message: options } : options;
   const end = Date.now() + timeout;
   let last;
-  while (Date.now() < end) {
-    try { last = await fn(); if (last) return last; } catch (e) { last = e; }
+  for (;;) {
+    try { last = await condition(); if (last) return last; } catch (e) { last = e; }
+    if (Date.now() >= end) break;
     await new Promise((r) => setTimeout(r, 100));
   }
-  throw new Error(`timed out waiting for ${what}${last instanceof Error ? `: ${last.message}` : ''}`);
+  throw new Error(`timed out waiting for ${message}${last instanceof Error ? `: ${last.message}` : ''}`);
+}
+
+// Resolves once the page has drawn `count` more animation frames: whatever
+// its render loop would do on its own (a camera coasting, a redraw) it has
+// had the frames to do.
+export const animationFrames = (page, count = 2) => page.evaluate((n) => new Promise((resolve) => {
+  const next = () => (n-- <= 0 ? resolve(true) : requestAnimationFrame(next));
+  requestAnimationFrame(next);
+}), count);
+
+// A mouse drag from `from` to `to` ({x, y}, page pixels) in `steps` moves;
+// each move is dispatched and handled by the page before the next is sent.
+export async function drag(page, from, to, steps = 8) {
+  await page.mouse.move(from.x, from.y);
+  await page.mouse.down();
+  await page.mouse.move(to.x, to.y, { steps });
+  await page.mouse.up();
 }
 
 export function check(condition, message) {
@@ -127,13 +152,19 @@ export async function suite(name, tests, options = {}) {
       if (only && !title.includes(only)) continue;
       const page = await browser.newPage({ viewport: { width: 1400, height: 900 } });
       const errors = [];
+      const inFlight = new Set();  // the page's requests without an answer yet (a body the page never reads is not waited for)
+      page.on('request', (r) => inFlight.add(r));
       page.on('pageerror', (e) => errors.push(`page error: ${e.message}`));
       page.on('console', (m) => { if (m.type() === 'error') errors.push(`console error: ${m.text()}`); });
       page.on('requestfailed', (r) => {
+        inFlight.delete(r);
         const failure = r.failure() ? r.failure().errorText : '';
         if (!page.isClosed() && failure !== 'net::ERR_ABORTED') errors.push(`request failed: ${r.url()} ${failure}`);
       });
-      page.on('response', (r) => { if (r.status() >= 500) errors.push(`server error ${r.status()}: ${r.url()}`); });
+      page.on('response', (r) => {
+        inFlight.delete(r.request());
+        if (r.status() >= 500) errors.push(`server error ${r.status()}: ${r.url()}`);
+      });
       const slug = `${name}-${title}`.replace(/[^a-z0-9]+/gi, '-').toLowerCase();
       let shots = 0;
       const t = {
@@ -147,7 +178,9 @@ export async function suite(name, tests, options = {}) {
       const started = Date.now();
       try {
         await body(t);
-        await page.waitForTimeout(200);
+        // every request the page made is answered (a failure or a 5xx is in `errors`) and it has drawn since
+        await eventually(async () => inFlight.size === 0 && animationFrames(page), {
+          timeout: 10000, message: `the page's last requests to be answered (in flight at the end: ${[...inFlight].map((r) => r.url()).join(', ')})` });
         if (errors.length) throw new Error(`errors in the page:\n  ${errors.join('\n  ')}`);
         passed++;
         console.log(`ok   ${name}: ${title} (${((Date.now() - started) / 1000).toFixed(1)} s)`);

@@ -3,7 +3,7 @@
 // nothing wider than the screen (start page, a run, a compare, a paper, a
 // sweep); the keyboard shortcut list on "?".
 // Usage: node layout_test.mjs   (RRLAB_BINARY, RRLAB_SCREENSHOTS, CHROMIUM)
-import { suite, until, check, pageState } from './harness.mjs';
+import { suite, eventually, check, pageState } from './harness.mjs';
 
 const overflow = (page) => page.evaluate(() => ({
   page: document.documentElement.scrollWidth, screen: window.innerWidth,
@@ -58,7 +58,7 @@ await suite('layout', [
 
     const run = await t.post('/api/runs', { scenario: '01_planar7_obstacles', mode: 'batch', steps: 200 });
     await t.page.goto(`${t.base}/?run=${run.id}&frame=100`);
-    await until(() => pageState.lane(t.page), 'the replay');
+    await eventually(() => pageState.lane(t.page), 'the replay');
     const view = await t.page.locator('#views').boundingBox();
     check(view.width >= 370 && view.height >= 240, `the view fills the width (${view.width}×${view.height})`);
     await fitsThePhone(t, 'a replay');
@@ -66,7 +66,7 @@ await suite('layout', [
 
     const group = await t.post('/api/compare', { scenario: '01_planar7_obstacles', methods: ['pinv', 'dls', 'gpm'], mode: 'batch', steps: 100 });
     await t.page.goto(`${t.base}/?compare=${group.runs.map((r) => r.id).join(',')}&frame=50`);
-    await until(() => t.page.evaluate(() => window.__rrlab.session && window.__rrlab.session.lanes.every((l) => l.view)), 'three views');
+    await eventually(() => t.page.evaluate(() => window.__rrlab.session && window.__rrlab.session.lanes.every((l) => l.view)), 'three views');
     await fitsThePhone(t, 'a compare of three');
     const cells = await t.page.locator('#views .view-cell').evaluateAll((els) => els.map((e) => e.getBoundingClientRect()).map((r) => ({ x: r.x, w: r.width })));
     check(cells.every((c) => c.w >= 360), `each lane as wide as the screen, one under the other (${cells.map((c) => Math.round(c.w))})`);

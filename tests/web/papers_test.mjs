@@ -4,7 +4,7 @@
 // an example live with its configuration, or as a compare with the paper's
 // baselines.
 // Usage: node papers_test.mjs   (RRLAB_BINARY, RRLAB_SCREENSHOTS, CHROMIUM)
-import { suite, until, check } from './harness.mjs';
+import { suite, eventually, check } from './harness.mjs';
 
 const laneLabels = (page) => page.evaluate(() => {
   const s = window.__rrlab.session;
@@ -15,13 +15,13 @@ await suite('papers', [
   ['the panel lists five papers and each opens with its examples, marks and full scenario descriptions', async (t) => {
     await t.page.goto(t.base + '/');
     await t.page.click('#papers-section > summary');
-    await until(async () => (await t.page.locator('#papers-list li').count()) === 5, 'five papers in the list');
+    await eventually(async () => (await t.page.locator('#papers-list li').count()) === 5, 'five papers in the list');
     const listed = await t.page.locator('#papers-list li').evaluateAll((lis) => lis.map((li) => li.dataset.paper));
     check(listed.join() === 'sezgin,chen,qiu,zhang,kapoor', `the five papers: ${listed}`);
     const expected = { sezgin: 18, chen: 4, qiu: 5, zhang: 6, kapoor: 2 };
     for (const key of listed) {
       await t.page.locator(`#papers-list li[data-paper="${key}"] button`).click();
-      await until(async () => (await t.page.locator('.paper-examples tr[data-example]').count()) === expected[key], `${key}'s ${expected[key]} examples`);
+      await eventually(async () => (await t.page.locator('.paper-examples tr[data-example]').count()) === expected[key], `${key}'s ${expected[key]} examples`);
       check(new URLSearchParams(new URL(t.page.url()).search).get('paper') === key, `the address names the paper: ${t.page.url()}`);
       const marks = await t.page.locator('.paper-examples td.mark').allTextContents();
       check(marks.every((m) => /^[✓◐✗]/.test(m)), `${key}: every example has a mark`);
@@ -44,7 +44,7 @@ await suite('papers', [
     // Ex. 1, Fig. 4 with rrlab's criterion term φ: qp_constraints against pinv
     const row = t.page.locator('.paper-examples tr[data-example]', { hasText: 'with rrlab\'s criterion term' });
     await row.locator('.run-compare').click();
-    const labels = await until(() => laneLabels(t.page), 'the compare group');
+    const labels = await eventually(() => laneLabels(t.page), 'the compare group');
     check(labels.join() === 'qp_constraints,pinv', `qp_constraints beside pinv: ${labels}`);
     const params = await t.page.evaluate(() => window.__rrlab.session.lanes[0].snapshot.params);
     check(params.d_s === 0.1 && params.sigma === 0.2, `the row's parameters reached the run: ${JSON.stringify(params)}`);
@@ -56,7 +56,7 @@ await suite('papers', [
     await t.page.goto(`${t.base}/?paper=sezgin`);
     await t.page.waitForSelector('.paper-examples tr[data-example]');
     await t.page.locator('.paper-examples tr[data-example]').nth(1).locator('.run-live').click();
-    const live = await until(() => laneLabels(t.page), 'the live run');
+    const live = await eventually(() => laneLabels(t.page), 'the live run');
     check(live.join() === 'ccp_voronoi', `ccp_voronoi runs: ${live}`);
     const ccp = await t.page.evaluate(() => window.__rrlab.session.lanes[0].snapshot.params.ccp_link);
     check(ccp === 3, `the CCP at joint 3 (ccp_link ${ccp})`);

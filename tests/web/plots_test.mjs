@@ -5,7 +5,7 @@
 // responsive. Screenshots go to $RRLAB_SCREENSHOTS (default /tmp/rrlab-screens).
 // Usage: node plots_test.mjs   (exit 0 on success; RRLAB_BINARY, CHROMIUM as in harness.mjs)
 import { join } from 'node:path';
-import { suite, until, check, screenshotDir, longScenario, storedLongScenario } from './harness.mjs';
+import { suite, eventually, check, screenshotDir, longScenario, storedLongScenario } from './harness.mjs';
 
 const counts = (page) => page.evaluate(() => window.__rrlab.plots.pointCounts());
 // Each chart's newest time: it advances while a live run plays, also once the
@@ -23,21 +23,21 @@ await suite('plots', [
     // 01 stored for 600 s, started from the picker: still live at the Stop click however slow the machine
     const scenario = await storedLongScenario(t);
     await page.goto(`${t.base}/?scenario=${scenario}&method=gpm`);
-    await until(() => page.evaluate((s) => document.getElementById('scenario').value === s && document.getElementById('method').value === 'gpm', scenario),
+    await eventually(() => page.evaluate((s) => document.getElementById('scenario').value === s && document.getElementById('method').value === 'gpm', scenario),
       'the scenario and method from the address');
     await page.click('#start-live');
-    const first = await until(async () => { const c = await counts(page); return c.error > 20 && c; }, 'points in the charts');
+    const first = await eventually(async () => { const c = await counts(page); return c.error > 20 && c; }, 'points in the charts');
     const start = await newest(page);
     const ids = ['error', 'distance', 'conditioning', 'step'];
     for (const id of ids) check(first[id] > 0, `the ${id} chart has points while the run plays`);
-    const later = await until(async () => { const n = await newest(page); return ids.every((id) => n[id] > start[id]) && n; },
+    const later = await eventually(async () => { const n = await newest(page); return ids.every((id) => n[id] > start[id]) && n; },
       `every chart to gain points (newest times ${JSON.stringify(start)})`);
     const second = await counts(page);
     console.log(`     points ${ids.map((id) => `${id} ${first[id]} → ${second[id]}`).join(', ')}; newest t ${start.error} → ${later.error}`);
     // paused for the rest (a paused run stays live): the page stands still for the clicks and screenshots
     const runId = await page.evaluate(() => window.__rrlab.session.runIds[0]);
     await t.post(`/api/runs/${runId}/control`, { action: 'pause' });
-    await until(async () => (await t.get(`/api/runs/${runId}`)).status === 'paused', 'the run to pause');
+    await eventually(async () => (await t.get(`/api/runs/${runId}`)).status === 'paused', 'the run to pause');
     check(await page.locator('#plots .plots-chart').count() === 4, 'four charts before any diagnostic is ticked');
 
     const name = await page.locator('#plots .plots-diagnostics input').first().getAttribute('value');
@@ -47,7 +47,7 @@ await suite('plots', [
       return { points: u.data[0].length, values: u.data[1].filter((v) => v !== null && v !== undefined).length };
     }, name);
     check(diag.points > 0 && diag.values > 0, `the ${name} chart comes filled with the data kept so far`);
-    await page.waitForTimeout(300);
+    await eventually(() => page.evaluate(() => !window.__rrlab.plots.dirty), 'the charts drawn');
     await t.screenshot('live');
     await page.setViewportSize({ width: 1400, height: 1500 });  // the whole stack of charts
     await shootPlots(page, 'live');
@@ -59,7 +59,7 @@ await suite('plots', [
     // 01 for 600 s: still live at the stop however slow the machine
     const group = await t.post('/api/compare', { scenario: await longScenario(t), methods: ['dls', 'gpm'], mode: 'live', rate: 1 });
     await page.goto(`${t.base}/?compare=${group.runs.map((r) => r.id).join(',')}`);
-    await until(async () => (await counts(page)).distance > 60, 'points in the charts');
+    await eventually(async () => (await counts(page)).distance > 60, 'points in the charts');
     const lanes = await page.evaluate(() => {
       const u = window.__rrlab.plots.charts.get('distance').u;
       return u.data.slice(1).map((column) => column.filter((v) => typeof v === 'number').length);
@@ -75,7 +75,7 @@ await suite('plots', [
     const { page } = t;
     const group = await t.post('/api/compare', { scenario: '03_dh7_pose', methods: ['dls', 'pinv'], mode: 'batch' });
     await page.goto(`${t.base}/?compare=${group.runs.map((r) => r.id).join(',')}`);
-    await until(async () => (await counts(page)).error > 500, 'the whole runs plotted');
+    await eventually(async () => (await counts(page)).error > 500, 'the whole runs plotted');
     const plotted = await counts(page);
     check(!('step' in plotted), 'no step-time chart in a replay (step times are not stored)');
     const series = await page.evaluate(() => window.__rrlab.plots.charts.get('distance').u.series.slice(1).map((s) => s.label));
@@ -95,9 +95,9 @@ await suite('plots', [
     check(seeks.length === 1, 'a click on a chart seeks');
     check(seeks[0] > t0 && seeks[0] < t1, `the seek time ${seeks[0]} lies inside the run [${t0}, ${t1}]`);
     check(Math.abs(seeks[0] - (t0 + 0.4 * (t1 - t0))) < 0.05 * (t1 - t0), 'the seek time is where the click was');
-    await until(() => page.locator('#plots .plots-cursor').first().isVisible(), 'the replay cursor line');
+    await eventually(() => page.locator('#plots .plots-cursor').first().isVisible(), 'the replay cursor line');
     await over.hover({ position: { x: box.width * 0.7, y: box.height / 2 } });
-    await page.waitForTimeout(200);
+    await eventually(() => page.evaluate(() => window.__rrlab.plots.charts.get('distance').u.cursor.left > 0), 'the cursor where the pointer is');
     await t.screenshot('replay');
     await shootPlots(page, 'replay-compare');
   }],
@@ -105,7 +105,7 @@ await suite('plots', [
   ['4 lanes of 20,000 stored frames stay responsive', async (t) => {
     const { page } = t;
     await page.goto(t.base + '/');
-    await until(() => page.evaluate(() => window.__rrlab && window.__rrlab.plots), 'the page');
+    await eventually(() => page.evaluate(() => window.__rrlab && window.__rrlab.plots), 'the page');
     const ms = await page.evaluate(async () => {
       const plots = window.__rrlab.plots;
       const colours = ['#1e88e5', '#ef6c00', '#2e7d32', '#8e24aa'];

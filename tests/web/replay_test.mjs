@@ -4,7 +4,7 @@
 // plot click, deep link); Play at the end starts again; a compare group's
 // lanes stay on one frame; the trace is rebuilt to the frame shown.
 // Usage: node replay_test.mjs   (RRLAB_BINARY, RRLAB_SCREENSHOTS, CHROMIUM)
-import { suite, until, check } from './harness.mjs';
+import { suite, eventually, check } from './harness.mjs';
 
 // What the page says the current frame is, everywhere it says it.
 const shown = (page) => page.evaluate(() => {
@@ -25,7 +25,7 @@ const shown = (page) => page.evaluate(() => {
 
 // Every readout names frame k, and every lane (up to its last frame) shows it.
 async function allAt(page, k, what) {
-  return until(async () => {
+  return eventually(async () => {
     const s = await shown(page);
     const ok = s.scrubber === k && s.readout.startsWith(`${k} /`) && s.readout.includes(' s') && s.status.includes(`frame ${k}`) &&
       s.cursor === k && s.address === String(k) && s.lanes.every((seq) => seq === k);
@@ -57,7 +57,7 @@ await suite('replay', [
     await t.page.keyboard.press(',');
     await allAt(t.page, clicked - 1, 'two frames back with ","');
     await t.page.keyboard.press(' ');
-    await until(async () => (await shown(t.page)).playing && (await shown(t.page)).scrubber > clicked + 5, 'space plays from there');
+    await eventually(async () => (await shown(t.page)).playing && (await shown(t.page)).scrubber > clicked + 5, 'space plays from there');
     await t.page.keyboard.press(' ');
     const paused = (await shown(t.page)).scrubber;
     await allAt(t.page, paused, 'space pauses, every readout at the frame it stopped on');
@@ -76,15 +76,15 @@ await suite('replay', [
     await allAt(t.page, 799, 'the last frame');
     // the trace of a replay opened at its end is the whole path, once the stored run is loaded
     const trace = () => t.page.evaluate(() => window.__rrlab.session.lanes[0].view.traceCount);
-    await until(async () => (await trace()) === 800, 'the trace to hold all 800 frames');
+    await eventually(async () => (await trace()) === 800, 'the trace to hold all 800 frames');
     await t.page.locator('#replay-play').click();
-    await until(async () => { const s = await shown(t.page); return s.playing && s.scrubber < 400 ? s : null; }, 'play at the end to start from the first frame');
+    await eventually(async () => { const s = await shown(t.page); return s.playing && s.scrubber < 400 ? s : null; }, 'play at the end to start from the first frame');
     await t.page.locator('#replay-play').click();
     // a seek back rebuilds the trace to that frame instead of clearing it
     await t.page.locator('#scrubber').fill('600');
     await t.page.locator('#scrubber').dispatchEvent('change');
     await allAt(t.page, 600, 'the seek to 600');
-    await until(async () => (await trace()) === 601, 'the trace rebuilt to frames 0–600');
+    await eventually(async () => (await trace()) === 601, 'the trace rebuilt to frames 0–600');
     await t.screenshot('trace-rebuilt');
   }],
 
@@ -95,13 +95,13 @@ await suite('replay', [
     await t.page.goto(`${t.base}/?compare=${ids.join(',')}&frame=0`);
     await allAt(t.page, 0, 'the group at frame 0');
     await t.page.locator('#replay-play').click();
-    await until(async () => { const s = await shown(t.page); return s.playing && s.scrubber > 20; }, 'the group to play');
+    await eventually(async () => { const s = await shown(t.page); return s.playing && s.scrubber > 20; }, 'the group to play');
     await t.page.locator('#replay-play').click();
     const paused = (await shown(t.page)).scrubber;
     check(!(await shown(t.page)).playing, 'Play again pauses');
     await allAt(t.page, paused, 'every lane on the frame the group paused at');
     // a click on a chart seeks every lane
-    await until(() => t.page.evaluate(() => window.__rrlab.plots.charts.get('distance') !== undefined), 'the distance chart');
+    await eventually(() => t.page.evaluate(() => window.__rrlab.plots.charts.get('distance') !== undefined), 'the distance chart');
     const over = t.page.locator('#plots .plots-chart[data-chart="distance"] .u-over');
     await over.scrollIntoViewIfNeeded();
     const box = await over.boundingBox();
@@ -122,12 +122,12 @@ await suite('replay', [
     await t.post(`/api/runs/${run.id}/control`, { action: 'stop' });
     const events = await t.get(`/api/runs/${run.id}/events`);
     await t.page.goto(`${t.base}/?run=${run.id}&frame=0`);
-    await until(async () => (await t.page.locator('#replay-markers .event-marker').count()) === 2, 'two marks on the scrubber');
+    await eventually(async () => (await t.page.locator('#replay-markers .event-marker').count()) === 2, 'two marks on the scrubber');
     const titles = await t.page.locator('#replay-markers .event-marker').evaluateAll((els) => els.map((e) => e.title));
     const params = events.find((e) => e.kind === 'params'), method = events.find((e) => e.kind === 'method');
     check(titles[0] === `frame ${params.seq}: parameters: gain = 3`, `the parameter change is named: ${titles[0]}`);
     check(titles[1] === `frame ${method.seq}: method switched to dls`, `the method switch is named: ${titles[1]}`);
-    await until(() => t.page.evaluate(() => document.querySelectorAll('#plots .plots-chart[data-chart="distance"] .plots-marker').length === 2), 'two marks on the distance chart');
+    await eventually(() => t.page.evaluate(() => document.querySelectorAll('#plots .plots-chart[data-chart="distance"] .plots-marker').length === 2), 'two marks on the distance chart');
     await t.page.locator('#replay-markers .event-marker').nth(1).click();
     await allAt(t.page, method.seq, 'a click on the method mark');
     await t.screenshot('markers');

@@ -3,7 +3,7 @@
 // can be restarted with its scene; runs are found by the scenario's
 // catalogue name, the one name the page shows everywhere.
 // Usage: node runs_test.mjs   (RRLAB_BINARY, RRLAB_SCREENSHOTS, CHROMIUM)
-import { suite, until, check, pageState, longScenario } from './harness.mjs';
+import { suite, eventually, check, pageState, longScenario, drag as dragMouse } from './harness.mjs';
 
 const pill = (page) => page.textContent('#connection');
 
@@ -11,10 +11,7 @@ const pill = (page) => page.textContent('#connection');
 async function drag(page, index, dx, dy) {
   const lane = await pageState.lane(page);
   const from = await pageState.toClient(page, lane.obstacles[index]);
-  await page.mouse.move(from.x, from.y);
-  await page.mouse.down();
-  for (let i = 1; i <= 8; ++i) { await page.mouse.move(from.x + (dx * i) / 8, from.y + (dy * i) / 8); await page.waitForTimeout(40); }
-  await page.mouse.up();
+  await dragMouse(page, from, { x: from.x + dx, y: from.y + dy }, 8);
 }
 
 await suite('runs', [
@@ -22,26 +19,26 @@ await suite('runs', [
     const scenario = await longScenario(t);
     const run = await t.post('/api/runs', { scenario, mode: 'live', rate: 1, paused: true });
     await t.page.goto(`${t.base}/?run=${run.id}`);
-    await until(() => pageState.lane(t.page), 'the first frame');
-    await until(async () => (await pill(t.page)) === 'paused', 'the header to say paused');
+    await eventually(() => pageState.lane(t.page), 'the first frame');
+    await eventually(async () => (await pill(t.page)) === 'paused', 'the header to say paused');
     await t.post(`/api/runs/${run.id}/control`, { action: 'start' });
-    await until(async () => (await pill(t.page)) === 'live', 'the header to say live once it plays');
+    await eventually(async () => (await pill(t.page)) === 'live', 'the header to say live once it plays');
     await t.post(`/api/runs/${run.id}/control`, { action: 'pause' });
-    await until(async () => (await pill(t.page)) === 'paused', 'the header to say paused again');
+    await eventually(async () => (await pill(t.page)) === 'paused', 'the header to say paused again');
 
     // while it runs, a drag moves the disc on the server
     const index = (await t.page.evaluate(() => window.__rrlab.session.lanes[0].snapshot.obstacles)).findIndex((o) => o.id === 'disc');
     await drag(t.page, index, 40, 0);
-    await until(async () => (await t.get(`/api/runs/${run.id}/events`)).some((e) => e.kind === 'obstacle'), 'the drag to reach the server');
+    await eventually(async () => (await t.get(`/api/runs/${run.id}/events`)).some((e) => e.kind === 'obstacle'), 'the drag to reach the server');
     await t.post(`/api/runs/${run.id}/control`, { action: 'step' });
-    const moved = await until(async () => {
+    const moved = await eventually(async () => {
       const l = await pageState.lane(t.page);
       const drawn = await t.page.evaluate((i) => window.__rrlab.session.lanes[0].view.positionOf(i), index);
       return Math.hypot(l.obstacles[index][0] - drawn[0], l.obstacles[index][1] - drawn[1]) < 1e-9 ? l.obstacles[index] : null;
     }, 'the frames to show the disc where it was dropped');
 
     await t.post(`/api/runs/${run.id}/control`, { action: 'stop' });
-    await until(async () => (await pill(t.page)).startsWith('ended'), 'the header to say ended');
+    await eventually(async () => (await pill(t.page)).startsWith('ended'), 'the header to say ended');
     check(await t.page.isVisible('#ended-note'), 'the page says the run has ended');
     check(await t.page.isHidden('#control-note'), 'no control notice after the end');
     const events = (await t.get(`/api/runs/${run.id}/events`)).length;
@@ -55,7 +52,7 @@ await suite('runs', [
 
     // restart with this scene: a new live run whose disc starts where this one left it
     await t.page.locator('#restart-scene').click();
-    await until(async () => { const l = await pageState.lane(t.page); return l && l.runId !== run.id ? l : null; }, 'the new run');
+    await eventually(async () => { const l = await pageState.lane(t.page); return l && l.runId !== run.id ? l : null; }, 'the new run');
     const fresh = await pageState.lane(t.page);
     const record = await t.get(`/api/runs/${fresh.runId}/record`);
     const disc = record.scenario.obstacles.find((o) => o.id === 'disc');
@@ -72,12 +69,12 @@ await suite('runs', [
     await t.page.waitForSelector('#filter-scenario option[value="01_planar7_obstacles"], #filter-scenario option:text-is("01_planar7_obstacles")', { state: 'attached' });
     await t.page.selectOption('#filter-scenario', '01_planar7_obstacles');
     // both before the filter; after it, the one run only (the list refreshes after the choice: wait for that)
-    await until(async () => (await t.page.locator(`#runs li[data-run="${run.id}"]`).count()) === 1 &&
+    await eventually(async () => (await t.page.locator(`#runs li[data-run="${run.id}"]`).count()) === 1 &&
       (await t.page.locator(`#runs li[data-run="${other.id}"]`).count()) === 0, 'the run under its catalogue name, the other scenario\'s filtered out');
     check((await t.page.textContent(`#runs li[data-run="${run.id}"] .title`)).includes('01_planar7_obstacles'), 'the list names the run by its catalogue name');
     // the replay's header names it the same way
     await t.page.locator(`#runs li[data-run="${run.id}"] button`, { hasText: 'Replay' }).click();
-    await until(async () => (await t.page.textContent('#session-title')).includes('01_planar7_obstacles'), 'the header to name the catalogue scenario');
+    await eventually(async () => (await t.page.textContent('#session-title')).includes('01_planar7_obstacles'), 'the header to name the catalogue scenario');
     await t.screenshot('filtered');
   }],
 ]);

@@ -3,7 +3,7 @@
 // exists; a taken name gets a new one offered; a syntax error is placed by
 // line and column; uploads are read locally and size-limited.
 // Usage: node scenario_editor_test.mjs   (RRLAB_BINARY, RRLAB_SCREENSHOTS, CHROMIUM)
-import { suite, until, check, pageState } from './harness.mjs';
+import { suite, eventually, check, pageState } from './harness.mjs';
 
 const button = (t, label) => t.page.getByRole('button', { name: label, exact: true });
 const message = (t) => t.page.textContent('.se-message');
@@ -18,10 +18,10 @@ function forgetExpectedRefusals(t) {
 
 async function openEditor(t, scenario = '04_planar7_joystick') {
   await t.page.goto(`${t.base}/?scenario=${scenario}`);
-  await until(async () => (await t.page.inputValue('#scenario')) === scenario, 'the scenario preselected');
+  await eventually(async () => (await t.page.inputValue('#scenario')) === scenario, 'the scenario preselected');
   await t.page.click('#open-editor');
   await t.page.waitForSelector('dialog.scenario-editor[open] .se-textarea');
-  await until(async () => (await t.page.inputValue('.se-textarea')).includes('"robot"'), 'the scenario in the editor');
+  await eventually(async () => (await t.page.inputValue('.se-textarea')).includes('"robot"'), 'the scenario in the editor');
 }
 
 // Waits for the editor's answer to an action (its message leaves "busy").
@@ -73,8 +73,8 @@ await suite('scenario editor', [
     await t.screenshot('valid');
     await button(t, 'Save & start').click();
     await t.page.waitForSelector('dialog.scenario-editor', { state: 'hidden' });
-    const run = await until(async () => (await t.get('/api/runs')).find((r) => r.scenario === name), 'a run of the saved scenario on the server');
-    const lane = await until(() => pageState.lane(t.page), 'the new run on the page');
+    const run = await eventually(async () => (await t.get('/api/runs')).find((r) => r.scenario === name), 'a run of the saved scenario on the server');
+    const lane = await eventually(() => pageState.lane(t.page), 'the new run on the page');
     check(lane.runId === run.id, `the page shows the run (${lane.runId}, want ${run.id})`);
     check((await t.page.inputValue('#scenario')) === name, 'the saved scenario is listed and selected');
     await t.post(`/api/runs/${run.id}/control`, { action: 'stop' });
@@ -117,7 +117,7 @@ await suite('scenario editor', [
     await openEditor(t);
     const compact = JSON.stringify({ ...(await t.get('/api/scenarios/01_planar7_obstacles')), name: 'uploaded_one' });
     await t.page.setInputFiles('.se-file', { name: 'mine.json', mimeType: 'application/json', buffer: Buffer.from(compact) });
-    await until(async () => (await t.page.inputValue('.se-textarea')).includes('"name": "uploaded_one"'), 'the file in the editor, pretty-printed');
+    await eventually(async () => (await t.page.inputValue('.se-textarea')).includes('"name": "uploaded_one"'), 'the file in the editor, pretty-printed');
     check((await message(t)).includes('Loaded mine.json'), 'the editor says what it loaded');
     await t.page.setInputFiles('.se-file', { name: 'huge.json', mimeType: 'application/json', buffer: Buffer.alloc(1024 * 1024 + 1, 32) });
     check((await answer(t, 'error')).includes('up to 1 MiB'), 'a file over 1 MiB is refused');

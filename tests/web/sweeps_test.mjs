@@ -4,7 +4,7 @@
 // re-simulated and replayed, a case compared across the sweep's methods; the
 // run list groups a sweep's runs under it, named by case.
 // Usage: node sweeps_test.mjs   (RRLAB_BINARY, RRLAB_SCREENSHOTS, CHROMIUM)
-import { suite, until, check } from './harness.mjs';
+import { suite, eventually, check } from './harness.mjs';
 
 const SPEC = {
   name: 'web-sweep',
@@ -16,7 +16,7 @@ const SPEC = {
 
 async function finishedSweep(t, spec = SPEC) {
   const started = await t.post('/api/sweeps?jobs=1', spec);
-  await until(async () => (await t.get(`/api/sweeps/${started.id}`)).status === 'completed', 'the sweep to finish', 60000);
+  await eventually(async () => (await t.get(`/api/sweeps/${started.id}`)).status === 'completed', { message: 'the sweep to finish', timeout: 60000 });
   return started.id;
 }
 
@@ -52,7 +52,7 @@ await suite('sweeps', [
     // a run without frames is re-simulated, then replayed
     const source = Number(await t.page.locator('.sweep-runs tr[data-run]').first().getAttribute('data-run'));
     await t.page.locator('.sweep-runs tr[data-run] .run-open').first().click();
-    const lane = await until(() => t.page.evaluate(() => {
+    const lane = await eventually(() => t.page.evaluate(() => {
       const s = window.__rrlab.session;
       return s && s.kind === 'replay' && s.lanes[0].frame ? { run: s.lanes[0].runId, frames: s.frameCount } : null;
     }), 'the re-simulated run to replay');
@@ -65,12 +65,12 @@ await suite('sweeps', [
     await t.page.goto(`${t.base}/?sweep=${id}`);
     await t.page.locator('.sweep-success td.cell[data-family="file:00_demo_avoidance"][data-config="pinv"]').click();
     await t.page.locator('.sweep-runs tr[data-run] .run-compare').first().click();
-    const labels = await until(() => t.page.evaluate(() => {
+    const labels = await eventually(() => t.page.evaluate(() => {
       const s = window.__rrlab.session;
       return s && s.compare && s.lanes.every((l) => l.frame) ? s.lanes.map((l) => l.label) : null;
     }), 'the compare of the case');
     check([...labels].sort().join() === 'closest_point,pinv', `the sweep's methods side by side (by rank): ${labels}`);
-    await until(async () => (await t.page.textContent('.verdict-headline') || '').includes('closest_point passes'), 'the compare verdict');
+    await eventually(async () => (await t.page.textContent('.verdict-headline') || '').includes('closest_point passes'), 'the compare verdict');
     await t.screenshot('case-compare');
   }],
 
@@ -80,25 +80,25 @@ await suite('sweeps', [
     // a spec the server refuses names the path
     await t.page.fill('#sweep-spec', JSON.stringify({ ...SPEC, name: 'dialog-sweep', methods: ['no_such_method'] }));
     await t.page.click('#sweep-start');
-    await until(async () => (await t.page.textContent('#sweep-error')).includes('methods'), 'the refusal naming the methods');
+    await eventually(async () => (await t.page.textContent('#sweep-error')).includes('methods'), 'the refusal naming the methods');
     forgiveRefusals(t);
     await t.page.fill('#sweep-spec', '{"name": ');
     check((await t.page.textContent('#sweep-syntax')).startsWith('not JSON'), 'a spec that is not JSON says so as it is typed');
     // checked by the server as it is typed: what is wrong, or what it would run
     await t.page.fill('#sweep-spec', JSON.stringify({ ...SPEC, name: 'dialog-sweep', success: { max_tracking_error: -1 } }));
-    await until(async () => (await t.page.textContent('#sweep-syntax')).includes('success.max_tracking_error'), 'the server naming the bad field');
+    await eventually(async () => (await t.page.textContent('#sweep-syntax')).includes('success.max_tracking_error'), 'the server naming the bad field');
     await t.page.fill('#sweep-spec', JSON.stringify({ ...SPEC, name: 'dialog-sweep' }));
-    await until(async () => (await t.page.textContent('#sweep-syntax')).startsWith('valid: 8 runs'), 'the dialog to say 8 runs');
+    await eventually(async () => (await t.page.textContent('#sweep-syntax')).startsWith('valid: 8 runs'), 'the dialog to say 8 runs');
     await t.page.click('#sweep-start');
-    await until(() => t.page.evaluate(() => new URLSearchParams(location.search).has('sweep')), 'the new sweep\'s page');
+    await eventually(() => t.page.evaluate(() => new URLSearchParams(location.search).has('sweep')), 'the new sweep\'s page');
     await t.page.waitForSelector('.sweep-success td.cell', { timeout: 60000 });
     check(await t.page.isVisible('#sweeps li[data-sweep]'), 'the sweep is listed');
-    await until(async () => (await t.page.textContent('#sweeps li[data-sweep] .progress')).trim() === '8 / 8', 'its progress to read 8 / 8 runs');
+    await eventually(async () => (await t.page.textContent('#sweeps li[data-sweep] .progress')).trim() === '8 / 8', 'its progress to read 8 / 8 runs');
     // the run list groups its runs under the sweep, named by case
     const group = t.page.locator('#runs details.sweep-runs[data-sweep="dialog-sweep"]');
     await group.waitFor();
     await group.locator('summary').click();
-    await until(async () => (await group.locator('li[data-run]').count()) === 8, 'the sweep\'s 8 runs in its group');
+    await eventually(async () => (await group.locator('li[data-run]').count()) === 8, 'the sweep\'s 8 runs in its group');
     const first = await group.locator('li[data-run] .title').first().textContent();
     check(/gen:planar_clutter|file:00_demo_avoidance/.test(first), `a run named by its case: ${first}`);
     check(await group.locator('li[data-run] button', { hasText: 'Re-simulate' }).count() === 8, 'each offers re-simulation (no frames stored)');

@@ -9,7 +9,7 @@
 // tip follows the frames. Screenshots: $RRLAB_SCREENSHOTS/urdf-view-*.png.
 // Usage: node urdf_view_test.mjs   (exit 0 on success)
 import { join } from 'node:path';
-import { suite, until, check, screenshotDir } from './harness.mjs';
+import { suite, eventually, check, screenshotDir } from './harness.mjs';
 
 const arms = [['40_urdf_iiwa14_pose', 'iiwa14'], ['41_urdf_panda_pose', 'panda'], ['42_urdf_gen3_pose', 'gen3']];
 
@@ -52,11 +52,12 @@ const drawnVsFrame = (page) => page.evaluate(() => {
 await suite('urdf view', arms.map(([scenario, arm]) => [`${scenario} draws the arm where the server's frame puts it`, async (t) => {
   const run = await t.post('/api/runs', { scenario, mode: 'live', rate: 1, paused: true });
   await t.page.goto(`${t.base}/?run=${run.id}`);
-  await until(() => t.page.evaluate(() => {
+  await eventually(() => t.page.evaluate(() => {
     const lane = window.__rrlab.session && window.__rrlab.session.lanes[0];
     return lane && lane.frame && lane.view && lane.view.arm && lane.view.renderer;
   }), 'the 3D view with a frame');
-  await t.page.waitForTimeout(500);  // a draw after the first frame
+  // a draw after the first frame
+  await eventually(() => t.page.evaluate(() => { const v = window.__rrlab.session.lanes[0].view; return v.stats.renders > 0 && !v.dirty; }), 'the first frame drawn');
   const d = await drawnVsFrame(t.page);
   console.log(`  ${arm}: ${d.visible} of ${d.meshes} link cylinders drawn (${d.nonzero} links of non-zero length), worst offset ${d.worst.toExponential(1)} m, `
     + `tip [${d.tip.map((x) => x.toFixed(4))}] vs ee [${d.ee.map((x) => x.toFixed(4))}]; arm's picture x ${d.picture.left.toFixed(0)}–${d.picture.right.toFixed(0)} `
@@ -84,7 +85,7 @@ await suite('urdf view', arms.map(([scenario, arm]) => [`${scenario} draws the a
 
   // playing: the drawn tip follows the frames
   await t.page.click('[data-action=start]');
-  await until(async () => (await drawnVsFrame(t.page)).step > d.step + 100, 'the run to play 100 steps');
+  await eventually(async () => (await drawnVsFrame(t.page)).step > d.step + 100, 'the run to play 100 steps');
   const later = await drawnVsFrame(t.page);
   check(later.worst < 1e-9 && later.tipError < 1e-9, `while playing, the drawing follows the frame (worst ${later.worst}, tip ${later.tipError} m)`);
   const moved = Math.hypot(...later.tip.map((x, k) => x - d.tip[k]));

@@ -12,7 +12,7 @@
 // RRLAB_VIEW3D_GALLERY=1 adds the dh and spatial_xz scenarios.
 // Usage: node view3d_test.mjs   (exit 0 on success)
 import { join } from 'node:path';
-import { suite, check, until, screenshotDir, stopIfLive } from './harness.mjs';
+import { suite, check, eventually, screenshotDir, stopIfLive, drag } from './harness.mjs';
 
 // The page under test: the view alone, fed by a live run's WebSocket; a drag
 // is sent as the page will (PUT, at most every 50 ms, and at release).
@@ -108,10 +108,16 @@ async function open(t, scenario, pause = false) {
   await t.page.waitForFunction(() => window.harness.frames >= 3);
   if (pause) {
     await t.post(`/api/runs/${runId}/control`, { action: 'pause' });
-    await until(async () => (await t.get(`/api/runs/${runId}`)).status === 'paused', 'the run to pause');
+    await eventually(async () => (await t.get(`/api/runs/${runId}`)).status === 'paused', 'the run to pause');
   }
   return runId;
 }
+// The view has drawn what it was given (its render loop found nothing new),
+// and, with `trace`, the end-effector trace has that many segments.
+const drawn = (t, trace = 0) => eventually(() => t.page.evaluate((n) => {
+  const view = window.harness.view;
+  return !view.dirty && (n === 0 || (view.overlayLayer && view.overlayLayer.traceCount >= n));
+}, trace), trace ? `a trace of ${trace} segments drawn` : 'the view drawn');
 const shot = (t, name) => t.page.locator('#view').screenshot({ path: join(screenshotDir, `view3d-${name}.png`) });
 
 await suite('view3d', [
@@ -124,8 +130,8 @@ await suite('view3d', [
       `the canvas is not blank (${sample.coloured} of ${sample.total} samples coloured, ${sample.colours} colours)`);
     const probe = () => t.page.evaluate(() => ({ frames: window.harness.frames, stats: { ...window.harness.view.stats }, t: performance.now() }));
     const before = await probe();
-    await until(async () => !(await shot(t, 'chen-playing')).equals(first), 'the picture to change while the run plays', 60000);
-    // the rates printed below (not asserted) are measured over 3 s at least
+    await eventually(async () => !(await shot(t, 'chen-playing')).equals(first), { message: 'the picture to change while the run plays', timeout: 60000 });
+    // the rates printed below (not asserted) are measured over 3 s at least: a wait about time itself
     const rest = 3000 - ((await probe()).t - before.t);
     if (rest > 0) await t.page.waitForTimeout(rest);
     const after = await probe();
@@ -161,12 +167,9 @@ await suite('view3d', [
       return { index, at: null };
     });
     check(block.at, 'the cube can be grabbed somewhere near its centre');
-    await t.page.mouse.move(block.at.x, block.at.y);
-    await t.page.mouse.down();
-    for (let i = 1; i <= 8; ++i) { await t.page.mouse.move(block.at.x + 5 * i, block.at.y - 3 * i); await t.page.waitForTimeout(60); }
-    await t.page.mouse.up();
+    await drag(t.page, block.at, { x: block.at.x + 40, y: block.at.y - 24 }, 8);
     check(await t.page.evaluate(() => window.harness.view.selected) === block.index, 'the grabbed obstacle is selected');
-    const moves = await until(async () => (await t.get(`/api/runs/${runId}/events`)).filter((e) => e.kind === 'obstacle').length
+    const moves = await eventually(async () => (await t.get(`/api/runs/${runId}/events`)).filter((e) => e.kind === 'obstacle').length
       ? (await t.get(`/api/runs/${runId}/events`)).filter((e) => e.kind === 'obstacle') : null, 'an obstacle event');
     check(moves[0].payload.id === 'target_block', `the dragged obstacle is the one moved (${JSON.stringify(moves[0])})`);
     await shot(t, 'chen-dragged');
@@ -176,7 +179,7 @@ await suite('view3d', [
   ['overlays, a compare lane and placing draw', async (t) => {
     const runId = await open(t, '17_chen_sim2_spatial16_window');
     await t.page.evaluate(() => { window.harness.view.overlays = { nearest: true, manipulability: true, method: true, ghosts: true, trace: true }; });
-    await t.page.waitForTimeout(1500);
+    await drawn(t, 20);
     await shot(t, 'chen-overlays');
     // the method's overlays, as multi_preview and the others send them (this method sends none)
     await t.page.evaluate(() => {
@@ -189,7 +192,7 @@ await suite('view3d', [
         points: [[ee[0] - 1, ee[1], ee[2]], [ee[0] - 1.5, ee[1], ee[2]]],
         segments: [[[ee[0] - 1, ee[1], ee[2]], [ee[0] - 1.5, ee[1], ee[2]]]] } });
     });
-    await t.page.waitForTimeout(300);
+    await drawn(t);
     await shot(t, 'chen-method-overlays');
     // a compare lane (this run's frame, shifted) and a click while placing
     await t.page.evaluate(() => {
@@ -221,7 +224,7 @@ await suite('view3d', [
     check(hoop.indices === 3 * 576 && hoop.drawnIndices === hoop.indices && hoop.drawnVertices === hoop.vertices,
       `its 576 triangles are drawn (${JSON.stringify(hoop)})`);
     await t.page.evaluate(() => { window.harness.view.overlays = { nearest: true, manipulability: false, method: false, ghosts: false, trace: false }; });
-    await t.page.waitForTimeout(1000);
+    await drawn(t);
     const sample = await t.page.evaluate(() => window.harness.sample());
     check(sample.coloured > 0.02 * sample.total, `the canvas is not blank (${sample.coloured} of ${sample.total})`);
     await shot(t, 'mesh-obstacle');
@@ -235,22 +238,19 @@ await suite('view3d', [
       return null;
     }, hoop.index);
     check(grip, 'the hoop can be grabbed');
-    await t.page.mouse.move(grip.x, grip.y);
-    await t.page.mouse.down();
-    for (let i = 1; i <= 8; ++i) { await t.page.mouse.move(grip.x + 6 * i, grip.y + 2 * i); await t.page.waitForTimeout(60); }
-    await t.page.mouse.up();
-    const moves = await until(async () => {
+    await drag(t.page, grip, { x: grip.x + 48, y: grip.y + 16 }, 8);
+    const moves = await eventually(async () => {
       const events = (await t.get(`/api/runs/${runId}/events`)).filter((e) => e.kind === 'obstacle');
       return events.length ? events : null;
     }, 'an obstacle event');
     check(moves[0].payload.id === 'hoop', `the hoop is the one moved (${JSON.stringify(moves[0])})`);
-    const moved = await until(async () => {
+    const moved = await eventually(async () => {
       const now = await t.page.evaluate((index) => window.harness.frame.obstacles[index], hoop.index);
       const start = await t.page.evaluate((index) => window.harness.snapshot.obstacles[index].center, hoop.index);
       return Math.hypot(now[0] - 0.8, now[1] + 0.1, now[2] - 0.4208) > 1e-3 ? { now, start } : null;
     }, 'the hoop at a new position in the frames');
     console.log(`  hoop moved to ${moved.now.map((v) => v.toFixed(3)).join(', ')}`);
-    await t.page.waitForTimeout(500);
+    await drawn(t);
     await shot(t, 'mesh-obstacle-dragged');
     await t.post(`/api/runs/${runId}/control`, { action: 'stop' });  // paused, so still live
   }],
@@ -258,7 +258,7 @@ await suite('view3d', [
   ...(process.env.RRLAB_VIEW3D_GALLERY ? ['03_dh7_pose', '02_spatial_xz_reach', '23_kapoor_dm_rule'] : []).map((scenario) => [`gallery ${scenario}`, async (t) => {
     await open(t, scenario);
     await t.page.evaluate(() => { window.harness.view.overlays = { nearest: true, manipulability: true, method: true, ghosts: true, trace: true }; });
-    await t.page.waitForTimeout(2500);
+    await drawn(t, 40);
     await shot(t, scenario);
   }]),
 ]);

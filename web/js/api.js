@@ -1,5 +1,8 @@
-// REST and WebSocket client. REST errors become ApiError with the server's
-// {code, message, path} and the HTTP status; streams reconnect with back-off.
+// REST and WebSocket client: the one module that knows the server's paths.
+// Every other module calls `api.<name>(…)` (a run, a sweep, an input to a
+// live run) or opens a `Stream` on `paths.runStream(id)`, and never writes a
+// URL. REST errors become ApiError with the server's {code, message, path}
+// and the HTTP status; streams reconnect with back-off.
 //
 // Access: when the server requires a token (401), the page asks for it once
 // (setTokenPrompt), keeps it in the tab's session storage and retries; every
@@ -60,21 +63,10 @@ function headers(extra) {
   return h;
 }
 
-// Every scenario summary of GET /api/scenarios, fetched a page at a time
-// ({scenarios, total, offset, limit}); `call` is api() or a stand-in.
-export async function listScenarios(call = api) {
-  const all = [];
-  for (;;) {
-    const page = await call('GET', `/api/scenarios?limit=1000&offset=${all.length}`);
-    all.push(...page.scenarios);
-    if (page.scenarios.length === 0 || all.length >= page.total) return all;
-  }
-}
-
 // JSON in and out. A body is sent as application/json. A 401 asks for the
 // token (one prompt for all requests waiting), and again while the server
 // refuses what was typed; Cancel gives up with the 401.
-export async function api(method, path, body) {
+async function request(method, path, body) {
   let sent = '';
   const send = async () => {
     sent = stored(TOKEN_KEY);
@@ -104,13 +96,112 @@ export async function api(method, path, body) {
   return data;
 }
 
+const enc = encodeURIComponent;
+const query = (params) => {
+  const q = new URLSearchParams();
+  for (const [k, v] of Object.entries(params || {})) if (v !== null && v !== undefined && v !== '') q.set(k, String(v));
+  const text = q.toString();
+  return text ? `?${text}` : '';
+};
+
+// The server's paths, by what they name (docs/api.md has the routes).
+export const paths = {
+  health: () => '/api/health',
+  methods: () => '/api/methods',
+  scenarios: (params) => `/api/scenarios${query(params)}`,
+  scenario: (name) => `/api/scenarios/${enc(name)}`,
+  validateScenario: () => '/api/scenarios/validate',
+  runs: (params) => `/api/runs${query(params)}`,
+  run: (id) => `/api/runs/${id}`,
+  runPart: (id, part, params) => `/api/runs/${id}/${part}${query(params)}`,  // frames, events, record, replay, inputs
+  replay: (id) => `/api/replays/${id}`,
+  replayControl: (id) => `/api/replays/${id}/control`,
+  compare: () => '/api/compare',
+  sweeps: (params) => `/api/sweeps${query(params)}`,
+  sweep: (id) => `/api/sweeps/${id}`,
+  sweepPart: (id, part, params) => `/api/sweeps/${id}/${part}${query(params)}`,  // runs, control
+  validateSweep: () => '/api/sweeps/validate',
+  papers: () => '/data/papers.json',
+  runStream: (id) => `/ws/runs/${id}`,  // a replay's stream path comes in the server's answer (player.ws)
+};
+
+// Every input the page sends to a live run, by kind, and the REST request it
+// becomes. The page sends them as commands (state.js: execute({type: 'input',
+// kind, payload})), in the manner of the three.js editor's execute(command):
+// the modules say what the user did, not which URL takes it.
+export const INPUT_KINDS = {
+  control: (p) => ['POST', 'control', p],             // {action: play|pause|step|reset|stop|take|release}
+  joystick: (p) => ['POST', 'joystick', p],           // {linear, angular}
+  params: (p) => ['PATCH', 'params', p],              // {name: value, ...}
+  method: (p) => ['POST', 'method', p],               // {name, params?}
+  obstacle_add: (p) => ['POST', 'obstacles', p],      // an obstacle as in the scenario format
+  obstacle_move: (p) => ['PUT', `obstacles/${enc(p.id)}`, { position: p.position }],
+  obstacle_delete: (p) => ['DELETE', `obstacles/${enc(p.id)}`, undefined],
+};
+
+// {verb, path, body} of an input to run `runId`; throws on an unknown kind
+// or a run id that is not a positive integer.
+export function inputRequest(kind, runId, payload) {
+  const route = Object.hasOwn(INPUT_KINDS, kind) ? INPUT_KINDS[kind] : null;
+  if (!route) throw new Error(`unknown input kind "${kind}"`);
+  if (!Number.isInteger(runId) || runId <= 0) throw new Error(`input "${kind}" needs a run id, not ${runId}`);
+  const [verb, tail, body] = route(payload || {});
+  return { verb, path: paths.runPart(runId, tail), body };
+}
+
+// Every scenario summary of GET /api/scenarios, fetched a page at a time
+// ({scenarios, total, offset, limit}).
+async function listScenarios() {
+  const all = [];
+  for (;;) {
+    const page = await request('GET', paths.scenarios({ limit: 1000, offset: all.length }));
+    all.push(...page.scenarios);
+    if (page.scenarios.length === 0 || all.length >= page.total) return all;
+  }
+}
+
+// The server's REST calls by name; each resolves with the answer's JSON.
+export const api = {
+  health: () => request('GET', paths.health()),
+  methods: () => request('GET', paths.methods()),
+  scenarios: listScenarios,
+  scenario: (name) => request('GET', paths.scenario(name)),
+  validateScenario: (scenario) => request('POST', paths.validateScenario(), scenario),
+  saveScenario: (scenario) => request('POST', paths.scenarios(), scenario),
+
+  runs: (params) => request('GET', paths.runs(params)),  // {limit, sweep, scenario, method, status}
+  run: (id) => request('GET', paths.run(id)),
+  startRun: (body) => request('POST', paths.runs(), body),  // {scenario, mode, rate?, method?, params?}
+  deleteRun: (id) => request('DELETE', paths.run(id)),
+  frames: (id, range) => request('GET', paths.runPart(id, 'frames', range)),  // {from, to, stride}
+  framesLink: (id, format) => paths.runPart(id, 'frames', { format }),  // a download link, csv or json
+  events: (id) => request('GET', paths.runPart(id, 'events')),
+  record: (id) => request('GET', paths.runPart(id, 'record')),
+  replayRun: (id, body) => request('POST', paths.runPart(id, 'replay'), body),  // {mode: frames|resimulate, speed?}
+  input: (runId, kind, payload) => { const { verb, path, body } = inputRequest(kind, runId, payload); return request(verb, path, body); },
+
+  replay: (replayId) => request('GET', paths.replay(replayId)),
+  replayControl: (replayId, body) => request('POST', paths.replayControl(replayId), body),  // {action, seq?}
+  startCompare: (body) => request('POST', paths.compare(), body),  // {scenario, methods, mode, rate?}
+
+  sweeps: () => request('GET', paths.sweeps()),
+  sweep: (id) => request('GET', paths.sweep(id)),
+  sweepRuns: (id, params) => request('GET', paths.sweepPart(id, 'runs', params)),  // {family, config, limit, offset}
+  sweepControl: (id, body) => request('POST', paths.sweepPart(id, 'control'), body),
+  validateSweep: (spec) => request('POST', paths.validateSweep(), spec),
+  startSweep: (spec, jobs) => request('POST', paths.sweeps({ jobs }), spec),
+
+  papers: () => request('GET', paths.papers()),
+};
+
 // Plain words for an error, naming the field the server blamed.
 export function describeError(error) {
   if (error instanceof ApiError && error.path) return `${error.message} (at ${error.path})`;
   return error.message || String(error);
 }
 
-// A stream of snapshots and frames over /ws/runs/{id} or /ws/replays/{id}.
+// A stream of snapshots and frames over paths.runStream(id) or a replay's
+// stream path (from the server's answer).
 // On a drop it reconnects with exponential back-off (0.5 s doubling to 8 s)
 // and the server's first message, a snapshot, resyncs the page. Before each
 // attempt `probe()` (async) may say there is nothing left to reconnect to

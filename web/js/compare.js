@@ -3,18 +3,25 @@
 // summary table of every lane's run.
 import { api, ApiError } from './api.js';
 import { app, LANE_COLOURS } from './state.js';
-import { fmt } from './params.js';
 import { DEFAULT_CRITERION, compareVerdict } from './compare_verdict.js';
-import { escapeHtml } from './dom.js';
+import { escapeHtml, fmt } from './dom.js';
 
 const $ = (id) => document.getElementById(id);
 const MAX_LANES = 4;
 
 export class CompareSetup {
-  constructor({ start }) {
-    this.start = start;  // (body) POSTs /api/compare and opens the group
+  constructor() {
     $('compare-add').onclick = () => this.addRow();
     $('start-compare').onclick = () => this.submit().catch((e) => app.error(e));
+    // the layout applies to the group on screen too
+    $('compare-layout').addEventListener('change', () => app.execute({ type: 'setLayout', layout: $('compare-layout').value }));
+    app.signals.methodsChanged.add(() => this.init());
+    app.signals.scenariosChanged.add(() => {
+      const chosen = app.choice.scenario;
+      $('compare-scenario').innerHTML = app.scenarios.map((s) => `<option value="${escapeHtml(s.name)}" ${s.name === chosen ? 'selected' : ''}>${escapeHtml(s.name)}</option>`).join('');
+    });
+    // a session on screen: its controls come first, the pickers fold away
+    app.signals.sessionChanged.add((session) => { if (session) $('compare-setup').open = false; });
   }
 
   // Two rows to begin with: the plain pseudoinverse against an avoidance
@@ -61,8 +68,10 @@ export class CompareSetup {
     });
   }
 
+  // The group starts as one live compare (the rate of the new-run pickers).
   async submit() {
-    await this.start({ scenario: $('compare-scenario').value, methods: this.methods(), mode: 'live', rate: Number($('rate').value) }, $('compare-layout').value);
+    const body = { scenario: $('compare-scenario').value, methods: this.methods(), mode: 'live', rate: app.choice.rate };
+    await app.execute({ type: 'startCompare', body, layout: $('compare-layout').value, report: false });
   }
 }
 
@@ -74,14 +83,21 @@ let shown = null;
 // The summary of every lane's stored run, side by side: the best value of
 // each row marked, rows where the methods differ highlighted, each run's pass
 // or fail against the criterion, and one sentence that says what it means.
-export async function showCompareSummary(session) {
-  const runs = await Promise.all(session.runIds.map((id) => api('GET', `/api/runs/${id}`)));
+async function showCompareSummary(session) {
+  const runs = await Promise.all(session.runIds.map((id) => api.run(id)));
   if (session.closed || runs.some((r) => !r.summary)) return;  // another session was opened meanwhile
   shown = { session, summaries: runs.map((r) => r.summary) };
   renderSummary();
 }
 
-export function hideCompareSummary() {
+// The summary follows the session: a stored group's at once, a live group's at its end.
+export function setupCompareSummary() {
+  app.signals.sessionChanged.add(() => hideCompareSummary());
+  app.signals.sessionOpened.add((session) => { if (session.kind === 'replay' && session.compare) showCompareSummary(session).catch((e) => app.error(e)); });
+  app.signals.sessionEnded.add((session) => { if (session.compare) showCompareSummary(session).catch((e) => app.error(e)); });
+}
+
+function hideCompareSummary() {
   shown = null;
   $('compare-summary').hidden = true;
   delete $('compare-summary').dataset.group;

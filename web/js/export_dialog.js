@@ -8,9 +8,8 @@ import { viewPng, chartPng, figurePng, recordVideo, checkRange, download } from 
 const $ = (id) => document.getElementById(id);
 
 export class ExportDialog {
-  // getSession(), plots, replayBar, version (rrlab's, for the figure's metadata)
-  constructor({ getSession, plots, replayBar }) {
-    this.getSession = getSession;
+  // plots and replayBar: the page's (charts to draw, frames to show for a video)
+  constructor({ plots, replayBar }) {
     this.plots = plots;
     this.replayBar = replayBar;
     this.busy = false;
@@ -20,13 +19,12 @@ export class ExportDialog {
     for (const id of ['export-width', 'export-height']) $(id).addEventListener('input', () => { this.sizeTouched = true; });
     $('export-cancel').onclick = () => { if (this.busy) this.cancel = true; else $('export-dialog').close(); };
     $('export-form').onsubmit = (e) => { e.preventDefault(); this.run().catch((err) => this.failed(err)); };
+    // enabled while a run or group with a view is on screen
+    app.signals.sessionChanged.add((session) => { $('open-export').disabled = !session; });
   }
 
-  // Enabled while a run or group with a view is on screen.
-  update(session) { $('open-export').disabled = !session; }
-
   open() {
-    const session = this.getSession();
+    const session = app.session;
     if (!session) return;
     const options = [['view', session.compare ? 'the views, side by side (PNG)' : 'the view (PNG)']];
     for (const c of this.plots.chartIds()) options.push([`chart:${c.id}`, `chart: ${c.title} (PNG)`]);
@@ -70,7 +68,7 @@ export class ExportDialog {
   }
 
   async run() {
-    const session = this.getSession();
+    const session = app.session;
     if (!session || this.busy) return;
     const what = $('export-what').value;
     const width = Number($('export-width').value), height = Number($('export-height').value);

@@ -1,7 +1,10 @@
 // End-effector joystick for joystick tasks: keyboard, an on-screen pad, and a
 // gamepad all add into one velocity command, sent only when it changes (at most
 // 20 times a second) and as a zero command once everything is released.
+// setupJoystick makes the page's: enabled on a live joystick task, its
+// commands sent as input commands (state.js: execute).
 import { element, isTyping } from './dom.js';
+import { app } from './state.js';
 
 const SEND_INTERVAL_MS = 50;          // at most 20 commands a second
 const GAMEPAD_DEAD_ZONE = 0.15;
@@ -337,7 +340,7 @@ export class Joystick {
     return this.command({ linear: [0, 0, 0], angular: [0, 0, 0] });
   }
 
-  // The payload for POST /api/runs/{id}/joystick, in m/s and rad/s.
+  // The payload of a joystick input (api.js INPUT_KINDS), in m/s and rad/s.
   command({ linear, angular }) {
     const speed = LINEAR_SPEED_PER_REACH * this.reach;
     const round = (v) => Math.round(v * 1e6) / 1e6 || 0;
@@ -398,4 +401,28 @@ export class Joystick {
     this.readout.textContent = this.enabled ? lines.join('\n') : '';
     this.root.classList.toggle('js-moving', [...linear, ...angular].some((v) => v !== 0));
   }
+}
+
+// The page's joystick in `container`: shown and enabled while the live run
+// on screen has a joystick task, quiet once it ended or closed.
+export function setupJoystick(container) {
+  const joystick = new Joystick(container, {
+    // its own status line shows a refusal: not the page's message line
+    send: (command) => app.execute({ type: 'input', kind: 'joystick', payload: command, report: false }),
+  });
+  const section = document.getElementById('joystick-section');
+  const quiet = (space = 'xy') => {
+    joystick.configure({ enabled: false, space, reach: 1 });
+    section.hidden = true;
+  };
+  app.signals.snapshot.add((lane) => {
+    const s = app.session;
+    if (!s || !s.lanes.includes(lane) || lane.index !== 0) return;
+    const enabled = lane.snapshot.task.trajectory === 'joystick' && s.kind === 'live' && !s.ended;
+    section.hidden = !enabled;
+    joystick.configure({ enabled, space: lane.snapshot.task.space, reach: lane.snapshot.model.reach });
+  });
+  app.signals.sessionChanged.add((s) => { if (!s) quiet(); });
+  app.signals.sessionEnded.add((s) => quiet(s.lanes[0].snapshot ? s.lanes[0].snapshot.task.space : 'xy'));
+  return joystick;
 }

@@ -1,6 +1,9 @@
 // The right-hand measurements: metrics (a column per lane in a compare),
-// joint-limit bars of the focused lane, and its method's diagnostics.
-import { fmt } from './params.js';
+// joint-limit bars of the focused lane, and its method's diagnostics. Drawn
+// from the render loop at most 10 times a second, when a lane's snapshot or
+// frame or the focus changed.
+import { app } from './state.js';
+import { fmt } from './dom.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -24,7 +27,27 @@ function cell(row, value, colour) {
   return td;
 }
 
-export function showMetrics(session) {
+// The panel: render(now) is called at the display rate; tables are text for
+// people, so 10 updates a second are plenty and spare the layout work.
+export class MetricsPanel {
+  constructor() {
+    this.dirty = false;
+    this.last = 0;
+    const touched = (lane) => { if (app.session && app.session.lanes.includes(lane)) this.dirty = true; };
+    app.signals.snapshot.add(touched);
+    app.signals.frame.add(touched);
+    app.signals.focusChanged.add(() => { this.dirty = true; });
+  }
+
+  render(now) {
+    if (!this.dirty || now - this.last < 100) return;
+    this.dirty = false;
+    this.last = now;
+    showMetrics(app.session);
+  }
+}
+
+function showMetrics(session) {
   const table = $('metrics');
   table.replaceChildren();
   if (!session) return;

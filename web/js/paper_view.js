@@ -6,13 +6,11 @@
 // the baselines the paper compares against. The data is web/data/papers.json,
 // written by scripts/reproduction-table --papers-json from the committed sweeps.
 import { api } from './api.js';
-import { app } from './state.js';
+import { app, PAPER_KEYS } from './state.js';
 import { escapeHtml } from './dom.js';
 import { parseConfig } from './sweep_report.js';
 
 const $ = (id) => document.getElementById(id);
-
-export const PAPER_KEYS = ['sezgin', 'chen', 'qiu', 'zhang', 'kapoor'];
 
 // "Sezgin et al. (1997)"; the year is omitted where the paper's text gives none.
 export function shortCitation(paper) {
@@ -21,27 +19,33 @@ export function shortCitation(paper) {
 }
 
 export class Papers {
-  // start({kind: 'live'|'compare', scenario, methods}) opens the run or group
-  constructor({ start }) {
-    this.start = start;
+  // Shown while the page in the centre is a paper's (state.js: app.page);
+  // the list fills once the page has opened what its address asked for.
+  constructor() {
     this.data = null;
     this.key = null;
+    app.signals.pageChanged.add((page) => {
+      if (!page || page.name !== 'paper') { this.hide(); return; }
+      $('papers-section').open = true;
+      this.show(page.key).catch((e) => app.error(e));
+    });
+    app.signals.started.add(() => this.fillList().catch((e) => app.error(e)));
   }
 
   async load() {
-    if (!this.data) this.data = await api('GET', '/data/papers.json');
+    if (!this.data) this.data = await api.papers();
     return this.data;
   }
 
   // The list in the left column: one entry per paper.
-  async fillList(open) {
+  async fillList() {
     const data = await this.load();
     $('papers-list').replaceChildren(...data.papers.map((p) => {
       const li = document.createElement('li');
       li.dataset.paper = p.key;
       li.innerHTML = `<button type="button" class="link" title="${escapeHtml(`${p.authors}, “${p.title}”`)}">${escapeHtml(shortCitation(p))}</button>
         <span class="muted small">${escapeHtml(p.method)} · ${p.examples.length} examples</span>`;
-      li.querySelector('button').onclick = () => open(p.key);
+      li.querySelector('button').onclick = () => app.execute({ type: 'openPaper', key: p.key });
       return li;
     }));
   }
@@ -66,7 +70,7 @@ export class Papers {
     page.hidden = false;
     const scenarios = [...new Set(paper.examples.map((e) => e.scenario).filter(Boolean))];
     const descriptions = Object.fromEntries(await Promise.all(scenarios.map(async (name) => {
-      const s = await api('GET', `/api/scenarios/${encodeURIComponent(name)}`).catch(() => null);
+      const s = await api.scenario(name).catch(() => null);
       return [name, s ? s.description || '' : ''];
     })));
     if (this.key !== key) return;
@@ -88,18 +92,17 @@ export class Papers {
     page.querySelectorAll('tr[data-example]').forEach((tr) => {
       const example = paper.examples[Number(tr.dataset.example)];
       const live = tr.querySelector('.run-live');
-      if (live) live.onclick = () => this.run(example, 'live').catch((e) => app.error(e));
+      if (live) live.onclick = () => this.run(example, 'live');
       const compare = tr.querySelector('.run-compare');
-      if (compare) compare.onclick = () => this.run(example, 'compare').catch((e) => app.error(e));
+      if (compare) compare.onclick = () => this.run(example, 'compare');
     });
   }
 
   // The example's configuration (the scenario's own method when the row has none).
   run(example, kind) {
     const own = example.config ? parseConfig(example.config) : null;
-    if (kind === 'live') return this.start({ kind, scenario: example.scenario, methods: own ? [own] : [] });
-    const methods = [own, ...example.baselines.map(parseConfig)].slice(0, 4);
-    return this.start({ kind, scenario: example.scenario, methods });
+    const methods = kind === 'live' ? (own ? [own] : []) : [own, ...example.baselines.map(parseConfig)].slice(0, 4);
+    return app.execute({ type: 'startExample', kind, scenario: example.scenario, methods });
   }
 }
 

@@ -1,19 +1,11 @@
 // The parameter panel of the focused lane: a slider (or a select for an
 // enumeration) per parameter spec, its help as a tooltip, a reset to the
-// default, and the method switch. Changes go to the lane's own run.
+// default, and the method switch. Changes go to the lane's own run, as
+// input commands. The panel follows the focused lane's snapshots.
 import { app } from './state.js';
-import { escapeHtml as escape } from './dom.js';
+import { escapeHtml as escape, fmt } from './dom.js';
 
 const $ = (id) => document.getElementById(id);
-
-export function fmt(v) {
-  if (v === null || v === undefined) return '—';
-  if (typeof v === 'boolean') return v ? 'yes' : 'no';
-  if (typeof v !== 'number') return String(v);
-  if (Number.isInteger(v)) return String(v);
-  return Math.abs(v) >= 1e4 || (Math.abs(v) < 1e-3 && v !== 0) ? v.toExponential(3) : v.toFixed(4);
-}
-
 
 // A slider's step must divide (max - min) from min, or the browser rejects
 // values in between: then any value.
@@ -91,15 +83,10 @@ function paramControl(spec, value, start, setParam) {
 }
 
 // The run's starting values per method (the first snapshot of that method).
-function startValues(lane) {
-  const snapshot = lane.snapshot;
-  lane.startParams = lane.startParams || {};
-  if (!lane.startParams[snapshot.method]) lane.startParams[snapshot.method] = { ...snapshot.params };
-  return lane.startParams[snapshot.method];
-}
+const startValues = (lane) => lane.startParams[lane.snapshot.method];
 
 // Rebuilds the panel from the focused lane's snapshot.
-export function buildParams(session) {
+function buildParams(session) {
   const lane = session.focusLane;
   const live = session.kind === 'live' && !session.ended;  // an ended run takes no inputs
   $('params-section').hidden = !lane || !lane.snapshot;
@@ -111,7 +98,7 @@ export function buildParams(session) {
   if (!snapshot.param_specs.length) box.innerHTML = '<p class="muted">This method has no parameters.</p>';
   const start = startValues(lane);
   for (const spec of snapshot.param_specs) {
-    const setParam = (name, value) => session.input('params', { [name]: value }, lane.runId).catch((e) => app.error(e));
+    const setParam = (name, value) => app.execute({ type: 'input', kind: 'params', payload: { [name]: value }, runId: lane.runId });
     const control = paramControl(spec, snapshot.params[spec.name], start[spec.name], setParam);
     if (!live) for (const el of control.querySelectorAll('input, select, button')) el.disabled = true;
     box.appendChild(control);
@@ -127,7 +114,7 @@ export function buildParams(session) {
 
 // New values for the focused lane's parameters (a params message): each
 // control shows its value in place, except a slider the user is dragging.
-export function updateParams(session) {
+function updateParams(session) {
   const lane = session.focusLane;
   if (!lane || !lane.snapshot) return;
   const start = startValues(lane);
@@ -160,17 +147,23 @@ function buildLaneTabs(session) {
     b.style.borderColor = lane.colour;
     b.style.color = lane.colour;
     b.textContent = lane.label;
-    b.onclick = () => { session.focus = lane.index; buildParams(session); app.signals.frame.dispatch(lane); };
+    b.onclick = () => app.execute({ type: 'focus', lane: lane.index });
     tabs.appendChild(b);
   }
 }
 
-export function setupMethodSwitch(getSession) {
-  $('switch-method-go').onclick = async () => {
-    const session = getSession();
+// The panel's subscriptions and the method switch (the focused lane's run
+// takes the method; its next snapshot renames the lane).
+export function setupParams() {
+  const current = (lane) => app.session && app.session.lanes.includes(lane);
+  app.signals.snapshot.add((lane) => { if (current(lane) && lane.index === app.session.focus) buildParams(app.session); });
+  app.signals.params.add((lane) => { if (current(lane) && lane.index === app.session.focus) updateParams(app.session); });
+  app.signals.focusChanged.add((session) => buildParams(session));
+  app.signals.sessionEnded.add((session) => buildParams(session));  // its parameters read-only
+  app.signals.sessionChanged.add((session) => { if (!session) $('params-section').hidden = true; });
+  $('switch-method-go').onclick = () => {
+    const session = app.session;
     if (!session || session.kind !== 'live') return;
-    const name = $('switch-method').value;
-    await session.input('method', { name }, session.focusLane.runId).catch((e) => app.error(e));
-    session.focusLane.label = name;
+    app.execute({ type: 'input', kind: 'method', payload: { name: $('switch-method').value }, runId: session.focusLane.runId });
   };
 }

@@ -7,6 +7,7 @@
 import uPlot from 'uplot';
 import { LaneSeries } from './plots_store.js';
 import { chartSpecs, chartOptions, CHART_HEIGHT } from './plots_charts.js';
+import { app } from './state.js';
 
 const MIN_REDRAW_MS = 1000 / 30;
 
@@ -80,7 +81,7 @@ export class Plots {
     if (s.appendLive(frame, this.windowSeconds)) this.dirty = true;
   }
 
-  // Replay: a lane's whole stored run, the body of GET /api/runs/{id}/frames
+  // Replay: a lane's whole stored run, the answer of api.frames (a run's frames)
   // ({run, diagnostic_names, frames: [...]}) or just its frames array; pages
   // of one run may be concatenated into one array first.
   setRun(lane, frames) {
@@ -364,4 +365,35 @@ export class Plots {
     this.width = width;
     for (const chart of this.charts.values()) chart.u.setSize({ width, height: CHART_HEIGHT });
   }
+}
+
+// The page's plots follow the session on screen (state.js signals): one
+// series per lane, each lane's diagnostics in its method's order; live
+// frames as they come, a replay's whole stored run, its markers and cursor.
+export function followSession(plots) {
+  let shownNames = [];  // per lane, the diagnostic names the charts were set up with
+  const current = (lane) => app.session && app.session.lanes.includes(lane);
+  const configure = (s, namesPerLane) => {
+    shownNames = namesPerLane.map((names) => names.join('\n'));
+    plots.configure({
+      lanes: s.lanes.map((l, i) => ({ label: l.label, colour: l.colour, diagnosticNames: namesPerLane[i] })),
+      diagnosticNames: [...new Set(namesPerLane.flat())],
+      mode: s.kind,
+      windowSeconds: 10,
+    });
+  };
+  app.signals.sessionChanged.add((s) => { if (s) configure(s, s.runs.map((r) => r.diagnostic_names || [])); });
+  app.signals.frame.add((lane) => { if (current(lane) && app.session.kind === 'live') plots.push(lane.index, lane.frame); });
+  // a method switch changes the diagnostics: the plots start again with the new names
+  app.signals.snapshot.add((lane) => {
+    const s = app.session;
+    if (!current(lane) || s.kind !== 'live' || shownNames[lane.index] === lane.snapshot.diagnostic_names.join('\n')) return;
+    configure(s, s.lanes.map((l, i) => (l.snapshot ? l.snapshot.diagnostic_names : s.runs[i].diagnostic_names || [])));
+  });
+  app.signals.storedFrames.add((lane, data) => { if (current(lane)) plots.setRun(lane.index, data); });
+  app.signals.markers.add((markers) => plots.setMarkers(markers));
+  app.signals.playhead.add((seq) => {
+    const lane = app.session && app.session.lanes[0];
+    if (lane && lane.snapshot) plots.setCursor(seq * lane.snapshot.dt);
+  });
 }

@@ -57,7 +57,7 @@ export class LaneSeries {
     return true;
   }
 
-  // Stored frames from GET /api/runs/{id}/frames, in the stream's shape
+  // Stored frames from api.frames (a run's frames route), in the stream's shape
   // (step_us is not stored: its column holds nulls).
   setStored(frames) {
     this.clear();

@@ -3,7 +3,9 @@
 // playhead advances here (not in each lane's server player, whose clocks
 // drift apart), every lane is asked for that frame, and the scrubber,
 // readout, status line, plot cursor and address follow it on every seek,
-// however it was asked for (scrubber, plot click, keyboard, deep link).
+// however it was asked for (scrubber, plot click, keyboard, deep link): they
+// hear of it through the playhead signal. What it asked each lane's player
+// for is its own (a map by lane), not the lane's.
 import { api } from './api.js';
 import { app } from './state.js';
 import { isTyping } from './dom.js';
@@ -13,10 +15,9 @@ const URL_EVERY_MS = 1000;      // the address follows a playing replay once a s
 const REQUEST_TIMEOUT_MS = 2000; // a frame asked for that never comes does not stall the lane
 
 export class ReplayBar {
-  // onPresent(seq, frame|null): the page shows frame `seq` (frame: lane 0's, once it arrived)
-  constructor({ onPresent } = {}) {
-    this.onPresent = onPresent || (() => {});
+  constructor() {
     this.session = null;
+    this.players = new Map();  // lane → {wanted, inflight, inflightSince, paused, shownSeq, stored}
     this.playing = false;
     this.current = 0;
     this.head = 0;          // fractional playhead while playing, in frames
@@ -36,6 +37,14 @@ export class ReplayBar {
       else if (e.key === 'Home') { e.preventDefault(); this.seek(0); }
       else if (e.key === 'End') { e.preventDefault(); this.seek(this.last); }
     });
+    const current = (lane) => this.session && this.session === app.session && this.session.lanes.includes(lane);
+    app.signals.sessionChanged.add(() => this.detach());
+    app.signals.sessionOpened.add((session, { frame }) => { if (session.kind === 'replay' && !session.empty) this.attach(session, frame); });
+    app.signals.frame.add((lane) => { if (current(lane)) this.onFrame(lane, lane.frame); });
+    // a replay's snapshot carries the frame its player shows
+    app.signals.snapshot.add((lane) => { if (current(lane) && lane.frame) this.onFrame(lane, lane.frame); });
+    app.signals.storedFrames.add((lane, data) => { if (current(lane)) this.setStored(lane, data.frames); });
+    app.signals.markers.add((markers) => { if (this.session) this.setMarkers(markers); });
   }
 
   get last() { return Math.max(0, this.session ? this.session.frameCount - 1 : 0); }
@@ -45,12 +54,9 @@ export class ReplayBar {
   // Shows frame `startFrame` paused, or plays from the start when it is null.
   attach(session, startFrame) {
     this.session = session;
-    for (const lane of session.lanes) {
-      lane.wanted = null;
-      lane.inflight = null;
-      lane.paused = false;
-      lane.shownSeq = lane.frame ? lane.frame.seq : null;
-    }
+    this.players = new Map(session.lanes.map((lane) => [lane, {
+      wanted: null, inflight: null, inflightSince: 0, paused: false, shownSeq: lane.frame ? lane.frame.seq : null, stored: null,
+    }]));
     $('replay-bar').hidden = false;
     $('scrubber').max = String(this.last);
     const start = startFrame === null || startFrame === undefined ? 0 : startFrame;
@@ -81,6 +87,7 @@ export class ReplayBar {
   detach() {
     $('replay-markers').replaceChildren();
     this.session = null;
+    this.players = new Map();
     this.playing = false;
     $('replay-bar').hidden = true;
   }
@@ -164,56 +171,66 @@ export class ReplayBar {
     for (const lane of this.session.lanes) {
       const frames = this.session.runs[lane.index].frames;
       if (frames === 0) continue;
-      lane.wanted = Math.min(seq, frames - 1);
+      this.players.get(lane).wanted = Math.min(seq, frames - 1);
       this.request(lane);
     }
     const first = this.session.lanes[0];
-    if (first.frame && first.frame.seq === first.wanted) this.present(first.frame);
+    if (first.frame && first.frame.seq === this.players.get(first).wanted) this.present(first.frame);
   }
 
   // One request in flight per lane; the newest wish is sent when it is
   // answered. The first always goes: it pauses the lane's server player,
   // which starts out playing on its own clock.
   request(lane) {
+    const p = this.players.get(lane);
     const now = performance.now();
-    if (lane.inflight !== null && now - lane.inflightSince < REQUEST_TIMEOUT_MS) return;
-    lane.inflight = null;
-    if (lane.wanted === null) return;
-    const shown = lane.wanted === lane.shownSeq;  // the server shows it already: no frame will come
-    if (shown && lane.paused) return;
-    lane.paused = true;
-    if (!shown) { lane.inflight = lane.wanted; lane.inflightSince = now; }
-    const body = { action: 'pause', seq: lane.wanted };  // one command: a separate pause could land after the seek
+    if (p.inflight !== null && now - p.inflightSince < REQUEST_TIMEOUT_MS) return;
+    p.inflight = null;
+    if (p.wanted === null) return;
+    const shown = p.wanted === p.shownSeq;  // the server shows it already: no frame will come
+    if (shown && p.paused) return;
+    p.paused = true;
+    if (!shown) { p.inflight = p.wanted; p.inflightSince = now; }
+    const body = { action: 'pause', seq: p.wanted };  // one command: a separate pause could land after the seek
     if (lane.stream && lane.stream.send({ type: 'control', ...body })) return;
-    if (!lane.replayId) { lane.inflight = null; return; }
-    api('POST', `/api/replays/${lane.replayId}/control`, body).catch((e) => { lane.inflight = null; app.error(e); });
+    if (!lane.replayId) { p.inflight = null; return; }
+    api.replayControl(lane.replayId, body).catch((e) => { p.inflight = null; app.error(e); });
   }
 
   // A frame of any lane arrived (its view has it already).
   onFrame(lane, frame) {
     if (!this.session || !this.session.lanes.includes(lane)) return;
-    const previous = lane.shownSeq;
-    lane.shownSeq = frame.seq;
+    const p = this.players.get(lane);
+    const previous = p.shownSeq;
+    p.shownSeq = frame.seq;
     // a jump (a seek, or frames skipped at speed): the trace is rebuilt up to this frame, not cleared
     if (lane.view && frame.seq !== previous && frame.seq !== (previous === null ? 0 : previous + 1)) this.rebuildTrace(lane, frame.seq);
-    if (lane.inflight === frame.seq || lane.inflight === null) lane.inflight = null;
+    if (p.inflight === frame.seq || p.inflight === null) p.inflight = null;
     this.request(lane);
     if (lane.index === 0 && frame.seq === Math.min(this.current, this.session.runs[0].frames - 1)) this.present(frame);
   }
 
+  // A lane's stored frames (strided): its trace up to any frame, after a seek.
+  setStored(lane, frames) {
+    const p = this.players.get(lane);
+    p.stored = frames.map((f) => ({ seq: f.seq, ee: f.ee }));
+    if (p.shownSeq !== null && lane.view) this.rebuildTrace(lane, p.shownSeq);
+  }
+
   rebuildTrace(lane, seq) {
-    if (!lane.stored || !lane.view.rebuildTrace) return;
+    const stored = this.players.get(lane).stored;
+    if (!stored || !lane.view.rebuildTrace) return;
     const points = [];
-    for (const f of lane.stored) { if (f.seq > seq) break; points.push(f.ee); }
+    for (const f of stored) { if (f.seq > seq) break; points.push(f.ee); }
     lane.view.rebuildTrace(points);
   }
 
-  // The readout; the page's status line and plot cursor through onPresent.
+  // The readout; the page's status line and plot cursor hear of it (playhead).
   present(frame) {
     const lane = this.session && this.session.lanes[0];
     const t = frame ? frame.t : lane && lane.snapshot ? this.current * lane.snapshot.dt : null;
     const time = t === null ? '' : ` · ${t.toFixed(2)} s`;
     $('replay-frame').textContent = `${this.current} / ${this.last}${time}`;
-    this.onPresent(this.current, frame);
+    app.setPlayhead(this.current, frame);
   }
 }

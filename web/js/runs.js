@@ -1,6 +1,7 @@
 // The run list: stored and live runs (newest first) with filters, Watch for
 // live runs, Replay for ended ones, a compare group's link, the frames
-// exports and delete. Refreshed every 2 s while the page is visible.
+// exports and delete. Refreshed every 2 s while the page is visible, and
+// when a session opens or ends.
 import { api } from './api.js';
 import { app } from './state.js';
 import { isLive } from './session.js';
@@ -9,38 +10,38 @@ import { escapeHtml } from './dom.js';
 const $ = (id) => document.getElementById(id);
 
 export class RunList {
-  constructor({ open, deleted }) {
-    this.open = open;  // (ids) opens runs: live ones attach, ended ones replay
-    this.deleted = deleted;  // (id) after a run was deleted
-    this.sweeps = null;  // () → the server's sweeps [{id, name, total, status}], grouped below the runs
-    this.openSweep = () => {};  // (id) shows a sweep's page
-    this.resimulate = () => {};  // (id) re-simulates a run without frames, then replays it
+  // sweeps() → the server's sweeps [{id, name, total, status}], grouped below the runs
+  constructor({ sweeps = () => [] } = {}) {
+    this.sweeps = sweeps;
     for (const id of ['filter-scenario', 'filter-method', 'filter-status']) $(id).onchange = () => this.refresh();
     this.timer = setInterval(() => { if (!document.hidden) this.refresh(); }, 2000);
+    app.signals.scenariosChanged.add(() => this.fillFilter('filter-scenario', app.scenarios.map((s) => s.name)));
+    app.signals.methodsChanged.add(() => this.fillFilter('filter-method', app.methods.map((m) => m.name)));
+    for (const signal of ['sessionOpened', 'sessionEnded', 'started']) app.signals[signal].add(() => this.refresh());
   }
 
-  fillFilters() {
-    const fill = (id, names) => {
-      const select = $(id), first = select.options[0].outerHTML;
-      select.innerHTML = first + names.map((n) => `<option>${escapeHtml(n)}</option>`).join('');
-    };
-    fill('filter-scenario', app.scenarios.map((s) => s.name));
-    fill('filter-method', app.methods.map((m) => m.name));
+  // A filter's choices; the one chosen stays chosen.
+  fillFilter(id, names) {
+    const select = $(id), first = select.options[0].outerHTML, chosen = select.value;
+    select.innerHTML = first + names.map((n) => `<option>${escapeHtml(n)}</option>`).join('');
+    if (names.includes(chosen)) select.value = chosen;
   }
+
+  open(ids) { app.execute({ type: 'open', ids }); }
 
   // Runs of no sweep, newest first; then one folded group per sweep of this
   // server, whose runs (named by their case) load when it is unfolded.
   async refresh() {
-    const q = new URLSearchParams({ limit: '40', sweep: 'none' });
+    const q = { limit: 40, sweep: 'none' };
     for (const [key, id] of [['scenario', 'filter-scenario'], ['method', 'filter-method'], ['status', 'filter-status']])
-      if ($(id).value) q.set(key, $(id).value);
+      if ($(id).value) q[key] = $(id).value;
     let runs;
-    try { runs = await api('GET', `/api/runs?${q}`); } catch (e) { return; }
+    try { runs = await api.runs(q); } catch (e) { return; }
     const list = $('runs');
     const open = new Set([...list.querySelectorAll('details.sweep-runs[open]')].map((d) => d.dataset.sweep));
     const items = runs.map((r) => this.item(r, runs));
     if (!runs.length) items.push(Object.assign(document.createElement('li'), { className: 'muted', textContent: 'no runs yet' }));
-    for (const sweep of this.sweeps ? this.sweeps() : []) items.push(this.sweepGroup(sweep, open.has(sweep.name), q));
+    for (const sweep of this.sweeps()) items.push(this.sweepGroup(sweep, open.has(sweep.name), q));
     list.replaceChildren(...items);
   }
 
@@ -52,7 +53,7 @@ export class RunList {
     li.innerHTML = `<details class="sweep-runs" data-sweep="${escapeHtml(sweep.name)}"><summary><span class="title">sweep ${escapeHtml(sweep.name)}</span>
       <span class="muted small">${sweep.total} runs · ${escapeHtml(sweep.status)}</span></summary><ul class="sweep-run-list"><li class="muted small">loading…</li></ul></details>
       <div class="actions"><button type="button">Open sweep</button></div>`;
-    li.querySelector('button').onclick = () => this.openSweep(sweep.id);
+    li.querySelector('button').onclick = () => app.execute({ type: 'openSweep', id: sweep.id });
     const details = li.querySelector('details');
     const ul = li.querySelector('.sweep-run-list');
     const show = (runs) => {
@@ -63,9 +64,7 @@ export class RunList {
     this.sweepRuns = this.sweepRuns || new Map();
     if (this.sweepRuns.has(sweep.name)) show(this.sweepRuns.get(sweep.name));
     const load = async () => {
-      const q = new URLSearchParams(filters);
-      q.set('sweep', sweep.name);
-      const runs = await api('GET', `/api/runs?${q}`).catch(() => null);
+      const runs = await api.runs({ ...filters, sweep: sweep.name }).catch(() => null);
       if (!runs) return;
       this.sweepRuns.set(sweep.name, runs);
       show(runs);
@@ -104,7 +103,7 @@ export class RunList {
     if (live) button('Watch', 'attach to the live run', () => this.open([r.id]));
     else if (r.frames > 0) button('Replay', 'play the stored frames', () => this.open([r.id]));
     else if (r.status === 'completed' && r.summary && r.summary.steps > 0) {
-      button('Re-simulate', 'no frames were stored: simulate it again from its recorded inputs, then replay it', () => this.resimulate(r.id));
+      button('Re-simulate', 'no frames were stored: simulate it again from its recorded inputs, then replay it', () => app.execute({ type: 'resimulate', id: r.id }));
     }
     if (r.compare_group) {
       const group = runs.filter((o) => o.compare_group === r.compare_group).map((o) => o.id).sort((a, b) => a - b);
@@ -113,7 +112,7 @@ export class RunList {
     if (r.frames > 0) {
       for (const [text, format] of [['CSV', 'csv'], ['JSON', 'json']]) {
         const a = document.createElement('a');
-        a.href = `/api/runs/${r.id}/frames?format=${format}`;
+        a.href = api.framesLink(r.id, format);
         a.textContent = text;
         a.title = `frames as ${text} (the first 20,000; page with from=)`;
         a.download = `run-${r.id}.${format}`;
@@ -122,7 +121,7 @@ export class RunList {
     }
     const del = button('Delete', 'delete the run, its frames and events', async () => {
       if (!confirm(`Delete run #${r.id} and its frames?`)) return;
-      await api('DELETE', `/api/runs/${r.id}`).then(() => { this.deleted(r.id); this.refresh(); }, (e) => app.error(e));
+      await app.execute({ type: 'deleteRun', id: r.id }).then(() => this.refresh(), () => {});
     });
     del.disabled = live;
     if (live) del.title = 'a live run cannot be deleted: stop it first';

@@ -3,7 +3,6 @@
 // (the server's `robot.links[3].length`), located in the text by a small
 // tokenizer, since JSON.parse forgets where values were.
 import { element } from './dom.js';
-import { listScenarios } from './api.js';
 
 const MAX_UPLOAD_BYTES = 1024 * 1024;
 const NAME_PATTERN = /^[A-Za-z0-9_.-]{1,64}$/;  // the server's rule for stored names
@@ -176,7 +175,7 @@ function plainMessage(error, path) {
   return message;
 }
 
-// The error's JSON path: `.path` from the page's api(); older api() put it in the message.
+// The error's JSON path: `.path` from the page's api.js (ApiError); older ones put it in the message.
 function errorPath(error) {
   if (typeof error.path === 'string') return error.path;
   const m = /\(([^()]+)\)$/.exec(String(error.message || ''));
@@ -201,6 +200,7 @@ function isMissingRoute(error) {
 }
 
 export class ScenarioEditor {
+  // api: {validateScenario, saveScenario, scenarios} (api.js); onStart(name) starts a live run
   constructor(container, { api, onStart }) {
     this.api = api;
     this.onStart = onStart;
@@ -443,7 +443,7 @@ export class ScenarioEditor {
     this.busy(true);
     this.say('busy', 'The JSON syntax is fine; asking the server…');
     try {
-      const answer = await this.api('POST', '/api/scenarios/validate', value);
+      const answer = await this.api.validateScenario(value);
       const summary = describeValidScenario(answer || {});
       if (answer && answer.exists) {
         const suggestion = await this.suggestName(answer.name);
@@ -456,7 +456,7 @@ export class ScenarioEditor {
     } catch (error) {
       if (isMissingRoute(error)) {
         this.validateAvailable = false;
-        this.say('info', 'The JSON syntax is fine. This server cannot check scenarios without storing them (no /api/scenarios/validate); Save checks the rest.');
+        this.say('info', 'The JSON syntax is fine. This server cannot check scenarios without storing them (it has no validation route); Save checks the rest.');
         return true;
       }
       this.showFieldError(error);
@@ -469,7 +469,7 @@ export class ScenarioEditor {
   // A free name like `name_2`, from the list of stored and built-in scenarios.
   async suggestName(name) {
     let taken = new Set();
-    try { taken = new Set((await listScenarios(this.api)).map((s) => s.name)); } catch { /* suggest blindly */ }
+    try { taken = new Set((await this.api.scenarios()).map((s) => s.name)); } catch { /* suggest blindly */ }
     const numbered = /^(.+)_(\d{1,3})$/.exec(name);  // name_2 is followed by name_3
     const stem = (numbered ? numbered[1] : name).slice(0, 58);
     for (let n = numbered ? Number(numbered[2]) + 1 : 2; n < 10000; ++n) if (!taken.has(`${stem}_${n}`)) return `${stem}_${n}`;
@@ -478,7 +478,7 @@ export class ScenarioEditor {
 
   async nameTaken(name) {
     try {
-      return (await listScenarios(this.api)).some((s) => s.name === name);
+      return (await this.api.scenarios()).some((s) => s.name === name);
     } catch {
       return false;  // the server's 409 will tell
     }
@@ -523,7 +523,7 @@ export class ScenarioEditor {
     this.say('busy', `Saving "${name}"…`);
     try {
       if (await this.nameTaken(name)) { await this.reportNameTaken(name); return null; }
-      await this.api('POST', '/api/scenarios', value);
+      await this.api.saveScenario(value);
       this.savedText = this.textarea.value;
       this.savedName = name;
       this.say('ok', `✓ Saved as "${name}".`);

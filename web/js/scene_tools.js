@@ -1,15 +1,16 @@
 // Editing the scene of a live run from the views: drag an obstacle (PUT at
 // most 20 times a second, and once more at release), add one by choosing a
 // shape and clicking where it goes, delete the selected one. In a compare
-// group the server applies scene edits to every lane.
+// group the server applies scene edits to every lane. Edits are input
+// commands; the tools follow the session's signals (bound to a live run's
+// views, read-only once it ended).
 import { app, OVERLAYS } from './state.js';
 import { isTyping } from './dom.js';
 
 const $ = (id) => document.getElementById(id);
 
 export class SceneTools {
-  constructor(getSession) {
-    this.getSession = getSession;
+  constructor() {
     this.placing = null;
     this.selected = null;
     this.lastPut = 0;
@@ -20,6 +21,18 @@ export class SceneTools {
       if (isTyping(e.target, e.key)) return;
       if (e.key === 'Escape') this.setPlacing(null);
       if (e.key === 'Delete' && this.selected !== null) this.deleteSelected();
+    });
+    const current = (lane) => app.session && app.session.lanes.includes(lane);
+    app.signals.sessionChanged.add(() => this.reset());
+    app.signals.viewCreated.add((lane) => {
+      if (app.session && app.session.kind === 'live') this.bind(lane);
+      else lane.view.onSelect = null;
+    });
+    app.signals.snapshot.add((lane) => { if (current(lane) && lane.index === 0) this.configure(lane.snapshot); });
+    // an ended run's scene is read-only on screen too: no drags, no placing, no delete
+    app.signals.sessionEnded.add((session) => {
+      for (const lane of session.lanes) this.unbind(lane);
+      this.reset();
     });
   }
 
@@ -54,7 +67,9 @@ export class SceneTools {
     view.invalidate();
   }
 
-  live() { const s = this.getSession(); return s && s.kind === 'live' && !s.ended ? s : null; }
+  live() { return app.liveSession; }
+
+  input(kind, payload, report = true) { return app.execute({ type: 'input', kind, payload, report }); }
 
   drag(lane, index, position, phase) {
     const session = this.live();
@@ -65,16 +80,14 @@ export class SceneTools {
     const obstacle = lane.snapshot.obstacles[index];
     if (!obstacle) return;
     const id = obstacle.id;
-    session.input('obstacle_move', { id, position }).catch((e) => app.error(e));
+    this.input('obstacle_move', { id, position });
   }
 
   setPlacing(shape) {
     this.placing = shape;
     $('add-obstacle').setAttribute('aria-pressed', String(Boolean(shape)));
     $('add-obstacle').textContent = shape ? 'Click in the view… (Esc)' : 'Place';
-    const session = this.getSession();
-    if (!session) return;
-    for (const lane of session.lanes) {
+    for (const lane of app.lanes) {
       if (lane.view) lane.view.placing = shape;
       if (lane.cell) lane.cell.classList.toggle('placing', Boolean(shape));
     }
@@ -94,7 +107,7 @@ export class SceneTools {
     else if (shape === 'box') Object.assign(body, { center: point, size: [2 * size, 2 * size, 2 * size] });
     else if (shape === 'point') Object.assign(body, { position: point });
     else if (shape === 'polygon') Object.assign(body, { points: [[-size, -size], [size, -size], [size, size], [-size, size]].map(([x, y]) => [point[0] + x, point[1] + y]) });
-    await session.input('obstacle_add', body);
+    await this.input('obstacle_add', body, false);
   }
 
   // A new session starts with nothing selected and nothing being placed.
@@ -119,12 +132,12 @@ export class SceneTools {
     const id = lane.snapshot.obstacles[index].id;
     this.select(lane, null);
     if (lane.view) lane.view.selected = null;
-    await session.input('obstacle_delete', { id }).catch((e) => app.error(e));
+    await this.input('obstacle_delete', { id });
   }
 }
 
 // One check box per overlay; the views read app.overlays at each render.
-export function buildOverlayToggles(onChange) {
+export function buildOverlayToggles() {
   const box = $('overlay-toggles');
   box.replaceChildren();
   for (const o of OVERLAYS) {
@@ -132,7 +145,7 @@ export function buildOverlayToggles(onChange) {
     label.className = 'overlay-toggle';
     label.title = o.help;
     label.innerHTML = `<input type="checkbox" data-overlay="${o.key}" ${app.overlays[o.key] ? 'checked' : ''}> ${o.label}`;
-    label.querySelector('input').onchange = (e) => { app.overlays[o.key] = e.target.checked; onChange(); };
+    label.querySelector('input').onchange = (e) => app.execute({ type: 'overlay', key: o.key, on: e.target.checked });
     box.appendChild(label);
   }
 }

@@ -1,9 +1,11 @@
 // What the page shows: one run or a compare group, live or replayed. A
 // session has one lane per run (its stream, snapshot, latest frame and view);
 // views are made when the first snapshot says what the model is (Canvas 2D
-// for planar arms, three.js for every other kind).
-import { api, ApiError, Stream } from './api.js';
-import { inputRequest } from './inputs.js';
+// for planar arms, three.js for every other kind). The session and its lanes
+// change here only: a stream's messages update them and the signals of
+// state.js tell the panels. Inputs to a live run are commands (state.js:
+// execute({type: 'input', …})), sent by commands.js.
+import { api, paths, ApiError, Stream } from './api.js';
 import { app, LANE_COLOURS, writeUrl } from './state.js';
 import { View2D } from './view2d.js';
 
@@ -23,12 +25,14 @@ class Lane {
     this.cell = null;
     this.stream = null;
     this.status = run.status;
+    this.framesReceived = 0;
+    this.startParams = {};  // by method: the parameters of its first snapshot (the run's starting values)
     this.ready = new Promise((resolve) => { this.resolveReady = resolve; });  // the first snapshot
   }
 }
 
 export class Session {
-  // kind: 'live' | 'replay'; runs: stored run records (GET /api/runs/{id})
+  // kind: 'live' | 'replay'; runs: stored run records (api.run)
   constructor(kind, runs, layout) {
     this.kind = kind;
     this.runs = runs;
@@ -37,6 +41,8 @@ export class Session {
     this.focus = 0;
     this.frameCount = Math.max(0, ...runs.map((r) => r.frames));
     this.closed = false;
+    this.endSeen = false;   // sessionEnded dispatched
+    this.shownStatus = null;  // lane 0's run status as the header shows it
   }
 
   get runIds() { return this.runs.map((r) => r.id); }
@@ -45,20 +51,12 @@ export class Session {
   get controlRun() { return this.runs[0].id; }
   get focusLane() { return this.lanes[this.focus]; }
 
-  // Sends one input (inputs.js: control, joystick, params, method,
-  // obstacle_add, obstacle_move, obstacle_delete) to run `runId`, by default
-  // the group's control run; resolves with the server's answer.
-  input(kind, payload, runId = this.controlRun) {
-    const { verb, path, body } = inputRequest(kind, runId, payload);
-    return api(verb, path, body);
-  }
-
   // Opens every lane's stream. A session closed meanwhile (the user opened
   // another) stops here and pauses any player it had asked for.
   async open() {
     this.buildCells();
     for (const lane of this.lanes) {
-      let path = `/ws/runs/${lane.runId}`;
+      let path = paths.runStream(lane.runId);
       const run = this.runs[lane.index];
       if (this.kind === 'replay' && run.frames === 0) {
         // a completed run without frames (a sweep's: summaries only) can be re-simulated; a stopped one had no step
@@ -69,9 +67,9 @@ export class Session {
         continue;
       }
       if (this.kind === 'replay') {
-        const player = await api('POST', `/api/runs/${lane.runId}/replay`, { mode: 'frames', speed: 1 });
+        const player = await api.replayRun(lane.runId, { mode: 'frames', speed: 1 });
         lane.replayId = player.replay;
-        if (this.closed) { api('POST', `/api/replays/${player.replay}/control`, { action: 'pause' }).catch(() => {}); return; }
+        if (this.closed) { api.replayControl(player.replay, { action: 'pause' }).catch(() => {}); return; }
         path = player.ws;
       }
       lane.stream = new Stream(path, {
@@ -96,8 +94,8 @@ export class Session {
   // Reconnect only to something that still exists and still runs.
   async probe(lane) {
     if (this.closed) return false;
-    if (this.kind === 'replay') return api('GET', `/api/replays/${lane.replayId}`).then(() => true, (e) => e.status !== 404);
-    return api('GET', `/api/runs/${lane.runId}`).then((run) => { lane.status = run.status; return isLive(run.status); }, (e) => e.status !== 404);
+    if (this.kind === 'replay') return api.replay(lane.replayId).then(() => true, (e) => e.status !== 404);
+    return api.run(lane.runId).then((run) => { lane.status = run.status; return isLive(run.status); }, (e) => e.status !== 404);
   }
 
   buildCells() {
@@ -119,15 +117,22 @@ export class Session {
     lane.snapshot = snapshot;
     lane.status = snapshot.status;
     lane.resolveReady(snapshot);
-    const framesBefore = lane.framesReceived || 0;
+    if (!lane.startParams[snapshot.method]) lane.startParams[snapshot.method] = { ...snapshot.params };
+    // after a method switch the lane's name is its new method: tabs, captions, legends
+    if (lane.label !== snapshot.method) {
+      lane.label = snapshot.method;
+      if (lane.view && this.compare && this.layout === 'side') { lane.view.label = lane.label; lane.view.invalidate(); }
+    }
+    const framesBefore = lane.framesReceived;
     if (!lane.view && lane.cell) await this.makeView(lane, snapshot);
     if (this.closed) return;
     if (lane.view) lane.view.setSnapshot(snapshot);
     // a frame that came while the view was being made (the 3D module loads) is newer than the snapshot's
-    if ((lane.framesReceived || 0) !== framesBefore && lane.frame) { if (lane.view) lane.view.setFrame(lane.frame); }
+    if (lane.framesReceived !== framesBefore && lane.frame) { if (lane.view) lane.view.setFrame(lane.frame); }
     else if (snapshot.frame) lane.frame = snapshot.frame;
     this.refreshOverlayLanes();
     app.signals.snapshot.dispatch(lane);
+    this.checkEnded();
   }
 
   // A parameter change: new values, the same method; the panel updates in place.
@@ -176,11 +181,36 @@ export class Session {
   frame(lane, frame) {
     if (this.closed) return;
     lane.frame = frame;
-    lane.framesReceived = (lane.framesReceived || 0) + 1;
+    lane.framesReceived += 1;
     lane.status = frame.status;
     if (lane.view) lane.view.setFrame(frame);
     if (this.layout === 'overlay' && lane.index > 0 && this.lanes[0].view) this.lanes[0].view.invalidate();
     app.signals.frame.dispatch(lane);
+    // the header says paused or live as the run does
+    if (this.kind === 'live' && lane.index === 0 && frame.status !== this.shownStatus) {
+      this.shownStatus = frame.status;
+      app.signals.connection.dispatch(this);
+    }
+    this.checkEnded();
+  }
+
+  // A live session whose runs all ended (seen in a frame, or in the first
+  // snapshot when the runs ended before the page attached) says so once; one
+  // that ended before any frame reached the page opens its stored runs as a
+  // replay instead.
+  checkEnded() {
+    if (this.closed || this.endSeen || !this.ended) return;
+    this.endSeen = true;
+    if (!this.lanes.some((l) => l.framesReceived > 0)) {
+      app.execute({ type: 'open', ids: this.runIds, layout: this.layout });
+      return;
+    }
+    app.signals.sessionEnded.dispatch(this);
+  }
+
+  // The overlay toggles changed: every view draws again.
+  invalidateViews() {
+    for (const lane of this.lanes) if (lane.view) lane.view.invalidate();
   }
 
   streamState(lane, state) {
@@ -205,7 +235,7 @@ export class Session {
     for (const lane of this.lanes) {
       if (lane.stream) lane.stream.close();
       if (lane.view) lane.view.destroy();
-      if (lane.replayId) api('POST', `/api/replays/${lane.replayId}/control`, { action: 'pause' }).catch(() => {});
+      if (lane.replayId) api.replayControl(lane.replayId, { action: 'pause' }).catch(() => {});
     }
     document.getElementById('views').replaceChildren();
   }
@@ -213,7 +243,7 @@ export class Session {
 
 // Opens runs by id: live ones attach to their streams, ended ones replay.
 export async function sessionFor(ids, layout) {
-  const runs = await Promise.all(ids.map((id) => api('GET', `/api/runs/${id}`)));
+  const runs = await Promise.all(ids.map((id) => api.run(id)));
   const live = runs.some((r) => isLive(r.status));
   return new Session(live ? 'live' : 'replay', runs, layout);
 }

@@ -1,6 +1,10 @@
-// The page's one central object: what is shown (the session and its lanes),
-// the overlay toggles, and signals the panels listen to. The address bar
-// follows the session, so a copied link reopens what is shown.
+// The page's state and its one owner, in the manner of the three.js editor's
+// Editor.js: what is shown (the session and its lanes, or a centre page), the
+// catalogue, the pickers' choice and the overlay toggles; the signals the
+// panels subscribe to; and execute(command), the one path by which inputs
+// and session changes are made. Commands are plain objects {type, ...}; their
+// handlers (commands.js) are the only code that calls setSession / setPage.
+// The address bar follows what is shown, so a copied link reopens it.
 
 export class Signal {
   constructor() { this.listeners = []; }
@@ -21,24 +25,92 @@ export const OVERLAYS = [
   { key: 'trace', label: 'End-effector trace', help: 'where the end-effector has been' },
 ];
 
+// The papers a page `?paper=KEY` can show.
+export const PAPER_KEYS = ['sezgin', 'chen', 'qiu', 'zhang', 'kapoor'];
+
+const handlers = {};
+
 export const app = {
+  session: null,      // the run or compare group on screen (session.js), or null
+  page: null,         // the page shown in the centre instead: {name: 'paper', key} | {name: 'sweep', id} | null
+  playhead: null,     // a replay's frame on screen (replay.js moves it: setPlayhead)
   overlays: Object.fromEntries(OVERLAYS.map((o) => [o.key, true])),
-  methods: [],        // GET /api/methods
-  scenarios: [],      // GET /api/scenarios: every page's summaries
+  methods: [],        // the server's methods
+  scenarios: [],      // every scenario's summary
+  version: '',        // rrlab's, from the health route
+  choice: { scenario: null, method: '', rate: 1 },  // the pickers of a new run
   signals: {
-    sessionChanged: new Signal(),  // (session) lanes opened or closed
+    sessionChanged: new Signal(),  // (session | null) another session is on screen (its streams not yet open), or none
+    sessionOpened: new Signal(),   // (session, {frame}) its streams are open; frame: the replay frame the address asked for
+    sessionEnded: new Signal(),    // (session) every run of the live session on screen ended
+    pageChanged: new Signal(),     // (page | null) a paper's or a sweep's page in the centre, or none
+    focusChanged: new Signal(),    // (session) another lane's parameters are shown
     snapshot: new Signal(),        // (lane) a lane got a new snapshot
     params: new Signal(),          // (lane) a lane's parameter values changed (lane.snapshot.params)
     frame: new Signal(),           // (lane) a lane got a new frame
     viewCreated: new Signal(),     // (lane) a lane's view exists (2D or 3D)
-    connection: new Signal(),      // (session) a stream's state changed
-    overlaysChanged: new Signal(),
-    message: new Signal(),         // (text, kind 'error'|'info')
+    connection: new Signal(),      // (session) a stream's state, or the live run's status, changed
+    storedFrames: new Signal(),    // (lane, {frames}) a replayed lane's stored frames (strided), each with its t
+    markers: new Signal(),         // (markers) a replay's recorded inputs, [{seq, t, kind, text}]
+    playhead: new Signal(),        // (seq, frame | null) the replay's current frame (app.setPlayhead)
+    scenariosChanged: new Signal(),  // () app.scenarios (and app.choice.scenario) loaded anew
+    methodsChanged: new Signal(),  // () app.methods loaded
+    started: new Signal(),         // () the page opened what its address asked for
+    status: new Signal(),          // (text) a line about work in progress (a batch run, a re-simulation)
+    message: new Signal(),         // (text or error, kind 'error'|'info')
     controlTaken: new Signal(),    // (text) another client took control of the live run from this tab
     control: new Signal(),         // ('you' | 'other' | 'none') who holds control of the live run
   },
+
+  get lanes() { return this.session ? this.session.lanes : []; },
+  // The live session on screen that still takes inputs, or null.
+  get liveSession() { return this.session && this.session.kind === 'live' && !this.session.ended ? this.session : null; },
+
+  // Runs a command {type, ...}: resolves with its result, rejects with its
+  // failure, which is also shown on the message line unless the command says
+  // `report: false` (its caller shows it). The promise returned is handled,
+  // so a caller may ignore it.
+  execute(command) {
+    const handler = command && Object.hasOwn(handlers, command.type) ? handlers[command.type] : null;
+    let result;
+    try {
+      if (!handler) throw new Error(`unknown command "${command && command.type}"`);
+      result = Promise.resolve(handler(command));
+    } catch (e) {
+      result = Promise.reject(e);
+    }
+    result.catch((e) => { if (command.report !== false) this.error(e); });
+    return result;
+  },
+  // The handlers by command type (main.js registers commands.js's).
+  define(table) { Object.assign(handlers, table); },
+
+  // The one place the session on screen changes (commands only): a page in
+  // the centre gives way, the old session closes, the panels hear of it.
+  setSession(next) {
+    if (this.page) { this.page = null; this.signals.pageChanged.dispatch(null); }
+    if (this.session && this.session !== next) this.session.close();
+    this.session = next;
+    this.playhead = null;
+    this.signals.sessionChanged.dispatch(next);
+  },
+  // A paper's or a sweep's page instead of any session (commands only).
+  setPage(page) {
+    this.setSession(null);
+    this.page = page;
+    this.signals.pageChanged.dispatch(page);
+  },
+
+  // The replay's current frame (as the three.js editor's select(): state
+  // that changes at the display rate, not a command).
+  setPlayhead(seq, frame) {
+    this.playhead = seq;
+    this.signals.playhead.dispatch(seq, frame);
+  },
+
   error(e) { this.signals.message.dispatch(e, 'error'); },
   info(text) { this.signals.message.dispatch(text, 'info'); },
+  status(text) { this.signals.status.dispatch(text); },
 };
 
 // ?run=ID[&frame=K] | ?compare=ID,ID[,..][&frame=K] | ?sweep=ID | ?paper=KEY | ?scenario=NAME[&method=M]

@@ -1,4 +1,4 @@
-// What the sweep page shows, from a sweep's report (GET /api/sweeps/{id}):
+// What the sweep page shows, from a sweep's report (api.sweep(id)):
 // the method × family success table with its best cells, the failure modes,
 // step cost, success against difficulty as an inline SVG, and the method
 // configurations as the compare endpoint takes them. Pure: no DOM.

@@ -7,9 +7,8 @@
 import { api } from './api.js';
 import { app, LANE_COLOURS } from './state.js';
 import { escapeHtml } from './dom.js';
-import { fmt } from './params.js';
+import { fmt } from './dom.js';
 import { successTable, formatRate, formatFailureModes, difficultySvg, parseConfig } from './sweep_report.js';
-import { resimulate } from './resimulate.js';
 
 const $ = (id) => document.getElementById(id);
 const POLL_MS = 1000;
@@ -17,14 +16,19 @@ const CHART_COLOURS = LANE_COLOURS.concat(['#00838f', '#6d4c41', '#c2185b', '#54
 const RUNS_PER_PAGE = 50;
 
 export class SweepPage {
-  // open(ids, layout): opens runs on the page; onClose(): the page was left
-  constructor({ open }) {
-    this.openRuns = open;
+  // Shown while the page in the centre is a sweep's (state.js: app.page).
+  constructor() {
     this.id = null;
     this.timer = null;
     this.status = null;
     this.cell = null;
+    app.signals.pageChanged.add((page) => {
+      if (page && page.name === 'sweep') this.show(page.id).catch((e) => app.error(e));
+      else this.hide();
+    });
   }
+
+  openRuns(ids) { return app.execute({ type: 'open', ids, report: false }); }
 
   get shown() { return this.id !== null; }
 
@@ -53,7 +57,7 @@ export class SweepPage {
     const again = () => { this.timer = setTimeout(() => this.load().catch((e) => app.error(e)), POLL_MS); };
     let status;
     try {
-      status = await api('GET', `/api/sweeps/${id}`);
+      status = await api.sweep(id);
     } catch (e) {
       if (this.token !== token) return;
       if (e.status === 404 || !this.status) {
@@ -85,7 +89,7 @@ export class SweepPage {
       if (this.cell) this.showCell(this.cell.family, this.cell.config, this.cell.offset).catch((e) => app.error(e));
     }
     const stop = $('sweep-stop');
-    if (stop) stop.onclick = () => api('POST', `/api/sweeps/${s.id}/control`, { action: 'stop' }).catch((e) => app.error(e));
+    if (stop) stop.onclick = () => api.sweepControl(s.id, { action: 'stop' }).catch((e) => app.error(e));
   }
 
   reportHtml(report) {
@@ -131,8 +135,7 @@ export class SweepPage {
   async showCell(family, config, offset = 0) {
     const id = this.id;
     this.cell = { family, config, offset };
-    const q = new URLSearchParams({ family, config, limit: String(RUNS_PER_PAGE), offset: String(offset) });
-    const page = await api('GET', `/api/sweeps/${id}/runs?${q}`);
+    const page = await api.sweepRuns(id, { family, config, limit: RUNS_PER_PAGE, offset });
     if (this.id !== id) return;
     const box = $('sweep-cell');
     const rows = page.runs.map((r) => `<tr data-run="${r.run}">
@@ -160,22 +163,21 @@ export class SweepPage {
   async openRun(run) {
     if (run.frames > 0) return this.openRuns([run.run]);
     const note = $('sweep-cell-progress');
-    const id = await resimulate(run.run, (done, total) => {
+    const onProgress = (done, total) => {
       if (note) note.textContent = `re-simulating run #${run.run}: ${done}${total ? ` / ${total}` : ''} frames`;
-    });
-    return this.openRuns([id]);
+    };
+    return app.execute({ type: 'resimulate', id: run.run, onProgress, report: false });
   }
 
   // Every method configuration of the sweep on this run's case, as one group.
   async compareCase(run) {
     const report = this.status && this.status.report;
     const configs = successTable(report).configs.filter((c) => successTable(report).cell(run.family, c));
-    const record = await api('GET', `/api/runs/${run.run}/record`);
+    const record = await api.record(run.run);
     const methods = configs.slice(0, 4).map(parseConfig);  // a compare group holds at most 4 lanes
     if (configs.length > 4) app.info(`a compare holds 4 methods: the sweep's first 4 of ${configs.length} (by rank)`);
     const note = $('sweep-cell-progress');
     if (note) note.textContent = `running ${methods.length} methods on ${run.case}…`;
-    const group = await api('POST', '/api/compare', { scenario: record.scenario, methods, mode: 'batch' });
-    return this.openRuns(group.runs.map((r) => r.id));
+    return app.execute({ type: 'startCompare', body: { scenario: record.scenario, methods, mode: 'batch' }, report: false });
   }
 }

@@ -15,8 +15,7 @@ const EXAMPLE_SPEC = {
 };
 
 export class SweepList {
-  constructor({ open }) {
-    this.open = open;  // (id) shows a sweep's page
+  constructor() {
     this.sweeps = [];
     this.progress = new Map();  // id → {done, total} of running sweeps
     this.validations = 0;  // the newest server check of the spec wins
@@ -25,15 +24,18 @@ export class SweepList {
     $('sweep-spec').oninput = () => this.checkSyntax();
     $('sweep-form').onsubmit = (e) => { e.preventDefault(); this.submit().catch((err) => this.showError(err)); };
     this.timer = setInterval(() => { if (!document.hidden) this.refresh(); }, 2000);
+    app.signals.started.add(() => this.refresh());
   }
+
+  open(id) { app.execute({ type: 'openSweep', id }); }
 
   async refresh() {
     let sweeps;
-    try { sweeps = await api('GET', '/api/sweeps'); } catch { return; }
+    try { sweeps = await api.sweeps(); } catch { return; }
     this.sweeps = sweeps;
     // progress of the running ones (the list says total only)
     await Promise.all(sweeps.filter((s) => s.status === 'running').map(async (s) => {
-      const status = await api('GET', `/api/sweeps/${s.id}`).catch(() => null);
+      const status = await api.sweep(s.id).catch(() => null);
       if (status) this.progress.set(s.id, { done: status.done, total: status.total });
     }));
     const list = $('sweeps');
@@ -64,7 +66,7 @@ export class SweepList {
       stop.type = 'button';
       stop.textContent = 'Stop';
       stop.title = 'workers finish their current run; stored runs stay, and the same spec resumes';
-      stop.onclick = () => api('POST', `/api/sweeps/${s.id}/control`, { action: 'stop' }).then(() => this.refresh(), (e) => app.error(e));
+      stop.onclick = () => api.sweepControl(s.id, { action: 'stop' }).then(() => this.refresh(), (e) => app.error(e));
       li.querySelector('.actions').appendChild(stop);
     }
     li.querySelector('.open-sweep').onclick = () => this.open(s.id);
@@ -80,7 +82,7 @@ export class SweepList {
   }
 
   // The spec parses as JSON, or the error says where it does not; once it
-  // does, the server checks it as a start would (POST /api/sweeps/validate,
+  // does, the server checks it as a start would (api.validateSweep,
   // a moment after the typing stops) and says what it would run or what is wrong.
   checkSyntax() {
     const text = $('sweep-spec').value;
@@ -97,7 +99,7 @@ export class SweepList {
     $('sweep-syntax').className = 'small muted';
     const asked = ++this.validations;
     this.validateTimer = setTimeout(() => {
-      api('POST', '/api/sweeps/validate', spec).then((v) => {
+      api.validateSweep(spec).then((v) => {
         if (asked !== this.validations) return;
         $('sweep-syntax').textContent = `valid: ${v.total} runs (${v.scenario_entries} scenario entries × ${v.configurations} method configurations, cases included)`;
         $('sweep-syntax').className = 'small ok';
@@ -118,7 +120,7 @@ export class SweepList {
     if (!this.checkSyntax()) return;
     const spec = JSON.parse($('sweep-spec').value);
     const jobs = Number($('sweep-jobs').value);
-    const started = await api('POST', `/api/sweeps?jobs=${jobs}`, spec);
+    const started = await api.startSweep(spec, jobs);
     $('sweep-dialog').close();
     await this.refresh();
     this.open(started.id);

@@ -1,11 +1,11 @@
 // The 3D view (three.js, z up) for spatial models: the arm, obstacles, task
 // path and target, overlays, compare lanes, obstacle picking and dragging.
-// It owns its renderer and camera; the page feeds it snapshots and frames and
-// calls render() from its animation loop (it draws only when something changed).
+// It owns its renderer, its scene and its camera (view3d_camera.js: orbit,
+// gizmo, framing); the page feeds it snapshots and frames and calls render()
+// from its animation loop (it draws only when something changed).
 import * as THREE from 'three';
-import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { CSS2DRenderer, CSS2DObject } from 'three/addons/renderers/CSS2DRenderer.js';
-import { ViewHelper } from 'three/addons/helpers/ViewHelper.js';
+import { CameraRig, DEFAULT_DIRECTION } from './view3d_camera.js';
 import { Arm, GroundShadow, visualRadius, armColours } from './view3d_arm.js';
 import { Obstacles, obstaclePosition } from './view3d_obstacles.js';
 import { Overlays } from './view3d_overlays.js';
@@ -101,12 +101,8 @@ export class View3D {
     this.createRenderer();
     this.createScene();
     this.pointer = new PointerTool(this, this.renderer.domElement);  // before OrbitControls: see view3d_drag.js
-    this.controls = new OrbitControls(this.camera, this.renderer.domElement);
-    this.controls.enableDamping = true;
-    this.controls.dampingFactor = 0.15;
-    this.controls.addEventListener('change', () => { this.dirty = true; });
-    this.listenToGizmo();
-    this.addViewButtons();
+    this.rig.attach(this.container, { fit: () => this.fit(), fitFromHere: () => this.fitFromHere() });
+    this.controls = this.rig.controls;
     this.resizeObserver = new ResizeObserver(() => this.resize());
     this.resizeObserver.observe(container);
     this.resize();
@@ -129,11 +125,9 @@ export class View3D {
 
   createScene() {
     this.scene = new THREE.Scene();
-    this.camera = new THREE.PerspectiveCamera(40, 1, 0.01, 1000);
-    this.camera.up.set(0, 0, 1);
-    this.camera.position.set(3, -5, 3);
-    this.axesGizmo = new ViewHelper(this.camera, this.renderer.domElement);  // the axes hint, bottom right
-    this.axesGizmo.setLabels('x', 'y', 'z');
+    this.rig = new CameraRig(this.renderer.domElement, () => { this.dirty = true; });
+    this.camera = this.rig.camera;
+    this.axesGizmo = this.rig.gizmo;
     this.scene.add(new THREE.HemisphereLight('#ffffff', '#b0bec5', 2.2));
     this.sun = new THREE.DirectionalLight('#ffffff', 1.6);
     this.sun.position.set(0.4, -0.6, 1);
@@ -185,58 +179,10 @@ export class View3D {
     return group;
   }
 
-  // The axes gizmo (bottom right, 128 px) turns the camera to look along the
-  // clicked axis. Its pointer events go to it alone: no drag, select or place.
-  listenToGizmo() {
-    const element = this.renderer.domElement;
-    const inside = (e) => {
-      const r = element.getBoundingClientRect();
-      return e.clientX >= r.right - 128 && e.clientY >= r.bottom - 128;
-    };
-    for (const type of ['pointerdown', 'pointermove', 'pointerup']) {
-      element.addEventListener(type, (e) => {
-        if (!inside(e) || (type === 'pointermove' && !e.buttons)) return;
-        e.stopImmediatePropagation();
-        if (type === 'pointerup') {
-          this.axesGizmo.center.copy(this.controls.target);
-          if (this.axesGizmo.handleClick(e)) { this.gizmoClock = performance.now(); this.dirty = true; }
-        }
-      }, { capture: true });
-    }
-  }
-
-  // Fit (frame the scene from where the camera looks now) and Reset (from the first view's direction).
-  addViewButtons() {
-    const bar = document.createElement('div');
-    bar.className = 'view3d-buttons';
-    for (const [text, title, action] of [
-      ['Fit', 'frame the whole scene, looking from where you look now', () => this.fitFromHere()],
-      ['Reset', 'the first view: from the front right, above', () => this.fit()],
-    ]) {
-      const b = document.createElement('button');
-      b.type = 'button';
-      b.textContent = text;
-      b.title = title;
-      b.className = `view3d-${text.toLowerCase()}`;
-      b.onclick = action;
-      bar.appendChild(b);
-    }
-    this.container.appendChild(bar);
-  }
-
-  // Ends the orbit's coasting (damping) at once, so a fit is not turned afterwards.
-  settle() {
-    this.controls.enableDamping = false;
-    this.controls.update();
-    this.controls.enableDamping = true;
-  }
-
+  // Fit: the scene framed from where the camera looks now.
   fitFromHere() {
     if (this.failed || !this.snapshot) return;
-    this.settle();
-    const direction = this.camera.position.clone().sub(this.controls.target);
-    if (direction.lengthSq() === 0) return this.fit();
-    return this.fit(direction.normalize());
+    this.fit(this.rig.lookingFrom() || DEFAULT_DIRECTION);
   }
 
   // ---- the page's interface ----
@@ -375,60 +321,13 @@ export class View3D {
   // Frames the camera on the scene: the base, the arm as it stands, every
   // obstacle and the path (before any frame: the reach around the base); the
   // ground grid follows the same region.
-  fit(direction = new THREE.Vector3(0.45, -1, 0.6).normalize()) {  // by default from the front right, above
+  fit(direction = DEFAULT_DIRECTION) {
     if (this.failed || !this.snapshot) return;
-    this.settle();
     const box = this.sceneBox();
     const { base, reach } = this.snapshot.model;
     this.buildGround(box, reach, base);
-    const centre = box.getCenter(new THREE.Vector3());
-    let distance = this.fitDistance(box, centre, direction);
-    // perspective makes the near side look larger: centre the box's picture, then fit again
-    for (let pass = 0; pass < 2; ++pass) {
-      this.camera.position.copy(centre).addScaledVector(direction, distance);
-      this.camera.lookAt(centre);
-      this.camera.updateMatrixWorld();
-      const picture = this.pictureBounds(box);
-      const shift = new THREE.Vector3((picture.min.x + picture.max.x) / 2, (picture.min.y + picture.max.y) / 2, 0.5)
-        .unproject(this.camera).sub(this.camera.position).normalize();
-      // move the centre sideways so that it lies on the ray through the picture's middle
-      const along = shift.multiplyScalar(distance / shift.dot(direction.clone().negate()));
-      centre.copy(this.camera.position).add(along);
-      distance = this.fitDistance(box, centre, direction);
-    }
-    this.camera.position.copy(centre).addScaledVector(direction, distance);
-    this.controls.target.copy(centre);
-    this.camera.near = distance / 100;
-    this.camera.far = distance * 20;
-    this.camera.updateProjectionMatrix();
-    this.controls.update();
+    this.rig.frame(box, direction);
     this.dirty = true;
-  }
-
-  // The camera distance from `centre` along `direction` at which every corner of the box is in view.
-  fitDistance(box, centre, direction) {
-    const forward = direction.clone().negate();
-    const right = new THREE.Vector3().crossVectors(forward, this.camera.up).normalize();
-    const up = new THREE.Vector3().crossVectors(right, forward);
-    const tanV = Math.tan(THREE.MathUtils.degToRad(this.camera.fov / 2)), tanH = tanV * this.camera.aspect;
-    let distance = 0;
-    const corner = new THREE.Vector3();
-    for (let k = 0; k < 8; ++k) {
-      corner.set(k & 1 ? box.max.x : box.min.x, k & 2 ? box.max.y : box.min.y, k & 4 ? box.max.z : box.min.z).sub(centre);
-      const depth = corner.dot(forward);  // a corner beyond the centre needs less distance
-      distance = Math.max(distance, Math.abs(corner.dot(right)) / tanH - depth, Math.abs(corner.dot(up)) / tanV - depth);
-    }
-    return distance * 1.05;
-  }
-
-  // The box's corners in normalised device coordinates: their 2D bounds.
-  pictureBounds(box) {
-    const bounds = new THREE.Box2(), corner = new THREE.Vector3();
-    for (let k = 0; k < 8; ++k) {
-      corner.set(k & 1 ? box.max.x : box.min.x, k & 2 ? box.max.y : box.min.y, k & 4 ? box.max.z : box.min.z).project(this.camera);
-      bounds.expandByPoint(new THREE.Vector2(corner.x, corner.y));
-    }
-    return bounds;
   }
 
   sceneBox() {
@@ -449,13 +348,7 @@ export class View3D {
   // Draws when something changed (a frame, the page's settings, the camera).
   render() {
     if (this.failed) return false;
-    let moved = this.controls.update();
-    if (this.axesGizmo.animating) {  // turning to a clicked axis
-      const now = performance.now();
-      this.axesGizmo.update((now - (this.gizmoClock || now)) / 1000);
-      this.gizmoClock = now;
-      moved = true;
-    }
+    const moved = this.rig.update();
     const key = Object.entries(this._overlays).map(([k, v]) => (v ? k : '')).join();
     if (key !== this.overlayKey) { this.overlayKey = key; this.dirty = true; }
     if (!this.dirty && !moved) return false;
@@ -489,8 +382,7 @@ export class View3D {
     try {
       this.renderer.setPixelRatio(1);
       this.renderer.setSize(width, height, false);
-      this.camera.aspect = width / height;
-      this.camera.updateProjectionMatrix();
+      this.rig.setAspect(width / height);
       this.applyFrame();
       this.renderer.clear();
       this.renderer.render(this.scene, this.camera);
@@ -498,8 +390,7 @@ export class View3D {
     } finally {
       this.renderer.setPixelRatio(ratio);
       this.renderer.setSize(size.x, size.y, false);
-      this.camera.aspect = aspect;
-      this.camera.updateProjectionMatrix();
+      this.rig.setAspect(aspect);
       this.dirty = true;
     }
     return out;
@@ -576,19 +467,14 @@ export class View3D {
   }
 
   // Page (client) coordinates of a world point: browser tests drag with them.
-  worldToClient(p) {
-    const v = new THREE.Vector3(p[0], p[1], p[2] || 0).project(this.camera);
-    const rect = this.renderer.domElement.getBoundingClientRect();
-    return { x: rect.left + ((v.x + 1) / 2) * rect.width, y: rect.top + ((1 - v.y) / 2) * rect.height };
-  }
+  worldToClient(p) { return this.rig.toClient(p); }
 
   resize() {
     const width = this.container.clientWidth, height = this.container.clientHeight;
     if (!width || !height) return;
     this.renderer.setSize(width, height, false);
     this.labels.setSize(width, height);
-    this.camera.aspect = width / height;
-    this.camera.updateProjectionMatrix();
+    this.rig.setAspect(width / height);
     this.dirty = true;
   }
 
@@ -598,8 +484,7 @@ export class View3D {
     if (this.failed) { this.container.replaceChildren(); return; }
     this.resizeObserver.disconnect();
     this.pointer.dispose();
-    this.controls.dispose();
-    if (this.axesGizmo) this.axesGizmo.dispose();
+    this.rig.dispose();
     this.setLanes([]);
     for (const part of [this.arm, this.shadow, this.obstacles, this.overlayLayer, this.path]) if (part) part.dispose();
     disposeTree(this.scene);

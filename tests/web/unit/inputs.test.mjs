@@ -1,9 +1,9 @@
-// web/js/inputs.js: every input kind the page sends to a live run becomes
+// web/js/api.js (INPUT_KINDS): every input kind the page sends to a live run becomes
 // the REST request of its route (docs/api.md), and nothing else does.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 
-import { INPUT_KINDS, inputRequest } from '../../../web/js/inputs.js';
+import { INPUT_KINDS, inputRequest } from '../../../web/js/api.js';
 
 test('each input kind goes to its route with its body', () => {
   const cases = [
