@@ -47,6 +47,13 @@ await suite('plots', [
       return { points: u.data[0].length, values: u.data[1].filter((v) => v !== null && v !== undefined).length };
     }, name);
     check(diag.points > 0 && diag.values > 0, `the ${name} chart comes filled with the data kept so far`);
+    // a metric of the frame field table without a chart of its own is offered too, and charted when ticked
+    await page.check('#plots .plots-diagnostics input[value="metric:joint_limit_margin"]');
+    const margin = await page.evaluate(() => {
+      const chart = window.__rrlab.plots.charts.get('metric:joint_limit_margin');
+      return chart ? chart.u.data[0].length : 0;
+    });
+    check(margin > 0, 'the joint_limit_margin chart comes filled from the frame field table\'s metric');
     await eventually(() => page.evaluate(() => !window.__rrlab.plots.dirty), 'the charts drawn');
     await t.screenshot('live');
     await page.setViewportSize({ width: 1400, height: 1500 });  // the whole stack of charts

@@ -108,6 +108,7 @@ const query = (params) => {
 export const paths = {
   health: () => '/api/health',
   methods: () => '/api/methods',
+  frameFields: () => '/api/frame-fields',
   scenarios: (params) => `/api/scenarios${query(params)}`,
   scenario: (name) => `/api/scenarios/${enc(name)}`,
   validateScenario: () => '/api/scenarios/validate',
@@ -164,6 +165,7 @@ async function listScenarios() {
 export const api = {
   health: () => request('GET', paths.health()),
   methods: () => request('GET', paths.methods()),
+  frameFields: () => request('GET', paths.frameFields()).then((table) => table.fields),
   scenarios: listScenarios,
   scenario: (name) => request('GET', paths.scenario(name)),
   validateScenario: (scenario) => request('POST', paths.validateScenario(), scenario),

@@ -105,7 +105,7 @@ export const commands = {
   // What the address asks for (?run=, ?compare=, ?sweep=, ?paper=,
   // ?scenario=&method=), once the catalogue is loaded.
   async start() {
-    [app.scenarios, app.methods] = await Promise.all([api.scenarios(), api.methods()]);
+    [app.scenarios, app.methods, app.frameFields] = await Promise.all([api.scenarios(), api.methods(), api.frameFields()]);
     api.health().then((h) => { app.version = h.version; }, () => {});
     const url = readUrl();
     if (url.scenario && app.scenarios.some((s) => s.name === url.scenario)) app.choice.scenario = url.scenario;

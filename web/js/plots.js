@@ -5,8 +5,8 @@
 // times a second. Replay: a whole stored run per lane, a cursor line that
 // follows the page's scrubber, and a click on a chart seeks.
 import uPlot from 'uplot';
-import { LaneSeries } from './plots_store.js';
-import { chartSpecs, chartOptions, CHART_HEIGHT } from './plots_charts.js';
+import { LaneSeries, chartedMetrics } from './plots_store.js';
+import { chartSpecs, chartOptions, extraMetrics, CHART_HEIGHT } from './plots_charts.js';
 import { app } from './state.js';
 
 const MIN_REDRAW_MS = 1000 / 30;
@@ -62,12 +62,15 @@ export class Plots {
       label: l.label, colour: l.colour,
       diagnosticNames: [...(l.diagnosticNames || diagnosticNames)],
     }));
-    this.series = this.lanes.map((l) => new LaneSeries(l.diagnosticNames));
+    const metricKeys = chartedMetrics(app.frameFields);
+    this.extras = extraMetrics(app.frameFields, metricKeys);  // offered for ticking, after the diagnostics
+    this.series = this.lanes.map((l) => new LaneSeries(l.diagnosticNames, metricKeys));
     this.mode = mode === 'replay' ? 'replay' : 'live';
     this.windowSeconds = windowSeconds > 0 ? windowSeconds : 10;
     this.cursorT = null;
     this.joined = null;
-    for (const name of [...this.ticked]) if (!this.names.includes(name)) this.ticked.delete(name);
+    for (const key of [...this.ticked])
+      if (!this.names.includes(key) && !this.extras.some((f) => `metric:${f.name}` === key)) this.ticked.delete(key);
     this.container.classList.toggle('plots-replay', this.mode === 'replay');
     this.buildTickList();
     this.dirty = true;
@@ -140,6 +143,7 @@ export class Plots {
       orientation: this.series.some((s) => s.orientationSeen),
       stepTimes: this.mode === 'live' || this.series.some((s) => s.column('step_us').some((v) => v !== null)),
       ticked: this.names.filter((n) => this.ticked.has(n)),
+      tickedMetrics: this.extras.filter((f) => this.ticked.has(`metric:${f.name}`)),
     });
     const wanted = new Set(specs.map((s) => s.id));
     for (const [id, chart] of this.charts) {
@@ -325,27 +329,36 @@ export class Plots {
   // open at first when there are few, so a long list never pushes the charts away.
   buildTickList() {
     this.tickList.replaceChildren();
-    if (!this.names.length) return;
+    this.tickGroup('Diagnostics', this.names.map((name) => ({ key: name, label: name })));
+    this.tickGroup('More metrics', this.extras.map((f) => ({ key: `metric:${f.name}`, label: f.name, title: f.description })));
+  }
+
+  // One group of tick boxes (charts to add), with its count.
+  tickGroup(heading, entries) {
+    if (!entries.length) return;
     const details = document.createElement('details');
-    details.open = this.names.length <= 6;
+    details.open = entries.length <= 6;
     const summary = document.createElement('summary');
     summary.className = 'plots-diagnostics-heading';
-    const count = () => { summary.textContent = `Diagnostics: ${this.ticked.size} of ${this.names.length} charted`; };
+    const count = () => {
+      summary.textContent = `${heading}: ${entries.filter((e) => this.ticked.has(e.key)).length} of ${entries.length} charted`;
+    };
     count();
     const choices = document.createElement('div');
     choices.className = 'plots-diagnostics-choices';
-    for (const name of this.names) {
+    for (const entry of entries) {
       const label = document.createElement('label');
+      if (entry.title) label.title = entry.title;
       const box = document.createElement('input');
       box.type = 'checkbox';
-      box.value = name;
-      box.checked = this.ticked.has(name);
+      box.value = entry.key;
+      box.checked = this.ticked.has(entry.key);
       box.addEventListener('change', () => {
-        if (box.checked) this.ticked.add(name); else this.ticked.delete(name);
+        if (box.checked) this.ticked.add(entry.key); else this.ticked.delete(entry.key);
         count();
         this.layout();  // the new chart comes filled with the data already kept
       });
-      label.append(box, ` ${name}`);
+      label.append(box, ` ${entry.label}`);
       choices.appendChild(label);
     }
     details.append(summary, choices);

@@ -13,9 +13,20 @@ export const CHART_HEIGHT = 160;     // canvas, x axis included; the legend sits
 const AXIS_SIZE = 60;                 // both sides on every chart, so the time axes line up
 const SECOND_DASH = [6, 4];           // the second quantity of a chart, per lane
 
+// The metrics the charts below draw; any other metric of the frame field
+// table is offered for ticking and gets a chart of its own (extraMetrics).
+export const CHARTED_METRICS = ['task_error', 'orientation_error', 'min_distance', 'manipulability',
+  'condition_number', 'step_us'];
+
+// The table's metrics without a chart of their own, as fields {name, unit, description}.
+export function extraMetrics(fields, metricKeys) {
+  return fields.filter((f) => metricKeys.includes(f.name) && !CHARTED_METRICS.includes(f.name));
+}
+
 // The charts for the given lanes and options, top to bottom. A spec's
 // `signature` changes when its uPlot must be rebuilt (series or axes differ).
-export function chartSpecs({ lanes, orientation, stepTimes, ticked }) {
+// tickedMetrics: extra metrics (fields) ticked for a chart.
+export function chartSpecs({ lanes, orientation, stepTimes, ticked, tickedMetrics = [] }) {
   const compare = lanes.length > 1;
   const per = (key, name, short, scale, dash) => lanes.map((lane, i) => ({
     lane: i, key, scale, dash, colour: lane.colour,
@@ -50,6 +61,13 @@ export function chartSpecs({ lanes, orientation, stepTimes, ticked }) {
       id: 'step', title: 'Step compute time',
       left: { scale: 'us', label: 'time (µs)', includeZero: true, robust: true },  // slow first steps drawn off the top
       series: per('step_us', 'step time', 'µs', 'us', null),
+    });
+  }
+  for (const field of tickedMetrics) {
+    specs.push({  // the axis names the unit only: the title names the field
+      id: `metric:${field.name}`, title: `${field.name}: ${field.description}`,
+      left: { scale: field.name, label: field.unit ? field.unit.replace('|', ' or ') : '' },
+      series: per(field.name, field.name, field.name, field.name, null),
     });
   }
   for (const name of ticked) {

@@ -3,8 +3,17 @@
 // ticking a diagnostic fills its chart at once). Live lanes keep a rolling
 // window with a hard cap; replay lanes hold a whole stored run.
 
-export const METRIC_KEYS = ['task_error', 'orientation_error', 'min_distance',
-  'manipulability', 'condition_number', 'step_us'];
+// The metrics a lane keeps: the frame field table's numeric metrics that
+// frames carry (GET /api/frame-fields, app.frameFields), in the table's
+// order, so a metric added to the table is charted without a change here.
+export function chartedMetrics(fields) {
+  return fields
+    .filter((f) => f.metric && f.kind === 'number' && Array.isArray(f.outputs) && f.outputs.includes('json'))
+    .map((f) => f.name);
+}
+
+// Metrics drawn on a log axis keep only positive values.
+const LOG_METRICS = new Set(['condition_number']);
 
 export const diagnosticKey = (name) => `diag:${name}`;
 
@@ -23,9 +32,10 @@ function positive(v) {
 }
 
 export class LaneSeries {
-  constructor(diagnosticNames) {
+  constructor(diagnosticNames, metricKeys) {
     this.diagnosticNames = diagnosticNames.slice();
-    this.keys = [...METRIC_KEYS, ...this.diagnosticNames.map(diagnosticKey)];
+    this.metricKeys = metricKeys.slice();
+    this.keys = [...this.metricKeys, ...this.diagnosticNames.map(diagnosticKey)];
     this.index = new Map(this.keys.map((k, i) => [k, i]));
     this.clear();
   }
@@ -73,16 +83,11 @@ export class LaneSeries {
     this.t.push(t);
     const c = this.columns;
     const m = frame.metrics && typeof frame.metrics === 'object' ? frame.metrics : {};
-    c[0].push(finite(m.task_error));
+    this.metricKeys.forEach((key, i) => c[i].push(LOG_METRICS.has(key) ? positive(m[key]) : finite(m[key])));
     const orientation = finite(m.orientation_error);
     if (orientation !== null && orientation !== 0) this.orientationSeen = true;
-    c[1].push(orientation);
-    c[2].push(finite(m.min_distance));
-    c[3].push(finite(m.manipulability));
-    c[4].push(positive(m.condition_number));
-    c[5].push(finite(m.step_us));
     const d = Array.isArray(frame.diagnostics) ? frame.diagnostics : [];
-    const n = METRIC_KEYS.length;
+    const n = this.metricKeys.length;
     this.diagnosticNames.forEach((name, i) => c[n + i].push(finite(d[i])));
   }
 

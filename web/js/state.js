@@ -36,6 +36,7 @@ export const app = {
   playhead: null,     // a replay's frame on screen (replay.js moves it: setPlayhead)
   overlays: Object.fromEntries(OVERLAYS.map((o) => [o.key, true])),
   methods: [],        // the server's methods
+  frameFields: [],    // the frame field table (GET /api/frame-fields): what a frame carries, the charts' metrics
   scenarios: [],      // every scenario's summary
   version: '',        // rrlab's, from the health route
   choice: { scenario: null, method: '', rate: 1 },  // the pickers of a new run

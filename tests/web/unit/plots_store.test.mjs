@@ -2,7 +2,20 @@
 // live WebSocket frames or by a stored run's frames.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { LaneSeries, METRIC_KEYS, diagnosticKey } from '../../../web/js/plots_store.js';
+import { LaneSeries, chartedMetrics, diagnosticKey } from '../../../web/js/plots_store.js';
+
+// A slice of the frame field table as GET /api/frame-fields gives it.
+const field = (name, kind, metric, outputs = ['stored', 'csv', 'json']) =>
+  ({ name, unit: '', kind, metric, outputs, description: name });
+const FIELDS = [
+  field('step', 'count', false), field('t', 'number', false), field('q', 'joints', false),
+  field('task_error', 'number', true), field('orientation_error', 'number', true),
+  field('min_distance', 'number', true), field('min_distance_link', 'link', true),
+  field('collided', 'flag', true), field('joint_limit_margin', 'number', true),
+  field('manipulability', 'number', true), field('condition_number', 'number', true),
+  field('step_us', 'number', true, ['csv', 'json']), field('diagnostics', 'diagnostics', false),
+];
+const METRIC_KEYS = chartedMetrics(FIELDS);
 
 const metrics = (x) => ({
   task_error: x, orientation_error: 0, min_distance: 2 * x, manipulability: 3 * x,
@@ -10,18 +23,20 @@ const metrics = (x) => ({
 });
 const live = (t, x = t, diagnostics) => ({ t, metrics: metrics(x), ...(diagnostics ? { diagnostics } : {}) });
 
-test('METRIC_KEYS and diagnosticKey name the columns in order, metrics first', () => {
-  assert.deepEqual(METRIC_KEYS, ['task_error', 'orientation_error', 'min_distance',
+test('the numeric metrics of the table and diagnosticKey name the columns in order, metrics first', () => {
+  assert.deepEqual(METRIC_KEYS, ['task_error', 'orientation_error', 'min_distance', 'joint_limit_margin',
     'manipulability', 'condition_number', 'step_us']);
+  // a field frames do not carry as JSON is not charted
+  assert.deepEqual(chartedMetrics([field('x', 'number', true, ['stored'])]), []);
   assert.equal(diagnosticKey('gain'), 'diag:gain');
-  const s = new LaneSeries(['gain', 'task_error']);
+  const s = new LaneSeries(['gain', 'task_error'], METRIC_KEYS);
   assert.deepEqual(s.keys, [...METRIC_KEYS, 'diag:gain', 'diag:task_error']);
   // a diagnostic named like a metric gets its own column
   assert.notEqual(s.column('task_error'), s.column('diag:task_error'));
 });
 
 test('a new lane is empty and an unknown key has no column', () => {
-  const s = new LaneSeries([]);
+  const s = new LaneSeries([], METRIC_KEYS);
   assert.equal(s.length, 0);
   assert.deepEqual(s.t, []);
   assert.equal(s.columns.length, METRIC_KEYS.length);
@@ -33,14 +48,14 @@ test('a new lane is empty and an unknown key has no column', () => {
 
 test('the constructor copies the diagnostic names', () => {
   const names = ['a'];
-  const s = new LaneSeries(names);
+  const s = new LaneSeries(names, METRIC_KEYS);
   names.push('b');
   assert.deepEqual(s.diagnosticNames, ['a']);
   assert.equal(s.column('diag:b'), null);
 });
 
 test('appendLive adds one row per frame, every column the same length, in order', () => {
-  const s = new LaneSeries(['a', 'b']);
+  const s = new LaneSeries(['a', 'b'], METRIC_KEYS);
   assert.equal(s.appendLive(live(0.1, 1, [5, 6]), 10), true);
   assert.equal(s.appendLive(live(0.2, 2, [7, 8]), 10), true);
   assert.deepEqual(s.t, [0.1, 0.2]);
@@ -56,7 +71,7 @@ test('appendLive adds one row per frame, every column the same length, in order'
 });
 
 test('appendLive skips a frame without a finite t and leaves the lane unchanged', () => {
-  const s = new LaneSeries([]);
+  const s = new LaneSeries([], METRIC_KEYS);
   for (const t of [undefined, null, NaN, Infinity, -Infinity, '1']) {
     assert.equal(s.appendLive({ t, metrics: metrics(1) }, 10), false, `t = ${String(t)}`);
   }
@@ -65,7 +80,7 @@ test('appendLive skips a frame without a finite t and leaves the lane unchanged'
 });
 
 test('appendLive skips a repeated t (the display timer resending the newest frame)', () => {
-  const s = new LaneSeries([]);
+  const s = new LaneSeries([], METRIC_KEYS);
   assert.equal(s.appendLive(live(1, 1), 10), true);
   assert.equal(s.appendLive(live(1, 99), 10), false);
   assert.deepEqual(s.t, [1]);
@@ -73,7 +88,7 @@ test('appendLive skips a repeated t (the display timer resending the newest fram
 });
 
 test('appendLive starts over on an earlier t (the run was reset)', () => {
-  const s = new LaneSeries(['a']);
+  const s = new LaneSeries(['a'], METRIC_KEYS);
   s.appendLive({ t: 1, metrics: { ...metrics(1), orientation_error: 0.5 }, diagnostics: [1] }, 10);
   s.appendLive(live(2, 2, [2]), 10);
   assert.equal(s.orientationSeen, true);
@@ -85,7 +100,7 @@ test('appendLive starts over on an earlier t (the run was reset)', () => {
 });
 
 test('missing, null, NaN, infinite and non-numeric values become null (a gap)', () => {
-  const s = new LaneSeries(['a']);
+  const s = new LaneSeries(['a'], METRIC_KEYS);
   s.appendLive({ t: 0 }, 10);                                  // no metrics at all
   s.appendLive({ t: 1, metrics: null, diagnostics: null }, 10);
   s.appendLive({ t: 2, metrics: { task_error: NaN, min_distance: Infinity, manipulability: '3', step_us: null },
@@ -100,13 +115,13 @@ test('missing, null, NaN, infinite and non-numeric values become null (a gap)', 
 });
 
 test('the condition number keeps only positive values (it is drawn on a log axis)', () => {
-  const s = new LaneSeries([]);
+  const s = new LaneSeries([], METRIC_KEYS);
   [1e6, 0, -2, 1, NaN].forEach((c, i) => s.appendLive({ t: i, metrics: { condition_number: c } }, 100));
   assert.deepEqual(s.column('condition_number'), [1e6, null, null, 1, null]);
 });
 
 test('orientationSeen turns on with the first non-zero orientation error only', () => {
-  const s = new LaneSeries([]);
+  const s = new LaneSeries([], METRIC_KEYS);
   s.appendLive({ t: 0, metrics: { orientation_error: 0 } }, 10);
   s.appendLive({ t: 1, metrics: { orientation_error: null } }, 10);
   s.appendLive({ t: 2, metrics: { orientation_error: NaN } }, 10);
@@ -119,7 +134,7 @@ test('orientationSeen turns on with the first non-zero orientation error only', 
 });
 
 test('live diagnostics are positional: fewer values leave nulls, extra values are ignored', () => {
-  const s = new LaneSeries(['a', 'b']);
+  const s = new LaneSeries(['a', 'b'], METRIC_KEYS);
   s.appendLive(live(0, 0), 10);                  // no diagnostics yet
   s.appendLive(live(1, 1, [1]), 10);             // only the first
   s.appendLive(live(2, 2, [2, 3, 4]), 10);       // one more than the lane knows
@@ -130,7 +145,7 @@ test('live diagnostics are positional: fewer values leave nulls, extra values ar
 });
 
 test('the live window keeps one point older than the window so the line reaches the left edge', () => {
-  const s = new LaneSeries([]);
+  const s = new LaneSeries([], METRIC_KEYS);
   for (let t = 0; t <= 10; ++t) s.appendLive(live(t), 3);
   // window [7, 10]: 6 is the one point before it
   assert.deepEqual(s.t, [6, 7, 8, 9, 10]);
@@ -139,13 +154,13 @@ test('the live window keeps one point older than the window so the line reaches 
 });
 
 test('a zero window keeps the newest point and the one before it', () => {
-  const s = new LaneSeries([]);
+  const s = new LaneSeries([], METRIC_KEYS);
   for (let t = 0; t < 5; ++t) s.appendLive(live(t), 0);
   assert.deepEqual(s.t, [3, 4]);
 });
 
 test('a gap longer than the window still keeps the previous point', () => {
-  const s = new LaneSeries([]);
+  const s = new LaneSeries([], METRIC_KEYS);
   s.appendLive(live(0), 1);
   s.appendLive(live(100), 1);
   assert.deepEqual(s.t, [0, 100]);
@@ -156,7 +171,7 @@ test('a gap longer than the window still keeps the previous point', () => {
 });
 
 test('a live lane holds at most 2000 rows whatever the window, dropping the oldest', () => {
-  const s = new LaneSeries(['a']);
+  const s = new LaneSeries(['a'], METRIC_KEYS);
   for (let i = 0; i < 2500; ++i) s.appendLive(live(i * 0.01, i, [i]), 1e9);
   assert.equal(s.length, 2000);
   assert.equal(s.column('task_error')[0], 500);
@@ -166,7 +181,7 @@ test('a live lane holds at most 2000 rows whatever the window, dropping the olde
 });
 
 test('setStored reads the stream\'s shape: nested metrics, diagnostics an array in the lane\'s order', () => {
-  const s = new LaneSeries(['a', 'b']);
+  const s = new LaneSeries(['a', 'b'], METRIC_KEYS);
   s.setStored([
     { t: 0, metrics: { task_error: 1, orientation_error: 0, min_distance: 0.5, manipulability: 0.1, condition_number: 4 },
       diagnostics: [10, 20] },
@@ -186,14 +201,14 @@ test('setStored reads the stream\'s shape: nested metrics, diagnostics an array 
 
 test('a stored frame and the same live frame make the same row', () => {
   const frame = { t: 0.5, metrics: { task_error: 1e-3, min_distance: 0.2, condition_number: 3 }, diagnostics: [7] };
-  const stored = new LaneSeries(['a']), live = new LaneSeries(['a']);
+  const stored = new LaneSeries(['a'], METRIC_KEYS), live = new LaneSeries(['a'], METRIC_KEYS);
   stored.setStored([frame]);
   live.appendLive(frame, 10);
   assert.deepEqual(stored.columns, live.columns);
 });
 
 test('setStored replaces what the lane held, skips frames without a finite t and keeps the whole run', () => {
-  const s = new LaneSeries([]);
+  const s = new LaneSeries([], METRIC_KEYS);
   for (let t = 0; t < 5; ++t) s.appendLive(live(t), 10);
   s.setStored([{ t: 'x', metrics: { task_error: 1 } }, { metrics: { task_error: 2 } }, { t: 7, metrics: { task_error: 3 } }, { t: NaN }]);
   assert.deepEqual(s.t, [7]);
@@ -210,13 +225,13 @@ test('setStored replaces what the lane held, skips frames without a finite t and
 });
 
 test('setStored keeps frames in the order given, neither sorted nor deduplicated', () => {
-  const s = new LaneSeries([]);
+  const s = new LaneSeries([], METRIC_KEYS);
   s.setStored([{ t: 2 }, { t: 1 }, { t: 1 }]);
   assert.deepEqual(s.t, [2, 1, 1]);
 });
 
 test('setStored notes a non-zero orientation error and forgets an earlier one', () => {
-  const s = new LaneSeries([]);
+  const s = new LaneSeries([], METRIC_KEYS);
   s.setStored([{ t: 0, metrics: { orientation_error: 0 } }, { t: 1, metrics: { orientation_error: 0.2 } }]);
   assert.equal(s.orientationSeen, true);
   s.setStored([{ t: 0, metrics: { orientation_error: 0 } }]);
@@ -224,7 +239,7 @@ test('setStored notes a non-zero orientation error and forgets an earlier one', 
 });
 
 test('clear empties every column and keeps the keys', () => {
-  const s = new LaneSeries(['a']);
+  const s = new LaneSeries(['a'], METRIC_KEYS);
   s.appendLive(live(1, 1, [1]), 10);
   const keys = s.keys.slice();
   s.clear();
