@@ -21,10 +21,6 @@ std::optional<RunMode> parse_run_mode(std::string_view text);
 enum class RunStatus { running, paused, stopping, stopped, completed, failed, interrupted };
 const char* to_string(RunStatus status);
 std::optional<RunStatus> parse_run_status(std::string_view text);
-// A status a run keeps (anything but running, paused and stopping).
-inline bool ended(RunStatus status) {
-  return status != RunStatus::running && status != RunStatus::paused && status != RunStatus::stopping;
-}
 
 // POST /api/runs/{id}/control and {"type": "control"} on a live run's WebSocket.
 enum class ControlAction { start, pause, step, reset, stop };
