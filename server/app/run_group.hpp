@@ -117,7 +117,6 @@ class RunGroup : public std::enable_shared_from_this<RunGroup> {
   void touch();
   bool watched();  // some lane has a WebSocket client
   bool live() const { return options_.mode == RunMode::live; }
-  RunMode mode() const { return options_.mode; }
   bool ending() const { return ending_; }  // asked to stop (by a client, or as abandoned or superseded)
   const std::string& owner() const { return options_.owner; }
   // Ends the run to make room for a newer one of its owner ("ended": "superseded").

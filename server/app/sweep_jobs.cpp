@@ -321,9 +321,7 @@ json sweep_run_json(const storage::SweepRunEntry& e) {
 }
 
 storage::RunStore::SweepRunFilter SweepJobs::RunQuery::filter() const {
-  storage::RunStore::SweepRunFilter f{family, config, failure_mode, std::nullopt};
-  if (outcome) f.success = *outcome == "pass";
-  return f;
+  return {family, config, failure_mode, success};
 }
 
 std::string SweepJobs::name(std::int64_t id) { return find(id)->spec.name; }

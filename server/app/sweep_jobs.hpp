@@ -52,7 +52,8 @@ class SweepJobs {
   nlohmann::json list();
   // One page of a sweep's stored runs, filtered (a report cell's runs).
   struct RunQuery {
-    std::optional<std::string> family, config, outcome, failure_mode;  // outcome: "pass" | "fail"
+    std::optional<std::string> family, config, failure_mode;
+    std::optional<bool> success;  // passed or failed runs only
     std::int64_t limit = 100, offset = 0;
     storage::RunStore::SweepRunFilter filter() const;
   };

@@ -140,10 +140,12 @@ ApiResponse get_sweep_runs(RouteContext& c) {
   };
   query.family = text("family");
   query.config = text("config");
-  query.outcome = text("outcome");
   query.failure_mode = text("failure_mode");
-  if (query.outcome && *query.outcome != "pass" && *query.outcome != "fail")
-    throw DomainError(Problem::invalid, "invalid", "must be pass or fail", "outcome");
+  if (const auto outcome = text("outcome")) {
+    if (*outcome != "pass" && *outcome != "fail")
+      throw DomainError(Problem::invalid, "invalid", "must be pass or fail", "outcome");
+    query.success = *outcome == "pass";
+  }
   query.limit = query_int(c, "limit", 100, 1, 1000);
   query.offset = query_int(c, "offset", 0, 0, 1'000'000'000);
   bool csv = c.request.accept.find("text/csv") != std::string::npos;
