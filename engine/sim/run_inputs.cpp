@@ -1,6 +1,7 @@
 #include <rrlab/sim/run_inputs.hpp>
 
 #include <cmath>
+#include <iterator>
 
 #include <rrlab/scenario/json_reader.hpp>
 #include <rrlab/scenario/physical_bounds.hpp>
@@ -120,21 +121,44 @@ void apply_method(Simulator& sim, const json& payload) {
 
 }  // namespace
 
-void apply_input(Simulator& sim, const std::string& kind, const json& payload) {
-  if (kind == "params") return apply_params(sim, payload);
-  if (kind == "obstacle") return apply_obstacle(sim, payload);
-  if (kind == "obstacle_add") return apply_obstacle_add(sim, payload);
-  if (kind == "obstacle_remove") return apply_obstacle_remove(sim, payload);
-  if (kind == "joystick") return apply_joystick(sim, payload);
-  if (kind == "method") return apply_method(sim, payload);
-  if (kind == "reset") {
-    if (!payload.is_null() && !(payload.is_object() && payload.empty()))
-      throw ScenarioError("", "reset takes no payload");
-    return sim.reset();
+namespace {
+constexpr const char* kInputKindNames[] = {"params", "obstacle", "obstacle_add", "obstacle_remove",
+                                           "joystick", "method", "reset"};
+}  // namespace
+
+const char* to_string(InputKind kind) { return kInputKindNames[size_t(kind)]; }
+
+std::optional<InputKind> parse_input_kind(std::string_view text) {
+  for (size_t i = 0; i < std::size(kInputKindNames); ++i)
+    if (text == kInputKindNames[i]) return InputKind(i);
+  return std::nullopt;
+}
+
+ScenarioError unknown_input_kind(const std::string& kind) {
+  std::string known;
+  for (const char* name : kInputKindNames) known += (known.empty() ? "" : ", ") + std::string(name);
+  return ScenarioError("kind", "unknown input \"" + kind + "\" (known: " + known + ")");
+}
+
+void apply_input(Simulator& sim, InputKind kind, const json& payload) {
+  switch (kind) {
+    case InputKind::params: return apply_params(sim, payload);
+    case InputKind::obstacle: return apply_obstacle(sim, payload);
+    case InputKind::obstacle_add: return apply_obstacle_add(sim, payload);
+    case InputKind::obstacle_remove: return apply_obstacle_remove(sim, payload);
+    case InputKind::joystick: return apply_joystick(sim, payload);
+    case InputKind::method: return apply_method(sim, payload);
+    case InputKind::reset:
+      if (!payload.is_null() && !(payload.is_object() && payload.empty()))
+        throw ScenarioError("", "reset takes no payload");
+      return sim.reset();
   }
-  throw ScenarioError("kind", "unknown input \"" + kind +
-                                  "\" (known: params, obstacle, obstacle_add, obstacle_remove, "
-                                  "joystick, method, reset)");
+}
+
+void apply_input(Simulator& sim, const std::string& kind, const json& payload) {
+  const std::optional<InputKind> known = parse_input_kind(kind);
+  if (!known) throw unknown_input_kind(kind);
+  apply_input(sim, *known, payload);
 }
 
 json obstacle_to_json(const Obstacle& o) {

@@ -5,8 +5,10 @@
 #pragma once
 
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 #include <rrlab/scenario/scenario.hpp>
 
@@ -31,7 +33,14 @@ class InputStateError : public std::runtime_error {
 //   reset            {}
 // Validates the whole payload first and changes nothing when it throws
 // ScenarioError (path relative to the payload) or InputStateError.
+enum class InputKind { params, obstacle, obstacle_add, obstacle_remove, joystick, method, reset };
+const char* to_string(InputKind kind);
+std::optional<InputKind> parse_input_kind(std::string_view text);
+void apply_input(Simulator& sim, InputKind kind, const nlohmann::json& payload);
+// The same, the kind by its name (a stored event's): ScenarioError at "kind" for an unknown one.
 void apply_input(Simulator& sim, const std::string& kind, const nlohmann::json& payload);
+// The ScenarioError apply_input throws for a kind it does not know.
+ScenarioError unknown_input_kind(const std::string& kind);
 
 // Live inputs are bounded by PhysicalBounds (scenario/physical_bounds.hpp),
 // the same set that scenario files are checked against.

@@ -3,7 +3,7 @@
 #include <cctype>
 #include <vector>
 
-#include <rrlab/server/routes/api.hpp>
+#include <rrlab/server/api/errors.hpp>
 
 namespace rrlab::server {
 
@@ -93,11 +93,10 @@ bool Controller::hold(const std::string& client) {
   }
   send(notices);
   if (refused)
-    throw ApiError(409, "not_controller",
-                   "another client controls this run; you are watching. Take control with "
-                   "{\"type\": \"control\", \"action\": \"take\"} (WebSocket) or "
-                   "POST /api/runs/{id}/control {\"action\": \"take\"} with an Rrlab-Client header naming you",
-                   "");
+    throw DomainError(Problem::conflict, "not_controller",
+                      "another client controls this run; you are watching. Take control with "
+                      "{\"type\": \"control\", \"action\": \"take\"} (WebSocket) or "
+                      "POST /api/runs/{id}/control {\"action\": \"take\"} with an Rrlab-Client header naming you");
   return fresh;
 }
 
@@ -117,10 +116,10 @@ void Controller::unhold(const std::string& client) {
 
 json Controller::take(const std::string& client) {
   if (client.empty())
-    throw ApiError(400, "invalid",
-                   "taking control needs a client name: the Rrlab-Client header (REST) or the client query "
-                   "parameter (WebSocket)",
-                   "action");
+    throw DomainError(Problem::invalid, "invalid",
+                      "taking control needs a client name: the Rrlab-Client header (REST) or the client query "
+                      "parameter (WebSocket)",
+                      "action");
   std::vector<Notify> previous;  // called unlocked: a notification may end its session
   Notices notices;
   json state;

@@ -1,6 +1,6 @@
 // Who steers a live run: one controller per run group. The first client that
 // sends an input (or control) holds control; every other client watches and
-// gets 409 "not_controller" when it tries to steer, until the holder releases
+// is refused ("not_controller", 409) when it tries to steer, until the holder releases
 // control, disconnects, or another client takes over explicitly
 // ({"type": "control", "action": "take"} on the WebSocket, or
 // POST /api/runs/{id}/control {"action": "take"}), which the holder is told
@@ -51,7 +51,7 @@ class Controller {
   // The connection closed: control is released when it was the holder's last one.
   void detach(std::uint64_t connection);
 
-  // An input or control from `client`: throws ApiError 409 "not_controller"
+  // An input or control from `client`: throws DomainError (conflict, "not_controller")
   // if another client holds control, else runs `act`. When nobody held
   // control, `client` holds it while `act` runs and keeps it (everyone is
   // told) only if `act` returns: a refused input takes nothing. An empty name

@@ -2,8 +2,9 @@
 // sends snapshot() on connect and, whenever the published scene_version
 // passes the one it sent, what changed (update_since: a params or scene
 // message, or a whole snapshot), then the latest published frame at its
-// display rate (latest wins), and hands the messages it receives to
-// handle_message().
+// display rate (latest wins). The messages its clients send are parsed by
+// the routes (routes/socket_message.hpp), which steer the source they name
+// (a live lane: app/lane_source.hpp; a replay: app/replay_player.hpp).
 #pragma once
 
 #include <cstdint>
@@ -11,26 +12,12 @@
 #include <map>
 #include <memory>
 #include <mutex>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-namespace rrlab::storage {
-class Completion;
-}
 
 namespace rrlab::server {
 
 class Controller;
-
-// The reply to a client message: sent at once, or, when `pending` is set,
-// once it settles (an input's event stored, a single step taken): then the
-// ack carries the settled status, or an error if the work failed
-// (app/socket_message.hpp, settled_reply).
-struct MessageReply {
-  nlohmann::json reply;
-  std::shared_ptr<storage::Completion> pending;
-};
 
 struct PublishedFrame {
   std::uint64_t version = 0;  // increases with every publication
@@ -94,8 +81,6 @@ class FrameSource {
     return {{snapshot()}, version};
   }
   virtual PublishedFrame latest() = 0;
-  // A client message (inputs, control); returns the reply to send. Never throws.
-  virtual MessageReply handle_message(const nlohmann::json& message) = 0;
   // Who may steer (app/controller.hpp): a live run's; nullptr for a replay.
   virtual Controller* controller() { return nullptr; }
 };

@@ -4,9 +4,8 @@
 #include <cmath>
 #include <thread>
 
-#include <rrlab/scenario/json_reader.hpp>
+#include <rrlab/server/api/errors.hpp>
 #include <rrlab/server/app/stream_json.hpp>
-#include <rrlab/server/routes/api.hpp>
 #include <rrlab/sim/run_inputs.hpp>
 #include <rrlab/storage/frame_codec.hpp>
 #include <rrlab/storage/resimulation.hpp>
@@ -19,14 +18,15 @@ using nlohmann::json;
 ReplayPlayer::ReplayPlayer(storage::RunStore& store, const storage::RunRecord& run, double speed,
                            std::int64_t from, double display_hz)
     : store_(store), run_(run), display_hz_(display_hz), speed_(speed), playhead_(double(from)) {
-  if (run_.frames < 1) throw ApiError(409, "wrong_state", "run " + std::to_string(run_.id) + " has no stored frames", "");
+  if (run_.frames < 1)
+    throw DomainError(Problem::conflict, "wrong_state", "run " + std::to_string(run_.id) + " has no stored frames");
   if (from < 0 || from >= run_.frames)
-    throw ApiError(400, "invalid", "must be in [0, " + std::to_string(run_.frames - 1) + "]", "from");
+    throw DomainError(Problem::invalid, "invalid", "must be in [0, " + std::to_string(run_.frames - 1) + "]", "from");
   try {
     sim_ = std::make_unique<Simulator>(storage::scenario_of_run(run_));
     geometry_ = std::make_unique<FrameGeometry>(sim_->model(), sim_->scene(), sim_->scenario().task.space);
   } catch (const std::exception& e) {
-    throw ApiError(409, "wrong_state", std::string("the stored scenario no longer loads: ") + e.what(), "");
+    throw DomainError(Problem::conflict, "wrong_state", std::string("the stored scenario no longer loads: ") + e.what());
   }
   events_ = store_.events(run_.id);
   std::lock_guard lock(mutex_);
@@ -76,9 +76,10 @@ void ReplayPlayer::show_locked(std::int64_t seq) {
   // scene events up to this frame (parameter and method events do not change the picture)
   while (next_event_ < events_.size() && events_[next_event_].seq <= seq) {
     const storage::StoredEvent& e = events_[next_event_++];
-    if (e.kind.rfind("obstacle", 0) == 0 || e.kind == "method" || e.kind == "reset") {
+    const std::optional<InputKind> kind = parse_input_kind(e.kind);
+    if (kind && *kind != InputKind::params && *kind != InputKind::joystick) {
       try {
-        apply_input(*sim_, e.kind, parse_json(e.payload_json));
+        apply_input(*sim_, *kind, parse_json(e.payload_json));
         ++scene_version_;
       } catch (const std::exception&) {
       }
@@ -133,28 +134,19 @@ json ReplayPlayer::status() {
   return status_locked();
 }
 
-json ReplayPlayer::control(const json& body) {
-  std::string action;
-  std::optional<double> speed, seq;
-  try {
-    JsonObject obj(body, "");
-    obj.check_keys({"action", "seq", "speed"});
-    if (obj.has("action")) action = obj.choice("action", {"play", "pause", "seek"});
-    speed = obj.optional_number("speed");
-    seq = obj.optional_number("seq");
-  } catch (...) {
-    rethrow_as_api_error("");
-  }
-  if (speed && !(*speed > 0 && *speed <= 1000)) throw ApiError(400, "invalid", "must be in (0, 1000]", "speed");
-  if (action == "seek" && !seq) throw ApiError(400, "invalid", "seek needs a seq", "seq");
-  if (seq && !(*seq >= 0 && *seq < double(run_.frames)))
-    throw ApiError(400, "invalid", "must be in [0, " + std::to_string(run_.frames - 1) + "]", "seq");
+json ReplayPlayer::control(const ReplayCommand& command) {
+  if (command.speed && !(*command.speed > 0 && *command.speed <= 1000))
+    throw DomainError(Problem::invalid, "invalid", "must be in (0, 1000]", "speed");
+  if (command.action == ReplayAction::seek && !command.seq)
+    throw DomainError(Problem::invalid, "invalid", "seek needs a seq", "seq");
+  if (command.seq && !(*command.seq >= 0 && *command.seq < double(run_.frames)))
+    throw DomainError(Problem::invalid, "invalid", "must be in [0, " + std::to_string(run_.frames - 1) + "]", "seq");
   std::lock_guard lock(mutex_);
-  if (speed) speed_ = *speed;
-  if (action == "play") playing_ = true;
-  if (action == "pause") playing_ = false;
-  if (seq) {
-    playhead_ = std::floor(*seq);
+  if (command.speed) speed_ = *command.speed;
+  if (command.action == ReplayAction::play) playing_ = true;
+  if (command.action == ReplayAction::pause) playing_ = false;
+  if (command.seq) {
+    playhead_ = std::floor(*command.seq);
     show_locked(std::int64_t(playhead_));
   }
   return status_locked();
@@ -172,16 +164,6 @@ std::string ReplayPlayer::snapshot() {
 PublishedFrame ReplayPlayer::latest() {
   std::lock_guard lock(mutex_);
   return published_;
-}
-
-MessageReply ReplayPlayer::handle_message(const json& message) {
-  return {socket_reply([&] {
-    if (!message.is_object() || message.value("type", "") != "control")
-      throw ApiError(400, "invalid", "a replay takes {\"type\": \"control\", \"action\": play|pause|seek}", "type");
-    json body = message;
-    body.erase("type");
-    return control(body);
-  }), nullptr};
 }
 
 }  // namespace rrlab::server

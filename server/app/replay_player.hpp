@@ -14,6 +14,7 @@
 
 #include <rrlab/server/app/frame_geometry.hpp>
 #include <rrlab/server/app/frame_source.hpp>
+#include <rrlab/server/app/run_types.hpp>
 #include <rrlab/sim/simulator.hpp>
 #include <rrlab/storage/run_store.hpp>
 
@@ -21,7 +22,7 @@ namespace rrlab::server {
 
 class ReplayPlayer final : public FrameSource, public std::enable_shared_from_this<ReplayPlayer> {
  public:
-  // Throws ApiError when the run cannot be replayed.
+  // Throws DomainError when the run cannot be replayed.
   ReplayPlayer(storage::RunStore& store, const storage::RunRecord& run, double speed, std::int64_t from,
                double display_hz);
   void start();
@@ -42,14 +43,14 @@ class ReplayPlayer final : public FrameSource, public std::enable_shared_from_th
   std::int64_t run_id() const { return run_.id; }  // the stored run it plays
   bool playing();
 
-  // {"action": play|pause|seek, "seq"?: n, "speed"?: x}
-  nlohmann::json control(const nlohmann::json& body);
+  // Plays, pauses, changes speed or seeks; the status. Throws DomainError
+  // (invalid: a seek with no frame, a frame the run does not have).
+  nlohmann::json control(const ReplayCommand& command);
   nlohmann::json status();
 
   std::string snapshot() override;
   PublishedFrame latest() override;
   Subscribers& subscribers() override { return subscribers_; }
-  MessageReply handle_message(const nlohmann::json& message) override;
 
  private:
   void loop();

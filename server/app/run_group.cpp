@@ -1,11 +1,7 @@
 #include <rrlab/server/app/run_group.hpp>
 
-#include <rrlab/methods/registry_json.hpp>
-#include <rrlab/scenario/json_reader.hpp>
-#include <rrlab/scenario/scenario_step_cost.hpp>
+#include <rrlab/server/api/errors.hpp>
 #include <rrlab/server/app/stream_json.hpp>
-#include <rrlab/server/routes/api.hpp>
-#include <rrlab/sim/run_inputs.hpp>
 #include <rrlab/storage/database.hpp>
 #include <rrlab/storage/frame_codec.hpp>
 #include <rrlab/storage/frame_writer.hpp>
@@ -19,96 +15,11 @@ using Clock = std::chrono::steady_clock;
 // How often a live run checks whether anyone still uses it (a paused one wakes for it).
 constexpr auto kIdleCheckPeriod = std::chrono::seconds(1);
 
-// ---- a lane as a WebSocket frame source ----
-
-class RunGroup::LaneSource final : public FrameSource {
- public:
-  LaneSource(std::shared_ptr<RunGroup> group, int lane) : group_(std::move(group)), lane_(lane) {}
-
-  std::string snapshot() override {
-    auto lock = group_->lock_for_input();
-    return snapshot_locked();
-  }
-
-  SceneUpdate update_since(std::uint64_t since) override {
-    auto lock = group_->lock_for_input();
-    Lane& lane = group_->lanes_[size_t(lane_)];
-    SceneUpdate update{{}, lane.scene_version};
-    if (since < lane.snapshot_version) {
-      update.messages.push_back(snapshot_locked());
-      return update;
-    }
-    const FrameContext context = context_of(lane);
-    if (since < lane.obstacles_version) update.messages.push_back(scene_message_json(context, *lane.sim).dump());
-    if (since < lane.params_version) update.messages.push_back(params_message_json(context, *lane.sim).dump());
-    return update;
-  }
-
-  PublishedFrame latest() override {
-    std::lock_guard lock(group_->publish_mutex_);
-    return group_->lanes_[size_t(lane_)].published;
-  }
-
-  Subscribers& subscribers() override { return *group_->lanes_[size_t(lane_)].subscribers; }
-
-  MessageReply handle_message(const json& message) override {
-    group_->touch();
-    std::shared_ptr<storage::Completion> pending;
-    json reply = socket_reply([&]() -> json {
-      JsonObject obj(message, "");
-      const std::string type = obj.choice("type", {"input", "control"});
-      Accepted accepted;
-      if (type == "control") {
-        obj.check_keys({"type", "action", "rate"});
-        json body = message;
-        body.erase("type");
-        accepted = group_->control(lane_, body);
-      } else {
-        obj.check_keys({"type", "kind", "payload"});
-        const std::string kind = obj.string("kind");
-        accepted = group_->input(lane_, kind, message.value("payload", json::object()), "payload");
-      }
-      pending = std::move(accepted.pending);
-      return std::move(accepted.status);
-    });
-    return {std::move(reply), std::move(pending)};
-  }
-  Controller* controller() override { return &group_->controller(); }
-
- private:
-  FrameContext context_of(const Lane& lane) const {
-    return {lane.run_id, lane.seq, lane.scene_version, group_->lane_status(lane)};
-  }
-
-  // the group's lock held
-  std::string snapshot_locked() {
-    Lane& lane = group_->lanes_[size_t(lane_)];
-    const FrameContext context = context_of(lane);
-    std::string frame;
-    encode_frame(context, lane.sim->frame(), lane.sim->model(), lane.sim->scene(), *lane.geometry, frame);
-    return snapshot_json(context, *lane.sim, frame).dump();
-  }
-
-  std::shared_ptr<RunGroup> group_;
-  int lane_;
-};
-
-// ---- estimates ----
-
-LaneEstimate estimate_lane(const Scenario& scenario, std::int64_t steps, std::int64_t frame_bytes) {
-  return {scenario.model.dof(), obstacle_equivalents(scenario.scene), steps, frame_bytes,
-          method_step_factor(scenario) * link_mesh_factor(scenario.model)};
-}
-
-// ---- the storage budget ----
-
-std::int64_t StorageBudget::stored() const { return store_.total_frame_bytes() + writer_.queued_bytes(); }
-
 // ---- construction ----
 
 RunGroup::RunGroup(RunServices services, const std::vector<Scenario>& scenarios, const GroupOptions& options)
     : services_(services), options_(options), paused_(options.paused) {
-  if (scenarios.empty()) throw ApiError(400, "invalid", "a run needs a scenario", "scenario");
+  if (scenarios.empty()) throw DomainError(Problem::invalid, "invalid", "a run needs a scenario", "scenario");
   dt_ = scenarios.front().dt;
   lanes_.resize(scenarios.size());
   // every simulator first: a lane that fails leaves no stored run behind
@@ -118,7 +29,7 @@ RunGroup::RunGroup(RunServices services, const std::vector<Scenario>& scenarios,
       lanes_[i].geometry = std::make_unique<FrameGeometry>(scenarios[i].model, scenarios[i].scene,
                                                            scenarios[i].task.space);
     } catch (...) {
-      rethrow_as_api_error("", 422);
+      rethrow_as_domain_error("", Problem::unprocessable);
     }
     if (options_.steps) lanes_[i].sim->set_total_steps(*options_.steps);
   }
@@ -134,12 +45,12 @@ RunGroup::RunGroup(RunServices services, const std::vector<Scenario>& scenarios,
   try {
     for (size_t i = 0; i < scenarios.size(); ++i) {
       Lane& lane = lanes_[i];
-      storage::NewRun run = storage::new_run_of(scenarios[i], *lane.sim, options_.mode);
+      storage::NewRun run = storage::new_run_of(scenarios[i], *lane.sim, to_string(options_.mode));
       run.source_run = options_.source_run;
       if (options_.compare && i > 0) run.compare_group = lanes_[0].run_id;
       lane.run_id = services_.store.create_run(run);
       if (options_.compare && i == 0) services_.store.set_compare_group(lane.run_id, lane.run_id);
-      if (paused_) services_.store.set_status(lane.run_id, "paused");
+      if (paused_) services_.store.set_status(lane.run_id, to_string(RunStatus::paused));
       publish(lane);
     }
   } catch (...) {
@@ -172,13 +83,13 @@ void RunGroup::start() {
     std::thread([self = shared_from_this()] { self->loop(); }).detach();
   } catch (const std::exception& e) {
     release_reservations();
-    for (const Lane& lane : lanes_) services_.store.finish_run(lane.run_id, "failed", "{}");
+    for (const Lane& lane : lanes_) services_.store.finish_run(lane.run_id, to_string(RunStatus::failed), "{}");
     finished_ = true;
     {
       std::lock_guard lock(exit_mutex_);
       exited_ = true;
     }
-    throw ApiError(503, "busy", std::string("cannot start a simulation thread: ") + e.what(), "");
+    throw DomainError(Problem::busy, "busy", std::string("cannot start a simulation thread: ") + e.what());
   }
 }
 
@@ -257,15 +168,15 @@ bool RunGroup::store_frame(Lane& lane, std::int64_t bytes) {
   return true;
 }
 
-const char* RunGroup::lane_status(const Lane& lane) const {
-  if (finished_) return lane.status.c_str();
-  if (stop_requested_) return "stopping";
-  return paused_ ? "paused" : "running";
+RunStatus RunGroup::lane_status(const Lane& lane) const {
+  if (finished_) return lane.status;
+  if (stop_requested_) return RunStatus::stopping;
+  return paused_ ? RunStatus::paused : RunStatus::running;
 }
 
 void RunGroup::publish(Lane& lane) {
   const auto wall = std::chrono::system_clock::now().time_since_epoch();
-  const FrameContext context{lane.run_id, lane.seq, lane.scene_version, lane_status(lane),
+  const FrameContext context{lane.run_id, lane.seq, lane.scene_version, to_string(lane_status(lane)),
                              std::chrono::duration_cast<std::chrono::microseconds>(wall).count()};
   encode_frame(context, lane.sim->frame(), lane.sim->model(), lane.sim->scene(), *lane.geometry,
                lane.encode_buffer);
@@ -345,7 +256,7 @@ void RunGroup::loop() {
   }
   const bool stopped = stop_requested_ && !all_done();
   lock.unlock();
-  finish(!failure_.empty() ? "failed" : stopped ? "stopped" : "completed");
+  finish(!failure_.empty() ? RunStatus::failed : stopped ? RunStatus::stopped : RunStatus::completed);
 }
 
 // ---- runs nobody uses ----
@@ -362,7 +273,7 @@ bool RunGroup::watched() {
 }
 
 void RunGroup::check_abandoned() {
-  if (options_.mode != "live" || stop_requested_) return;
+  if (options_.mode != RunMode::live || stop_requested_) return;
   const auto now = Clock::now();
   if (now < next_idle_check_) return;
   next_idle_check_ = now + kIdleCheckPeriod;
@@ -390,17 +301,17 @@ void RunGroup::supersede() {
   wake_.notify_all();
 }
 
-void RunGroup::finish(const std::string& requested_status) {
+void RunGroup::finish(RunStatus requested_status) {
   services_.writer.flush();
   std::vector<std::function<void()>> callbacks;
   std::vector<std::pair<std::shared_ptr<storage::Completion>, json>> ended_steps;
   {
     std::lock_guard lock(mutex_);
     release_reservations();
-    std::string status = requested_status;
+    RunStatus status = requested_status;
     if (auto error = write_failure()) {  // the last batches may have failed after the loop
       if (failure_.empty()) failure_ = *error;
-      status = "failed";
+      status = RunStatus::failed;
       // frames_stored: what the store kept (a gap-free prefix), not what was pushed
       for (Lane& lane : lanes_) {
         try {
@@ -412,12 +323,12 @@ void RunGroup::finish(const std::string& requested_status) {
     for (Lane& lane : lanes_) {
       lane.status = status;
       try {
-        services_.store.finish_run(lane.run_id, status, summary_locked(lane).dump());
+        services_.store.finish_run(lane.run_id, to_string(status), summary_locked(lane).dump());
       } catch (const std::exception&) {
         // no room for the summary: the status alone is a smaller write
-        lane.status = "failed";
+        lane.status = RunStatus::failed;
         try {
-          services_.store.set_status(lane.run_id, "failed");
+          services_.store.set_status(lane.run_id, to_string(RunStatus::failed));
         } catch (const std::exception&) {
         }
       }
@@ -468,137 +379,6 @@ std::vector<std::pair<std::shared_ptr<storage::Completion>, json>> RunGroup::set
     return true;
   });
   return ready;
-}
-
-// ---- REST / WebSocket inputs ----
-
-json RunGroup::summary_locked(Lane& lane) {
-  json s = summary_to_json(lane.sim->summary());
-  s["run"] = lane.run_id;
-  s["frames_stored"] = lane.frames_stored;
-  if (!lane.storage_stopped.empty()) s["storage_stopped"] = lane.storage_stopped;
-  if (!ended_.empty()) s["ended"] = ended_;
-  if (!failure_.empty()) s["failure"] = failure_;
-  return s;
-}
-
-json RunGroup::summary_json(int lane) {
-  auto lock = lock_for_input();
-  return summary_locked(lanes_[size_t(lane)]);
-}
-
-json RunGroup::status_locked(const Lane& lane) const {
-  const State& state = lane.sim->state();
-  return {{"id", lane.run_id},
-          {"mode", options_.mode},
-          {"status", lane_status(lane)},
-          {"method", lane.sim->method_name()},
-          {"params", param_values_json(lane.sim->method())},
-          {"step", state.step},
-          {"t", state.t},
-          {"frames", lane.seq},
-          {"total_steps", lane.sim->total_steps()},
-          {"rate", options_.rate}};
-}
-
-json RunGroup::status_json(int lane) {
-  auto lock = lock_for_input();
-  return status_locked(lanes_[size_t(lane)]);
-}
-
-// Every lock taken from outside the simulation thread goes through here: an
-// as-fast-as-possible run yields between steps while someone is waiting.
-std::unique_lock<std::mutex> RunGroup::lock_for_input() {
-  ++pending_inputs_;
-  std::unique_lock lock(mutex_);
-  --pending_inputs_;
-  return lock;
-}
-
-Accepted RunGroup::control(int lane_index, const json& body) {
-  JsonObject obj(body, "");
-  std::string action;
-  std::optional<double> rate;
-  try {
-    obj.check_keys({"action", "rate"});
-    if (obj.has("action")) action = obj.choice("action", {"start", "pause", "step", "reset", "stop"});
-    rate = obj.optional_number("rate");
-  } catch (...) {
-    rethrow_as_api_error("");
-  }
-  if (action.empty() && !rate) throw ApiError(400, "invalid", "give an action, a rate or both", "action");
-  if (rate && !valid_rate(*rate)) throw ApiError(400, "invalid", kRateRule, "rate");
-  if (options_.mode != "live" && action != "stop")
-    throw ApiError(409, "wrong_state", "a " + options_.mode + " run can only be stopped", "action");
-  if (action == "reset") return input(lane_index, "reset", json::object(), "");
-  auto lock = lock_for_input();
-  Lane& lane = lanes_[size_t(lane_index)];
-  if (finished_ || stop_requested_)
-    throw ApiError(409, "wrong_state", std::string("the run has ended (") + lane_status(lane) + ")", "action");
-  if (rate) {
-    options_.rate = *rate;
-    ++pacing_generation_;
-  }
-  Accepted accepted;
-  if (action == "start" || action == "pause") {
-    paused_ = action == "pause";
-    ++pacing_generation_;
-    for (const Lane& l : lanes_) services_.store.set_status(l.run_id, paused_ ? "paused" : "running");
-    for (Lane& l : lanes_) publish(l);
-  } else if (action == "step") {
-    if (!paused_) throw ApiError(409, "wrong_state", "pause the run before single-stepping", "action");
-    // answered once the simulation thread has taken the step (or the run ended)
-    // (steps asked for before it and not yet taken come first)
-    accepted.pending = std::make_shared<storage::Completion>();
-    ++step_requests_;
-    step_waiters_.push_back({lane_index, lane.seq + step_requests_, accepted.pending});
-  } else if (action == "stop") {
-    stop_requested_ = ending_ = true;  // the REST route answers once the run has ended (deferred)
-  }
-  wake_.notify_all();
-  accepted.status = status_locked(lane);
-  return accepted;
-}
-
-Accepted RunGroup::input(int lane_index, const std::string& kind, const json& payload, const std::string& prefix) {
-  if (options_.mode != "live")
-    throw ApiError(409, "wrong_state", "a " + options_.mode + " run takes no inputs; start a live run", prefix);
-  auto lock = lock_for_input();
-  if (finished_ || stop_requested_)
-    throw ApiError(409, "wrong_state", "the run has ended", prefix);
-  // a run whose writes failed could no longer be re-simulated: it takes no more inputs
-  if (auto error = write_failure()) throw ApiError(503, "storage", *error, prefix);
-  const bool own_lane = kind == "params" || kind == "method";
-  Accepted accepted;
-  accepted.pending = std::make_shared<storage::Completion>();
-  const size_t last = own_lane ? size_t(lane_index) : lanes_.size() - 1;
-  for (size_t i = 0; i < lanes_.size(); ++i) {
-    if (own_lane && int(i) != lane_index) continue;
-    Lane& lane = lanes_[i];
-    try {
-      apply_input(*lane.sim, kind, payload);
-    } catch (...) {
-      rethrow_as_api_error(prefix);  // lanes before this one keep the input, and its event
-    }
-    // Stored by the frame writer, queued ahead of the frames it takes effect
-    // in (the mutex keeps the next step out until then); the last lane's
-    // event committed means every one's (one queue, written in order).
-    services_.writer.push_event(lane.run_id, {lane.seq, lane.sim->state().step, kind, payload.dump()},
-                                i == last ? accepted.pending : nullptr);
-    if (kind != "joystick") {
-      ++lane.scene_version;
-      (kind == "params" ? lane.params_version : kind == "obstacle" ? lane.obstacles_version : lane.snapshot_version) =
-          lane.scene_version;
-    }
-    if (paused_) publish(lane);
-  }
-  wake_.notify_all();
-  accepted.status = status_locked(lanes_[size_t(lane_index)]);
-  return accepted;
-}
-
-std::shared_ptr<FrameSource> RunGroup::source(int lane) {
-  return std::make_shared<LaneSource>(shared_from_this(), lane);
 }
 
 }  // namespace rrlab::server

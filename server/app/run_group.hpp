@@ -23,6 +23,10 @@
 #include <rrlab/server/app/controller.hpp>
 #include <rrlab/server/app/frame_geometry.hpp>
 #include <rrlab/server/app/frame_source.hpp>
+#include <rrlab/server/app/lane_estimate.hpp>
+#include <rrlab/server/app/run_types.hpp>
+#include <rrlab/server/app/storage_budget.hpp>
+#include <rrlab/sim/run_inputs.hpp>
 #include <rrlab/sim/simulator.hpp>
 #include <rrlab/storage/completion.hpp>
 #include <rrlab/storage/quotas.hpp>
@@ -35,44 +39,6 @@ class FrameWriter;
 
 namespace rrlab::server {
 
-// Frame bytes against `serve --max-total-bytes`: what the store holds
-// (RunStore::total_frame_bytes), what the writer has queued, and what admitted
-// runs may still store (their estimates, reserved at admission and released
-// as their frames are pushed or when they end).
-class StorageBudget {
- public:
-  StorageBudget(storage::RunStore& store, storage::FrameWriter& writer, std::int64_t max_total_bytes)
-      : store_(store), writer_(writer), max_(max_total_bytes) {}
-  std::int64_t max() const { return max_; }
-  std::int64_t stored() const;  // in the store or queued for it
-  std::int64_t reserved() const { return reserved_; }
-  std::int64_t used() const { return stored() + reserved(); }
-  void reserve(std::int64_t bytes) { reserved_ += bytes; }
-  void release(std::int64_t bytes) { reserved_ -= bytes; }
-  // A frame beyond its run's reservation: true if it fits under the maximum.
-  bool fits(std::int64_t bytes) const { return used() + bytes <= max_; }
-
- private:
-  storage::RunStore& store_;
-  storage::FrameWriter& writer_;
-  const std::int64_t max_;
-  std::atomic<std::int64_t> reserved_{0};
-};
-
-// What a lane would store and cost, known before anything is stored: the
-// steps it is asked for (a live run's resets may add more; the per-run limits
-// still hold then) and the bytes of one packed frame.
-struct LaneEstimate {
-  int dof = 0;
-  double obstacles = 0;  // primitive-obstacle equivalents (methods/step_cost.hpp)
-  std::int64_t steps = 0;
-  std::int64_t frame_bytes = 0;
-  double factor = 1;     // the method's and the mesh links' step cost (methods/step_cost.hpp)
-};
-
-// The estimate of a scenario's run of `steps` steps, frames of `frame_bytes`.
-LaneEstimate estimate_lane(const Scenario& scenario, std::int64_t steps, std::int64_t frame_bytes);
-
 struct RunServices {
   storage::RunStore& store;
   storage::FrameWriter& writer;
@@ -80,17 +46,19 @@ struct RunServices {
   std::int64_t max_run_bytes = Quotas{}.max_run_bytes;    // per run (serve --max-run-bytes)
   StorageBudget* budget = nullptr;             // total (serve --max-total-bytes); null: none
   // Called with every lane's estimate once the simulators are built and
-  // before any run is stored: throws ApiError to refuse the request; returns
+  // before any run is stored: throws DomainError to refuse the request; returns
   // each lane's bytes to reserve from the budget (reserved by the caller).
   std::function<std::vector<std::int64_t>(const std::vector<LaneEstimate>&)> admit;
 };
+
+class LaneSource;
 
 // A real-time factor: 0 (as fast as possible) or in [0.001, 1000].
 inline bool valid_rate(double rate) { return rate == 0 || (rate >= 1e-3 && rate <= 1000); }
 inline constexpr const char* kRateRule = "must be 0 (as fast as possible) or in [0.001, 1000]";
 
 struct GroupOptions {
-  std::string mode = "live";   // live | batch | resimulation
+  RunMode mode = RunMode::live;
   double rate = 1.0;           // real-time factor; 0: as fast as possible
   double display_hz = 60.0;    // publication rate for WebSocket clients
   bool paused = false;         // live runs: start paused
@@ -114,7 +82,7 @@ struct Accepted {
 
 class RunGroup : public std::enable_shared_from_this<RunGroup> {
  public:
-  // Creates the stored runs (one per scenario); throws ApiError on bad input.
+  // Creates the stored runs (one per scenario); throws DomainError on bad input.
   RunGroup(RunServices services, const std::vector<Scenario>& lanes, const GroupOptions& options);
   ~RunGroup();
   void start();
@@ -125,21 +93,22 @@ class RunGroup : public std::enable_shared_from_this<RunGroup> {
   std::int64_t run_id(int lane) const { return lanes_[size_t(lane)].run_id; }
   int lane_of(std::int64_t run_id) const;  // -1 if not in this group
 
-  // control: {"action": start|pause|step|reset|stop, "rate"?: factor}; the
-  // lane's status (a step: once the step is taken; a reset: once stored).
-  Accepted control(int lane, const nlohmann::json& body);
+  // A control command; the lane's status (a step: once the step is taken; a
+  // reset: once stored). Throws DomainError (conflict in the wrong state).
+  Accepted control(int lane, const ControlCommand& command);
   // An input event (sim/run_inputs.hpp kinds); params and method go to this
   // lane, scene, joystick and reset inputs to every lane. Applied at once
   // (it takes effect in the next step); pending settles once its events are
-  // stored, with an error if they could not be. Throws ApiError.
-  Accepted input(int lane, const std::string& kind, const nlohmann::json& payload, const std::string& path_prefix);
+  // stored, with an error if they could not be. Throws DomainError (paths
+  // relative to the payload).
+  Accepted input(int lane, InputKind kind, const nlohmann::json& payload);
   nlohmann::json status_json(int lane);
   bool finished() const { return finished_; }
   // Called once when the group has ended (at once if it has).
   void when_finished(std::function<void()> callback);
   nlohmann::json summary_json(int lane);  // the lane's run summary so far
 
-  std::shared_ptr<FrameSource> source(int lane);
+  std::shared_ptr<FrameSource> source(int lane);  // a LaneSource (app/lane_source.hpp)
   Controller& controller() { return controller_; }  // one for every lane
 
   // Activity: a REST call for the group, or a WebSocket message to it. A live
@@ -147,7 +116,7 @@ class RunGroup : public std::enable_shared_from_this<RunGroup> {
   // ends as "stopped" with "ended": "abandoned" in its summary.
   void touch();
   bool watched();  // some lane has a WebSocket client
-  bool live() const { return options_.mode == "live"; }
+  bool live() const { return options_.mode == RunMode::live; }
   bool ending() const { return ending_; }  // asked to stop (by a client, or as abandoned or superseded)
   const std::string& owner() const { return options_.owner; }
   // Ends the run to make room for a newer one of its owner ("ended": "superseded").
@@ -167,13 +136,13 @@ class RunGroup : public std::enable_shared_from_this<RunGroup> {
     // method switch, a reset, an obstacle added or removed), and of the last
     // parameter change and obstacle edit (sent as params and scene messages)
     std::uint64_t snapshot_version = 1, params_version = 0, obstacles_version = 0;
-    std::string status = "running";
+    RunStatus status = RunStatus::running;  // once finished: how it ended
     // published for clients (guarded by publish_mutex_)
     PublishedFrame published;
     std::string encode_buffer;
     std::shared_ptr<Subscribers> subscribers = std::make_shared<Subscribers>();
   };
-  class LaneSource;
+  friend class LaneSource;
 
   void loop();
   std::unique_lock<std::mutex> lock_for_input();  // ahead of the simulation thread
@@ -186,9 +155,9 @@ class RunGroup : public std::enable_shared_from_this<RunGroup> {
   void release_reservations();
   void release_reservations_of(Lane& lane);
   std::optional<std::string> write_failure();  // a lane's frames could not be written
-  void finish(const std::string& status);  // holds no lock
+  void finish(RunStatus status);  // holds no lock
   void check_abandoned();  // holds mutex_: ends a live run nobody uses (touch())
-  const char* lane_status(const Lane& lane) const;
+  RunStatus lane_status(const Lane& lane) const;
 
   RunServices services_;
   GroupOptions options_;

@@ -9,7 +9,8 @@
 #include <rrlab/server/app/free_memory.hpp>
 #include <rrlab/server/app/run_manager.hpp>
 #include <rrlab/server/app/thread_priority.hpp>
-#include <rrlab/server/routes/api.hpp>
+#include <rrlab/server/api/errors.hpp>
+#include <rrlab/server/api/response.hpp>
 #include <rrlab/storage/run_store.hpp>
 #include <rrlab/sweep/sweep_case.hpp>
 #include <rrlab/sweep/sweep_expansion.hpp>
@@ -38,22 +39,6 @@ constexpr int kMaxRunningSweeps = 4;
 constexpr size_t kMaxKeptSweeps = 64;  // finished ones beyond this are forgotten (their runs stay stored)
 constexpr size_t kMaxCachedReports = 8;  // built reports kept (each at most a few MB: sweep_report_json.hpp)
 
-// Over REST a scenario entry is a catalogue name or a generator: never a path.
-void refuse_paths(const json& spec) {
-  if (!spec.is_object() || !spec.contains("scenarios") || !spec["scenarios"].is_array()) return;
-  const json& list = spec["scenarios"];
-  for (size_t i = 0; i < list.size(); ++i) {
-    // a scenario entry, or the scenario a perturbation family perturbs
-    const bool perturbs = list[i].is_object() && list[i].contains("perturb") && list[i]["perturb"].is_string();
-    if (!list[i].is_string() && !perturbs) continue;
-    const std::string name = perturbs ? list[i]["perturb"].get<std::string>() : list[i].get<std::string>();
-    if (!sweep::is_plain_name(name) || name.ends_with(".json"))
-      throw ApiError(422, "invalid",
-                     "over REST a sweep names catalogue scenarios or generators, not files: '" + name + "'",
-                     "scenarios[" + std::to_string(i) + "]" + (perturbs ? ".perturb" : ""));
-  }
-}
-
 }  // namespace
 
 struct SweepJobs::Job {
@@ -64,7 +49,8 @@ struct SweepJobs::Job {
   std::atomic<bool> stop{false};
   std::thread thread;
   std::mutex mutex;  // guards the fields below
-  std::string status = "running", error;
+  SweepStatus status = SweepStatus::running;
+  std::string error;
   sweep::RunnerOutcome outcome;
   std::optional<size_t> done_at_end;  // stored cases, counted once the sweep has ended
   std::shared_ptr<const std::string> report;  // the ended sweep's report (null: not built, or dropped)
@@ -72,7 +58,7 @@ struct SweepJobs::Job {
   std::atomic<bool> exited{false};  // the thread has finished (the report built)
 };
 
-SweepJobs::SweepJobs(RunManager& runs, std::string scenarios_dir) : runs_(runs), scenarios_dir_(std::move(scenarios_dir)) {}
+SweepJobs::SweepJobs(RunManager& runs) : runs_(runs) {}
 
 // A sweep is admitted like the runs it makes (summaries only: no frame
 // limits): its cost estimate, summed over every run, against
@@ -108,39 +94,34 @@ void SweepJobs::admit(const sweep::SweepSpec& spec) {
 
 SweepJobs::~SweepJobs() { stop_all(); }
 
-// A spec checked as a start would check it (422 naming the path, the REST
+// A spec checked as a start would check it (unprocessable naming the path, the REST
 // limits, the run quotas), not yet expanded into its cases; nothing is started.
-std::shared_ptr<SweepJobs::Job> SweepJobs::prepare(const json& body) {
-  refuse_paths(body);
+std::shared_ptr<SweepJobs::Job> SweepJobs::prepare(sweep::SweepSpec spec) {
   auto job = std::make_shared<Job>();
-  try {
-    job->spec = sweep::parse_sweep_spec(body, {scenarios_dir_, scenarios_dir_});
-  } catch (...) {
-    rethrow_as_api_error("", 422);
-  }
+  job->spec = std::move(spec);
   // counted before expanding: a short spec can name billions of runs (memory)
   const std::uint64_t runs = sweep::sweep_case_count(job->spec);
   if (runs > kMaxRunsPerSweep)
-    throw ApiError(422, "invalid",
-                   "this spec expands to " + std::to_string(runs) + " runs; over REST at most " +
-                       std::to_string(kMaxRunsPerSweep) + " (the command line has no limit)",
-                   "scenarios");
+    throw DomainError(Problem::unprocessable, "invalid",
+                      "this spec expands to " + std::to_string(runs) + " runs; over REST at most " +
+                          std::to_string(kMaxRunsPerSweep) + " (the command line has no limit)",
+                      "scenarios");
   // admitting generates each generator entry's first case (tens of ms each)
   const auto generated = size_t(std::count_if(job->spec.scenarios.begin(), job->spec.scenarios.end(),
                                               [](const sweep::ScenarioEntry& e) { return e.generated(); }));
   if (generated > kMaxGeneratorEntries)
-    throw ApiError(422, "invalid",
-                   "this spec has " + std::to_string(generated) + " generator entries; over REST at most " +
-                       std::to_string(kMaxGeneratorEntries) + " (the command line has no limit)",
-                   "scenarios");
+    throw DomainError(Problem::unprocessable, "invalid",
+                      "this spec has " + std::to_string(generated) + " generator entries; over REST at most " +
+                          std::to_string(kMaxGeneratorEntries) + " (the command line has no limit)",
+                      "scenarios");
   admit(job->spec);
   return job;
 }
 
-json SweepJobs::validate(const json& body) {
+json SweepJobs::validate(sweep::SweepSpec spec) {
   json answer;
   {
-    const std::shared_ptr<Job> job = prepare(body);  // not expanded: counted
+    const std::shared_ptr<Job> job = prepare(std::move(spec));  // not expanded: counted
     answer = {{"valid", true},
               {"name", job->spec.name},
               {"total", sweep::sweep_case_count(job->spec)},
@@ -151,9 +132,9 @@ json SweepJobs::validate(const json& body) {
   return answer;
 }
 
-json SweepJobs::start(const json& body, int jobs) {
-  runs_.check_writable();  // 503 storage_full on a full disk: a sweep would store nothing
-  const std::shared_ptr<Job> job = prepare(body);
+json SweepJobs::start(sweep::SweepSpec spec, int jobs) {
+  runs_.check_writable();  // storage_full on a full disk: a sweep would store nothing
+  const std::shared_ptr<Job> job = prepare(std::move(spec));
   forget_reports(job->spec.name);  // an earlier run of this sweep: its runs are about to change
   job->cases = sweep::expand_sweep(job->spec);
   // one core stays for live runs
@@ -164,14 +145,14 @@ json SweepJobs::start(const json& body, int jobs) {
   int running = 0;
   for (const auto& [id, other] : jobs_) {
     std::lock_guard other_lock(other->mutex);
-    if (other->status != "running") continue;
+    if (other->status != SweepStatus::running) continue;
     ++running;
     if (other->spec.name == job->spec.name)
-      throw ApiError(409, "wrong_state", "sweep '" + job->spec.name + "' is running already (id " + std::to_string(id) + ")",
-                     "name");
+      throw DomainError(Problem::conflict, "wrong_state",
+                        "sweep '" + job->spec.name + "' is running already (id " + std::to_string(id) + ")", "name");
   }
   if (running >= kMaxRunningSweeps)
-    throw ApiError(503, "busy", "at most " + std::to_string(kMaxRunningSweeps) + " sweeps may run at once", "");
+    throw DomainError(Problem::busy, "busy", "at most " + std::to_string(kMaxRunningSweeps) + " sweeps may run at once");
   int begun = 0;
   try {
     for (; begun < job->jobs; ++begun) runs_.begin_job(0);  // 0: it reads no stored run
@@ -192,13 +173,14 @@ json SweepJobs::start(const json& body, int jobs) {
     sweep::RunnerOptions options;
     options.jobs = job->jobs;
     options.stop = &job->stop;
-    std::string status = "completed", error;
+    SweepStatus status = SweepStatus::completed;
+    std::string error;
     sweep::RunnerOutcome outcome;
     try {
       outcome = sweep::run_sweep(job->spec, job->cases, runs_.store(), options);
-      if (outcome.interrupted) status = "stopped";
+      if (outcome.interrupted) status = SweepStatus::stopped;
     } catch (const std::exception& e) {
-      status = "failed";
+      status = SweepStatus::failed;
       error = e.what();
     }
     for (int i = 0; i < job->jobs; ++i) runs_.end_job();
@@ -222,7 +204,8 @@ json SweepJobs::start(const json& body, int jobs) {
 }
 
 json SweepJobs::progress_of(Job& job) {
-  std::string status, error, storage_stopped;
+  SweepStatus status = SweepStatus::running;
+  std::string error, storage_stopped;
   json failures = json::array();  // the first 20
   size_t failed = 0;
   std::optional<size_t> done;
@@ -236,7 +219,7 @@ json SweepJobs::progress_of(Job& job) {
     done = job.done_at_end;
   }
   const size_t total = job.cases.size();
-  const bool ended = status != "running";
+  const bool ended = status != SweepStatus::running;
   if (!done) {
     done = total - sweep::pending_cases(job.spec, job.cases, runs_.store()).size();
     if (ended) {
@@ -244,7 +227,7 @@ json SweepJobs::progress_of(Job& job) {
       job.done_at_end = done;
     }
   }
-  json body = {{"id", job.id},       {"name", job.spec.name}, {"status", status},
+  json body = {{"id", job.id},       {"name", job.spec.name}, {"status", to_string(status)},
                {"total", total},     {"done", *done},         {"jobs", job.jobs}};
   if (!error.empty()) body["error"] = error;
   // why it stopped on its own: "disk full" or "database read-only" (what was stored stays; resumable)
@@ -265,7 +248,7 @@ std::shared_ptr<const std::string> SweepJobs::report_of(const std::shared_ptr<Jo
   if (wait)
     build.lock();
   else if (!build.try_lock())  // another request builds it: no second worker held waiting for it
-    throw ApiError(503, "busy", "this sweep's report is being built; ask again in a moment", "");
+    throw DomainError(Problem::busy, "busy", "this sweep's report is being built; ask again in a moment");
   {
     std::lock_guard lock(job.mutex);  // built by another caller meanwhile
     if (job.report) return job.report;
@@ -300,7 +283,7 @@ std::shared_ptr<const std::string> SweepJobs::report_of(const std::shared_ptr<Jo
 std::shared_ptr<SweepJobs::Job> SweepJobs::find(std::int64_t id) {
   std::lock_guard lock(mutex_);
   auto it = jobs_.find(id);
-  if (it == jobs_.end()) throw ApiError(404, "not_found", "no sweep " + std::to_string(id), "id");
+  if (it == jobs_.end()) throw DomainError(Problem::not_found, "not_found", "no sweep " + std::to_string(id), "id");
   return it->second;
 }
 
@@ -308,9 +291,9 @@ std::string SweepJobs::status(std::int64_t id) {
   const std::shared_ptr<Job> job = find(id);
   const json progress = progress_of(*job);
   std::string body = safe_dump(progress);
-  if (progress["status"] == "running") return body;  // no report yet
+  if (progress["status"] == to_string(SweepStatus::running)) return body;  // no report yet
   const std::shared_ptr<const std::string> report = report_of(job, false);
-  if (!report) throw ApiError(503, "busy", "the server is shutting down", "");
+  if (!report) throw DomainError(Problem::busy, "busy", "the server is shutting down");
   body.pop_back();  // the report spliced in as text: built once, never parsed again
   body += ",\"report\":";
   body += *report;
@@ -338,9 +321,7 @@ json sweep_run_json(const storage::SweepRunEntry& e) {
 }
 
 storage::RunStore::SweepRunFilter SweepJobs::RunQuery::filter() const {
-  storage::RunStore::SweepRunFilter f{family, config, failure_mode, std::nullopt};
-  if (outcome) f.success = *outcome == "pass";
-  return f;
+  return {family, config, failure_mode, success};
 }
 
 std::string SweepJobs::name(std::int64_t id) { return find(id)->spec.name; }
@@ -365,15 +346,13 @@ json SweepJobs::list() {
   json list = json::array();
   for (const auto& job : jobs) {
     std::lock_guard lock(job->mutex);
-    list.push_back({{"id", job->id}, {"name", job->spec.name}, {"status", job->status}, {"total", job->cases.size()},
+    list.push_back({{"id", job->id}, {"name", job->spec.name}, {"status", to_string(job->status)}, {"total", job->cases.size()},
                     {"failed", job->outcome.failures.size()}});
   }
   return list;
 }
 
-json SweepJobs::control(std::int64_t id, const json& body) {
-  if (!body.is_object() || body.size() != 1 || !body.contains("action") || body["action"] != "stop")
-    throw ApiError(400, "invalid", "a sweep takes {\"action\": \"stop\"}", "action");
+json SweepJobs::stop(std::int64_t id) {
   find(id)->stop = true;
   return {{"id", id}, {"stopping", true}};
 }
@@ -387,7 +366,7 @@ void SweepJobs::forget_reports(const std::optional<std::string>& name) {
   }
   for (const auto& job : jobs) {
     std::lock_guard lock(job->mutex);
-    if (job->status == "running") continue;
+    if (job->status == SweepStatus::running) continue;
     job->report.reset();
     job->done_at_end.reset();
   }

@@ -201,7 +201,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
     keep_alive_ = false;
     drain_after_write_ = true;
     version_ = 11;
-    send_api(error_response(ApiError(status, code, message, "")));
+    send_api(error_response(status, code, message));
   }
 
   // The peer's IP address ("" if the socket no longer knows it).
@@ -233,15 +233,15 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
       const auto now = AuthThrottle::Clock::now();
       if (const long wait = state_->auth_failures.blocked_for(address, now); wait > 0) {
         ApiResponse slow = error_response(
-            ApiError(429, "too_many_attempts",
-                     "too many wrong tokens from this address; try again in " + std::to_string(wait) + " s", ""));
+            DomainError(Problem::too_many, "too_many_attempts",
+                        "too many wrong tokens from this address; try again in " + std::to_string(wait) + " s"));
         slow.headers.emplace_back("Retry-After", std::to_string(wait));
         return send_api(slow);
       }
       state_->auth_failures.failed(address, now);
     }
     if (access.status >= 400)
-      return send_api(error_response(ApiError(access.status, access.code, access.message, access.path)));
+      return send_api(error_response(access.status, access.code, access.message, access.path));
     if (!access.allowed()) {  // a CORS preflight
       ApiResponse preflight;
       preflight.status = access.status;
@@ -300,7 +300,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
           if (state->limits.test_build_delay.count() > 0) std::this_thread::sleep_for(state->limits.test_build_delay);
           response = handle_api(state->runs, state->info, api);
         } catch (...) {  // handle_api answers every error; only an allocation failure lands here
-          response = error_response(ApiError(500, "internal", "the request could not be handled", ""));
+          response = error_response(DomainError(Problem::internal, "internal", "the request could not be handled"));
         }
         --state->building;
         if (response.deferred)
@@ -310,7 +310,8 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
       }, owner);
       if (!queued) {
         --state->building;
-        ApiResponse busy = error_response(ApiError(503, "busy", "too much slow work is waiting; try again", ""));
+        ApiResponse busy =
+            error_response(DomainError(Problem::busy, "busy", "too much slow work is waiting; try again"));
         busy.headers.emplace_back("Retry-After", "1");
         respond(std::move(busy));
       }
@@ -337,8 +338,8 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   void send_stream(const ApiResponse& api) {
     auto ticket = state_->exports.reserve(2 * state_->limits.export_chunk);
     if (!ticket) {
-      ApiResponse busy = error_response(ApiError(
-          503, "busy", "too many exports in progress (their memory budget is full); retry in a moment", ""));
+      ApiResponse busy = error_response(DomainError(
+          Problem::busy, "busy", "too many exports in progress (their memory budget is full); retry in a moment"));
       busy.headers.emplace_back("Retry-After", "1");
       return send_api(busy);
     }
@@ -370,9 +371,9 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
         try {
           out->more = out->body->next(out->chunk, target);
         } catch (...) {
-          rethrow_as_api_error("");
+          rethrow_as_domain_error("");
         }
-      } catch (const ApiError& e) {
+      } catch (const DomainError& e) {
         out->failure = error_response(e);
       }
       net::post(self->stream_.get_executor(), [self, out] { self->guarded([&] { self->on_produced(out); }); });
@@ -428,7 +429,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   }
 
   void send_error(int status, const std::string& message) {
-    send_api(error_response(ApiError(status, status_code_name(status), message, "")));
+    send_api(error_response(status, status_code_name(status), message));
   }
 
   void answer_static(const http::request<http::string_body>& request, const std::string& path) {
@@ -478,7 +479,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
     std::shared_ptr<FrameSource> source;
     try {
       source = websocket_source(state_->runs, path);  // routes/router.cpp
-    } catch (const ApiError& e) {
+    } catch (const DomainError& e) {
       return send_api(error_response(e));
     }
     std::string refused;

@@ -9,7 +9,7 @@
 #include <deque>
 
 #include <rrlab/server/app/controller.hpp>
-#include <rrlab/server/app/socket_message.hpp>
+#include <rrlab/server/routes/socket_message.hpp>
 #include <rrlab/server/net/sessions.hpp>
 
 namespace rrlab::server {
@@ -203,9 +203,9 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
   // client sent (no exception reaches the I/O loop).
   MessageReply reply_to(const std::string& text) {
     if (over_rate_limit())
-      return {socket_error(ApiError(429, "rate_limited",
-                                    "more than " + std::to_string(state_->limits.ws_messages_per_second) +
-                                        " messages per second; this one was dropped")),
+      return {socket_error(DomainError(Problem::too_many, "rate_limited",
+                                       "more than " + std::to_string(state_->limits.ws_messages_per_second) +
+                                           " messages per second; this one was dropped")),
               nullptr};
     return reply_to_socket_message(*source_, client_.name, client_.may_steer, text);
   }

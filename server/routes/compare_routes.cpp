@@ -31,7 +31,7 @@ json comparison(RunGroup& group) {
 
 ApiResponse post_compare(RouteContext& c) {
   const json doc = parse_body(c.request);
-  if (!doc.is_object()) throw ApiError(400, "invalid", "the body must be a JSON object", "");
+  if (!doc.is_object()) throw DomainError(Problem::invalid, "invalid", "the body must be a JSON object");
   std::vector<Scenario> lanes;
   GroupOptions options;
   options.compare = true;
@@ -40,7 +40,7 @@ ApiResponse post_compare(RouteContext& c) {
     JsonObject body(doc, "");
     body.check_keys({"scenario", "methods", "mode", "steps", "wait", "rate", "paused"});
     if (!body.has("scenario")) throw ScenarioError("scenario", "is required (a scenario name or object)");
-    const Scenario base = c.runs.resolve_scenario(doc.at("scenario"), "scenario");
+    const Scenario base = resolve_scenario(c, doc.at("scenario"), "scenario");
     const json& methods = body.array("methods", 8);
     if (methods.size() < 2) throw ScenarioError("methods", "compare needs 2 to 8 methods");
     for (size_t i = 0; i < methods.size(); ++i) {
@@ -61,9 +61,9 @@ ApiResponse post_compare(RouteContext& c) {
       if (lane.method.name == base.method.name && methods[i].is_string()) lane.method.params = base.method.params;
       lanes.push_back(std::move(lane));
     }
-    parse_run_options(body, doc, "batch", options, wait);
+    parse_run_options(body, doc, RunMode::batch, options, wait);
   } catch (...) {
-    rethrow_as_api_error("");
+    rethrow_as_domain_error("");
   }
   options.owner = c.request.address;  // live runs are counted per address
   auto group = c.runs.start_group(lanes, options);
@@ -73,7 +73,7 @@ ApiResponse post_compare(RouteContext& c) {
                     {"method", lanes[size_t(lane)].method.name},
                     {"ws", "/ws/runs/" + std::to_string(group->run_id(lane))}});
   const json head = {{"group", group->run_id(0)}, {"runs", runs}};
-  if (options.mode == "batch" && wait) {
+  if (options.mode == RunMode::batch && wait) {
     ApiResponse response;
     response.deferred = [group, head](Responder respond) {
       group->when_finished([group, head, respond] {

@@ -50,7 +50,8 @@ class FrameExport : public BodyStream {
     if (next_ <= to_) return true;
     // deleted meanwhile (DELETE takes a stored run at any time): its frames
     // stopped short, so the body must not end as if complete
-    if (!store_.run(run_)) throw ApiError(404, "not_found", "run " + std::to_string(run_) + " was deleted", "id");
+    if (!store_.run(run_))
+      throw DomainError(Problem::not_found, "not_found", "run " + std::to_string(run_) + " was deleted", "id");
     if (!csv_) out += "]}";
     return false;
   }
@@ -88,11 +89,12 @@ ApiResponse get_frames(RouteContext& c) {
   const std::int64_t from = query_int(c, "from", 0, 0, INT64_MAX / 2);
   const std::int64_t stride = query_int(c, "stride", 1, 1, 1'000'000);
   std::int64_t to = query_int(c, "to", std::max<std::int64_t>(run.frames - 1, 0), 0, INT64_MAX / 2);
-  if (to < from) throw ApiError(400, "invalid", "must not be below from", "to");
+  if (to < from) throw DomainError(Problem::invalid, "invalid", "must not be below from", "to");
   to = std::min(to, from + (kMaxFrames - 1) * stride);
   std::string format = "json";
   if (auto it = c.request.query.find("format"); it != c.request.query.end()) {
-    if (it->second != "json" && it->second != "csv") throw ApiError(400, "invalid", "must be json or csv", "format");
+    if (it->second != "json" && it->second != "csv")
+      throw DomainError(Problem::invalid, "invalid", "must be json or csv", "format");
     format = it->second;
   } else if (c.request.accept.find("text/csv") != std::string::npos) {
     format = "csv";

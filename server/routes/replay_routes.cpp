@@ -34,10 +34,10 @@ ApiResponse resimulate_run(RouteContext& c, const storage::RunRecord& run) {
       frame_bytes = std::int64_t(storage::pack_frame(sim.frame()).size());
     }
     reserved = runs.admit_work({estimate_lane(scenario, frames, frame_bytes)}, true);
-  } catch (const ApiError&) {
+  } catch (const DomainError&) {
     throw;
   } catch (...) {
-    rethrow_as_api_error("", 422);  // a stored scenario this rrlab can no longer build
+    rethrow_as_domain_error("", Problem::unprocessable);  // a stored scenario this rrlab can no longer build
   }
   try {
     runs.begin_job(run.id);  // 503 when too many runs are active
@@ -55,7 +55,7 @@ ApiResponse resimulate_run(RouteContext& c, const storage::RunRecord& run) {
         fresh.scenario_json = run.scenario_json;
         fresh.method = run.method;
         fresh.params_json = run.params_json;
-        fresh.mode = "resimulation";
+        fresh.mode = to_string(RunMode::resimulation);
         fresh.seed = run.seed;
         fresh.dof = run.dof;
         fresh.diagnostic_names_json = run.diagnostic_names_json;
@@ -77,19 +77,19 @@ ApiResponse resimulate_run(RouteContext& c, const storage::RunRecord& run) {
         json verification = {{"run", id}, {"source_run", run.id}};
         verification.update(storage::verification_json(result));
         summary["verification"] = verification;
-        runs.store().finish_run(id, "completed", summary.dump());
+        runs.store().finish_run(id, to_string(RunStatus::completed), summary.dump());
         runs.done_reading(run.id);  // before the answer: its client may delete the run at once
         respond(json_response(200, verification));
       } catch (const std::exception& e) {
         if (id != 0) {
           try {
             runs.writer().flush();
-            runs.store().finish_run(id, "failed", safe_dump({{"failure", e.what()}}));
+            runs.store().finish_run(id, to_string(RunStatus::failed), safe_dump({{"failure", e.what()}}));
           } catch (const std::exception&) {
           }
         }
         runs.done_reading(run.id);
-        respond(error_response(ApiError(500, "resimulation_failed", e.what(), "")));
+        respond(error_response(DomainError(Problem::internal, "resimulation_failed", e.what())));
       }
       // released before end_job: it owns the HTTP session, which must be gone
       // before stop_all() returns and the server destroys its I/O context (ASan
@@ -104,7 +104,7 @@ ApiResponse resimulate_run(RouteContext& c, const storage::RunRecord& run) {
       runs.done_reading(run.id);
       runs.release_reserved(reserved);
       runs.end_job();
-      respond(error_response(ApiError(503, "busy", std::string("cannot start a thread: ") + e.what(), "")));
+      respond(error_response(DomainError(Problem::busy, "busy", std::string("cannot start a thread: ") + e.what())));
     }
   };
   return response;
@@ -128,12 +128,13 @@ ApiResponse post_replay(RouteContext& c) {
     if (!(first >= 0 && first < 1e15)) throw ScenarioError("from", "must be a frame number");
     from = std::int64_t(first);
   } catch (...) {
-    rethrow_as_api_error("");
+    rethrow_as_domain_error("");
   }
   int lane = 0;
   auto group = c.runs.group_of(run.id, lane);
   if (group && !group->finished())
-    throw ApiError(409, "wrong_state", "run " + std::to_string(run.id) + " is still running; stop it first", "id");
+    throw DomainError(Problem::conflict, "wrong_state",
+                      "run " + std::to_string(run.id) + " is still running; stop it first", "id");
   if (mode == "resimulate") return resimulate_run(c, run);
   auto player = std::make_shared<ReplayPlayer>(c.runs.store(), run, speed, from, c.runs.limits().default_display_hz);
   c.runs.add_replay(player, c.request.owner());
@@ -143,14 +144,28 @@ ApiResponse post_replay(RouteContext& c) {
 
 ApiResponse get_replay(RouteContext& c) {
   auto player = c.runs.replay(c.id());
-  if (!player) throw ApiError(404, "not_found", "no replay " + c.captures.at(0), "id");
+  if (!player) throw DomainError(Problem::not_found, "not_found", "no replay " + c.captures.at(0), "id");
   return json_response(200, player->status());
+}
+
+ReplayCommand parse_replay_command(const json& body) {
+  ReplayCommand command;
+  try {
+    JsonObject obj(body, "");
+    obj.check_keys({"action", "seq", "speed"});
+    if (obj.has("action")) command.action = parse_replay_action(obj.choice("action", {"play", "pause", "seek"})).value();
+    command.speed = obj.optional_number("speed");
+    command.seq = obj.optional_number("seq");
+  } catch (...) {
+    rethrow_as_domain_error("");
+  }
+  return command;
 }
 
 ApiResponse post_replay_control(RouteContext& c) {
   auto player = c.runs.replay(c.id());
-  if (!player) throw ApiError(404, "not_found", "no replay " + c.captures.at(0), "id");
-  return json_response(200, player->control(parse_body(c.request)));
+  if (!player) throw DomainError(Problem::not_found, "not_found", "no replay " + c.captures.at(0), "id");
+  return json_response(200, player->control(parse_replay_command(parse_body(c.request))));
 }
 
 }  // namespace rrlab::server

@@ -121,7 +121,7 @@ std::shared_ptr<FrameSource> websocket_source(RunManager& runs, std::string_view
       if (auto source = route.source(runs, *id)) return source;
     break;
   }
-  throw ApiError(404, "not_found", "no live run or replay at " + std::string(path), "");
+  throw DomainError(Problem::not_found, "not_found", "no live run or replay at " + std::string(path));
 }
 
 bool is_slow(const ApiRequest& request) {
@@ -137,7 +137,7 @@ bool is_slow(const ApiRequest& request) {
 std::int64_t RouteContext::id(size_t index) const {
   const std::string& text = captures.at(index);
   const auto value = parse_id(text);
-  if (!value) throw ApiError(404, "not_found", "no such id \"" + text + "\"", "id");
+  if (!value) throw DomainError(Problem::not_found, "not_found", "no such id \"" + text + "\"", "id");
   return *value;
 }
 
@@ -156,14 +156,15 @@ ApiResponse handle_api(RunManager& runs, const ServerInfo& info, const ApiReques
       allowed += (allowed.empty() ? "" : ", ") + std::string(route.verb);
     }
     if (path_known)
-      throw ApiError(405, "method_not_allowed", request.method + " is not allowed here (allowed: " + allowed + ")", "");
-    throw ApiError(404, "not_found", "no API route " + std::string(path), "");
-  } catch (const ApiError& e) {
+      throw DomainError(Problem::not_allowed, "method_not_allowed",
+                        request.method + " is not allowed here (allowed: " + allowed + ")");
+    throw DomainError(Problem::not_found, "not_found", "no API route " + std::string(path));
+  } catch (const DomainError& e) {
     return error_response(e);
   } catch (...) {
     try {
-      rethrow_as_api_error("");
-    } catch (const ApiError& e) {
+      rethrow_as_domain_error("");
+    } catch (const DomainError& e) {
       return error_response(e);
     }
   }

@@ -1,4 +1,6 @@
-// REST routes, one file per resource; router.cpp holds the table.
+// REST routes, one file per resource; router.cpp holds the table. The
+// routes parse requests into the app's typed arguments and answer its
+// DomainErrors with the status of their Problem (http_errors.hpp).
 #pragma once
 
 #include <atomic>
@@ -10,8 +12,11 @@
 #include <vector>
 
 #include <rrlab/scenario/json_reader.hpp>
+#include <rrlab/server/api/errors.hpp>
+#include <rrlab/server/api/request.hpp>
+#include <rrlab/server/api/response.hpp>
 #include <rrlab/server/app/run_manager.hpp>
-#include <rrlab/server/routes/api.hpp>
+#include <rrlab/server/routes/http_errors.hpp>
 #include <rrlab/storage/run_store.hpp>
 
 namespace rrlab::server {
@@ -29,7 +34,7 @@ struct RouteContext {
   const ApiRequest& request;
   std::vector<std::string> captures;  // the {} segments of the route's pattern
 
-  std::int64_t id(size_t index = 0) const;  // a numeric capture (404 if not a number)
+  std::int64_t id(size_t index = 0) const;  // a numeric capture (not_found if not a number)
 };
 
 using RouteHandler = ApiResponse (*)(RouteContext&);
@@ -50,7 +55,7 @@ std::vector<RouteInfo> api_routes();
 
 // The WebSocket routes, in the same table as the REST ones: GET /ws/runs/{id}
 // streams a live run's lane, /ws/replays/{id} a replay. The frame source the
-// path names; 404 (ApiError) when it names none.
+// path names; not_found (DomainError) when it names none.
 std::shared_ptr<FrameSource> websocket_source(RunManager& runs, std::string_view path);
 std::vector<RouteInfo> websocket_routes();
 
@@ -100,10 +105,19 @@ std::shared_ptr<RunGroup> live_group(RouteContext& context, std::int64_t id, int
 nlohmann::json run_record_json(const storage::RunRecord& run);
 // The run options shared by POST /api/runs and /api/compare: mode, rate,
 // paused, wait, steps (ScenarioError naming the field).
-void parse_run_options(JsonObject& body, const nlohmann::json& doc, const std::string& default_mode,
-                       GroupOptions& options, bool& wait);
+void parse_run_options(JsonObject& body, const nlohmann::json& doc, RunMode default_mode, GroupOptions& options,
+                       bool& wait);
+// A request's "scenario": a catalogue name (not_found) or a scenario object
+// (unprocessable naming the path when the engine refuses it).
+Scenario resolve_scenario(RouteContext& context, const nlohmann::json& value, const std::string& path);
+// A control body {"action"?: start|pause|step|reset|stop, "rate"?: factor}
+// (run_input_routes.cpp; invalid naming the field).
+ControlCommand parse_control_command(const nlohmann::json& body);
+// A replay's control body {"action"?: play|pause|seek, "seq"?: n, "speed"?: x}
+// (replay_routes.cpp; invalid naming the field).
+ReplayCommand parse_replay_command(const nlohmann::json& body);
 
-// A query parameter as an integer in [min, max] (400 naming it otherwise).
+// A query parameter as an integer in [min, max] (invalid naming it otherwise).
 std::int64_t query_int(const RouteContext& context, const std::string& name, std::int64_t def, std::int64_t min,
                        std::int64_t max);
 

@@ -38,7 +38,7 @@ void apply_method_choice(JsonObject& body, const json& doc, Scenario& scenario) 
 
 storage::RunRecord find_run(RouteContext& c, std::int64_t id) {
   auto run = c.runs.store().run(id);
-  if (!run) throw ApiError(404, "not_found", "no run " + std::to_string(id), "id");
+  if (!run) throw DomainError(Problem::not_found, "not_found", "no run " + std::to_string(id), "id");
   return *run;
 }
 
@@ -46,7 +46,8 @@ std::shared_ptr<RunGroup> live_group(RouteContext& c, std::int64_t id, int& lane
   auto group = c.runs.group_of(id, lane);
   if (!group) {
     find_run(c, id);  // 404 when unknown
-    throw ApiError(409, "wrong_state", "run " + std::to_string(id) + " is not running in this server", "id");
+    throw DomainError(Problem::conflict, "wrong_state", "run " + std::to_string(id) + " is not running in this server",
+                      "id");
   }
   return group;
 }
@@ -70,15 +71,14 @@ json run_record_json(const storage::RunRecord& r) {
           {"sweep", parse_or_null(r.sweep_json)}};
 }
 
-void parse_run_options(JsonObject& body, const json& doc, const std::string& default_mode, GroupOptions& options,
-                       bool& wait) {
-  options.mode = body.choice("mode", {"live", "batch"}, default_mode.c_str());
-  options.rate = body.number("rate", options.mode == "batch" ? 0.0 : 1.0);
+void parse_run_options(JsonObject& body, const json& doc, RunMode default_mode, GroupOptions& options, bool& wait) {
+  options.mode = parse_run_mode(body.choice("mode", {"live", "batch"}, to_string(default_mode))).value();
+  options.rate = body.number("rate", options.mode == RunMode::batch ? 0.0 : 1.0);
   if (!valid_rate(options.rate)) throw ScenarioError("rate", kRateRule);
-  if (options.mode == "batch") options.rate = 0;
+  if (options.mode == RunMode::batch) options.rate = 0;
   if (body.has("paused")) {
     if (!doc.at("paused").is_boolean()) throw ScenarioError("paused", "must be true or false");
-    options.paused = doc.at("paused").get<bool>() && options.mode == "live";
+    options.paused = doc.at("paused").get<bool>() && options.mode == RunMode::live;
   }
   if (body.has("wait")) {
     if (!doc.at("wait").is_boolean()) throw ScenarioError("wait", "must be true or false");
@@ -101,13 +101,33 @@ std::int64_t query_int(const RouteContext& c, const std::string& name, std::int6
     if (used == it->second.size() && v >= min && v <= max) return v;
   } catch (const std::exception&) {
   }
-  throw ApiError(400, "invalid", "must be an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "]",
-                 name);
+  throw DomainError(Problem::invalid, "invalid",
+                    "must be an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "]", name);
+}
+
+Scenario resolve_scenario(RouteContext& c, const json& value, const std::string& path) {
+  json doc;
+  if (value.is_string()) {
+    try {
+      doc = c.runs.catalogue().document(value.get<std::string>());
+    } catch (const DomainError& e) {
+      throw DomainError(Problem::not_found, "not_found", e.what(), path);
+    }
+  } else if (value.is_object()) {
+    doc = value;
+  } else {
+    throw DomainError(Problem::invalid, "invalid", "must be a scenario name or a scenario object", path);
+  }
+  try {
+    return parse_scenario(doc);
+  } catch (...) {
+    rethrow_as_domain_error(path, Problem::unprocessable);
+  }
 }
 
 ApiResponse post_run(RouteContext& c) {
   const json doc = parse_body(c.request);
-  if (!doc.is_object()) throw ApiError(400, "invalid", "the body must be a JSON object", "");
+  if (!doc.is_object()) throw DomainError(Problem::invalid, "invalid", "the body must be a JSON object");
   GroupOptions options;
   Scenario scenario;
   bool wait = true;
@@ -115,18 +135,18 @@ ApiResponse post_run(RouteContext& c) {
     JsonObject body(doc, "");
     body.check_keys({"scenario", "method", "params", "mode", "rate", "paused", "steps", "wait", "display_hz"});
     if (!body.has("scenario")) throw ScenarioError("scenario", "is required (a scenario name or object)");
-    scenario = c.runs.resolve_scenario(doc.at("scenario"), "scenario");
+    scenario = resolve_scenario(c, doc.at("scenario"), "scenario");
     apply_method_choice(body, doc, scenario);
-    parse_run_options(body, doc, "live", options, wait);
+    parse_run_options(body, doc, RunMode::live, options, wait);
     options.display_hz = body.number("display_hz", c.runs.limits().default_display_hz);
     if (!(options.display_hz >= 1 && options.display_hz <= 240)) throw ScenarioError("display_hz", "must be in [1, 240]");
   } catch (...) {
-    rethrow_as_api_error("");
+    rethrow_as_domain_error("");
   }
   options.owner = c.request.address;  // live runs are counted per address
   auto group = c.runs.start_group({scenario}, options);
   const std::int64_t id = group->run_id(0);
-  if (options.mode == "batch" && wait) {
+  if (options.mode == RunMode::batch && wait) {
     ApiResponse response;
     response.deferred = [group](Responder respond) {
       group->when_finished([group, respond] {

@@ -7,18 +7,27 @@ namespace rrlab::server {
 ApiResponse list_scenarios(RouteContext& c) {
   const std::int64_t limit = query_int(c, "limit", 100, 1, 1000);
   const std::int64_t offset = query_int(c, "offset", 0, 0, 1'000'000'000);
-  return json_response(200, c.runs.scenario_list(limit, offset));
+  return json_response(200, c.runs.catalogue().list(limit, offset));
 }
 
-ApiResponse get_scenario(RouteContext& c) { return json_response(200, c.runs.scenario_json(c.captures.at(0))); }
+ApiResponse get_scenario(RouteContext& c) {
+  return json_response(200, c.runs.catalogue().document(c.captures.at(0)));
+}
 
 // Adds a scenario (validated like a file; stored in the database, never on
-// disk). An existing name, of a file or of one added earlier, is 409: never replaced.
-ApiResponse post_scenario(RouteContext& c) { return json_response(201, c.runs.add_scenario(parse_body(c.request))); }
+// disk) under its "name". An existing name, of a file or of one added
+// earlier, is 409: never replaced.
+ApiResponse post_scenario(RouteContext& c) {
+  const nlohmann::json document = parse_body(c.request);
+  if (!document.is_object()) throw DomainError(Problem::invalid, "invalid", "must be a scenario object");
+  if (!document.contains("name") || !document["name"].is_string())
+    throw DomainError(Problem::invalid, "invalid", "a stored scenario needs a string \"name\"", "name");
+  return json_response(201, c.runs.catalogue().add(document["name"].get<std::string>(), document));
+}
 
 // Checks a scenario as POST /api/runs would, stores nothing (the dashboard's editor).
 ApiResponse validate_scenario(RouteContext& c) {
-  return json_response(200, c.runs.validate_scenario(parse_body(c.request)));
+  return json_response(200, c.runs.catalogue().validate(parse_body(c.request)));
 }
 
 }  // namespace rrlab::server

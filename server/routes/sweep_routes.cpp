@@ -5,12 +5,49 @@
 
 #include <rrlab/server/app/sweep_jobs.hpp>
 #include <rrlab/server/routes/routes.hpp>
+#include <rrlab/sweep/sweep_spec.hpp>
 
 namespace rrlab::server {
 
+using nlohmann::json;
+
+namespace {
+
+// Over REST a scenario entry is a catalogue name or a generator: never a path.
+void refuse_paths(const json& spec) {
+  if (!spec.is_object() || !spec.contains("scenarios") || !spec["scenarios"].is_array()) return;
+  const json& list = spec["scenarios"];
+  for (size_t i = 0; i < list.size(); ++i) {
+    // a scenario entry, or the scenario a perturbation family perturbs
+    const bool perturbs = list[i].is_object() && list[i].contains("perturb") && list[i]["perturb"].is_string();
+    if (!list[i].is_string() && !perturbs) continue;
+    const std::string name = perturbs ? list[i]["perturb"].get<std::string>() : list[i].get<std::string>();
+    if (!sweep::is_plain_name(name) || name.ends_with(".json"))
+      throw DomainError(Problem::unprocessable, "invalid",
+                        "over REST a sweep names catalogue scenarios or generators, not files: '" + name + "'",
+                        "scenarios[" + std::to_string(i) + "]" + (perturbs ? ".perturb" : ""));
+  }
+}
+
+// A sweep spec of a request body: catalogue scenarios and generators only
+// (unprocessable naming the path otherwise).
+sweep::SweepSpec parse_sweep_request(RouteContext& c) {
+  const json body = parse_body(c.request);
+  refuse_paths(body);
+  const std::string& dir = c.runs.catalogue().dir();
+  try {
+    return sweep::parse_sweep_spec(body, {dir, dir});
+  } catch (...) {
+    rethrow_as_domain_error("", Problem::unprocessable);
+  }
+}
+
+}  // namespace
+
 ApiResponse post_sweep(RouteContext& c) {
   const int jobs = int(query_int(c, "jobs", 1, 1, 256));
-  return json_response(202, c.runs.sweeps().start(parse_body(c.request), jobs));
+  c.runs.check_writable();  // a full disk first: a sweep would store nothing, whatever its spec
+  return json_response(202, c.runs.sweeps().start(parse_sweep_request(c), jobs));
 }
 
 ApiResponse list_sweeps(RouteContext& c) { return json_response(200, c.runs.sweeps().list()); }
@@ -22,7 +59,9 @@ ApiResponse get_sweep(RouteContext& c) {
 }
 
 // Checks a spec as POST /api/sweeps would and starts nothing (the dashboard's dialog).
-ApiResponse validate_sweep(RouteContext& c) { return json_response(200, c.runs.sweeps().validate(parse_body(c.request))); }
+ApiResponse validate_sweep(RouteContext& c) {
+  return json_response(200, c.runs.sweeps().validate(parse_sweep_request(c)));
+}
 
 namespace {
 
@@ -101,15 +140,18 @@ ApiResponse get_sweep_runs(RouteContext& c) {
   };
   query.family = text("family");
   query.config = text("config");
-  query.outcome = text("outcome");
   query.failure_mode = text("failure_mode");
-  if (query.outcome && *query.outcome != "pass" && *query.outcome != "fail")
-    throw ApiError(400, "invalid", "must be pass or fail", "outcome");
+  if (const auto outcome = text("outcome")) {
+    if (*outcome != "pass" && *outcome != "fail")
+      throw DomainError(Problem::invalid, "invalid", "must be pass or fail", "outcome");
+    query.success = *outcome == "pass";
+  }
   query.limit = query_int(c, "limit", 100, 1, 1000);
   query.offset = query_int(c, "offset", 0, 0, 1'000'000'000);
   bool csv = c.request.accept.find("text/csv") != std::string::npos;
   if (const auto format = text("format")) {
-    if (*format != "json" && *format != "csv") throw ApiError(400, "invalid", "must be json or csv", "format");
+    if (*format != "json" && *format != "csv")
+      throw DomainError(Problem::invalid, "invalid", "must be json or csv", "format");
     csv = *format == "csv";
   }
   if (!csv) return json_response(200, c.runs.sweeps().runs(c.id(), query));
@@ -120,8 +162,12 @@ ApiResponse get_sweep_runs(RouteContext& c) {
   return response;
 }
 
+// {"action": "stop"}, the only control a sweep takes.
 ApiResponse post_sweep_control(RouteContext& c) {
-  return json_response(200, c.runs.sweeps().control(c.id(), parse_body(c.request)));
+  const json body = parse_body(c.request);
+  if (!body.is_object() || body.size() != 1 || !body.contains("action") || body["action"] != "stop")
+    throw DomainError(Problem::invalid, "invalid", "a sweep takes {\"action\": \"stop\"}", "action");
+  return json_response(200, c.runs.sweeps().stop(c.id()));
 }
 
 }  // namespace rrlab::server

@@ -10,8 +10,8 @@
 #include <rrlab/methods/method.hpp>
 #include <rrlab/scenario/scenario.hpp>
 #include <rrlab/server/app/run_manager.hpp>
-#include <rrlab/server/app/socket_message.hpp>
 #include <rrlab/server/routes/routes.hpp>
+#include <rrlab/server/routes/socket_message.hpp>
 #include <rrlab/sim/run_inputs.hpp>
 #include <rrlab/storage/frame_writer.hpp>
 #include <rrlab/storage/run_store.hpp>
@@ -36,7 +36,7 @@ void expect_documented(const std::string& what, const std::function<void()>& par
   } catch (const ScenarioError&) {
   } catch (const ParamError&) {
   } catch (const InputStateError&) {
-  } catch (const server::ApiError&) {
+  } catch (const server::DomainError&) {
   } catch (const nlohmann::json::parse_error&) {
   } catch (const std::exception& e) {
     finding(what, std::string("undocumented exception: ") + e.what());
@@ -104,9 +104,9 @@ void Server::after_input() {
   const std::string status = s.group->status_json(s.lane).at("status").get<std::string>();
   if (status == "running") {
     try {
-      s.group->control(s.lane, {{"action", "pause"}});
+      s.group->control(s.lane, {server::ControlAction::pause, std::nullopt});
       if (++s.inputs % 256 != 0) return;
-    } catch (const server::ApiError&) {
+    } catch (const server::DomainError&) {
     }
   } else if (status == "paused" && ++s.inputs % 256 != 0) {
     return;

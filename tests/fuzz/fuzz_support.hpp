@@ -2,7 +2,7 @@
 // and an in-process server (RunManager on a temporary database) whose REST
 // routes and WebSocket message handler take the fuzzer's bytes as a body.
 //
-// A documented error (ScenarioError, ParamError, InputStateError, ApiError,
+// A documented error (ScenarioError, ParamError, InputStateError, DomainError,
 // a JSON parse error; over REST any 4xx or 503) is the right answer to bad
 // input. Anything else is a finding: another exception escaping a parser, or
 // a 500 answer (an exception the route did not expect), aborts with the
@@ -16,7 +16,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include <rrlab/server/routes/api.hpp>
+#include <rrlab/server/api/request.hpp>
+#include <rrlab/server/api/response.hpp>
 
 namespace rrlab::fuzz {
 

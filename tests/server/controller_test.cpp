@@ -7,7 +7,7 @@
 #include <deque>
 #include <map>
 
-#include <rrlab/server/routes/api.hpp>
+#include <rrlab/server/api/errors.hpp>
 
 #include "server_fixture.hpp"
 
@@ -186,7 +186,7 @@ TEST(ControllerUnit, ClaimTakeRelease) {
   c.steer("a", nothing);
   EXPECT_EQ(c.state_json("a")["controller"], "you");
   EXPECT_EQ(c.state_json("b")["controller"], "other");
-  EXPECT_THROW(c.steer("b", nothing), server::ApiError);
+  EXPECT_THROW(c.steer("b", nothing), server::DomainError);
   EXPECT_NO_THROW(c.steer("", nothing));  // still no party to it
   EXPECT_EQ(c.take("b")["controller"], "you");
   // a: the state when attached (none), when it claimed (you), taken, the state after (other)
@@ -206,7 +206,7 @@ TEST(ControllerUnit, ClaimTakeRelease) {
   EXPECT_EQ(c.state_json("b")["controller"], "you");
   c.detach(b2);
   EXPECT_EQ(c.state_json("b")["controller"], "none");
-  EXPECT_THROW(c.take(""), server::ApiError);
+  EXPECT_THROW(c.take(""), server::DomainError);
   EXPECT_EQ(server::valid_client_name("tab-0a1b"), "tab-0a1b");
   EXPECT_EQ(server::valid_client_name("a b"), "");
   EXPECT_EQ(server::valid_client_name(std::string(65, 'a')), "");
@@ -219,14 +219,14 @@ TEST(ControllerUnit, ARefusedInputTakesNothing) {
   int told = 0;
   c.attach("a", [&](const json&) { ++told; });
   EXPECT_EQ(told, 1);  // the state when attached
-  EXPECT_THROW(c.steer("a", [] { throw server::ApiError(400, "invalid", "bogus", "type"); }), server::ApiError);
+  EXPECT_THROW(c.steer("a", [] { throw server::DomainError(server::Problem::invalid, "invalid", "bogus", "type"); }), server::DomainError);
   EXPECT_EQ(c.state_json("b")["controller"], "none");
   EXPECT_EQ(told, 1);  // nobody was told of a hold that did not last
   EXPECT_EQ(c.steer("a", [] { return 7; }), 7);
   EXPECT_EQ(c.state_json("b")["controller"], "other");
   EXPECT_EQ(told, 2);
   // the holder's refused input keeps the control it already held
-  EXPECT_THROW(c.steer("a", [] { throw server::ApiError(409, "wrong_state", "x", ""); }), server::ApiError);
+  EXPECT_THROW(c.steer("a", [] { throw server::DomainError(server::Problem::conflict, "wrong_state", "x"); }), server::DomainError);
   EXPECT_EQ(c.state_json("a")["controller"], "you");
 }
 
@@ -238,7 +238,7 @@ TEST(ControllerUnit, RestOnlyControlLapses) {
   const auto nothing = [] {};
   c.steer("script", nothing);
   now += std::chrono::seconds(59);
-  EXPECT_THROW(c.steer("tab", nothing), server::ApiError);
+  EXPECT_THROW(c.steer("tab", nothing), server::DomainError);
   c.steer("script", nothing);  // a request keeps it
   now += std::chrono::seconds(60);
   EXPECT_EQ(c.state_json("tab")["controller"], "other");
@@ -249,7 +249,7 @@ TEST(ControllerUnit, RestOnlyControlLapses) {
   c.steer("tab", nothing);
   EXPECT_EQ(told.back()["controller"], "you");
   now += std::chrono::hours(1);  // with a WebSocket open, no lapse
-  EXPECT_THROW(c.steer("script", nothing), server::ApiError);
+  EXPECT_THROW(c.steer("script", nothing), server::DomainError);
   c.detach(socket);
   EXPECT_NO_THROW(c.steer("script", nothing));
 }

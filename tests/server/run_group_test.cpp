@@ -49,7 +49,7 @@ class RunGroupUnit : public ::testing::Test {
 TEST_F(RunGroupUnit, FinishedCallbacksAreDestroyedBeforeTheRunHasExited) {
   {
     GroupOptions options;
-    options.mode = "batch";
+    options.mode = RunMode::batch;
     options.rate = 0;
     options.steps = 5;
     auto group = this->group(options);
@@ -93,14 +93,14 @@ TEST_F(RunGroupUnit, InputsSettleOnceStoredAndStepsOnceTaken) {
     group->start();
     const std::int64_t run = group->run_id(0);
 
-    Accepted input = group->input(0, "params", {{"gain", 3}}, "");
+    Accepted input = group->input(0, InputKind::params, {{"gain", 3}});
     ASSERT_TRUE(input.pending);
     EXPECT_EQ(input.status["params"]["gain"], 3);  // applied before it is stored
     EXPECT_TRUE(settled(input.pending).ok());
     ASSERT_EQ(store_->events(run).size(), 1u);  // stored before the answer
     EXPECT_EQ(store_->events(run)[0].seq, 0);   // takes effect in the first step
 
-    Accepted step = group->control(0, {{"action", "step"}});
+    Accepted step = group->control(0, {ControlAction::step, std::nullopt});
     ASSERT_TRUE(step.pending);
     const storage::Outcome stepped = settled(step.pending);
     EXPECT_TRUE(stepped.ok());
@@ -109,7 +109,7 @@ TEST_F(RunGroupUnit, InputsSettleOnceStoredAndStepsOnceTaken) {
 
     // steps asked for at once settle in turn, each with its own status
     std::vector<std::shared_ptr<storage::Completion>> steps;
-    for (int i = 0; i < 5; ++i) steps.push_back(group->control(0, {{"action", "step"}}).pending);
+    for (int i = 0; i < 5; ++i) steps.push_back(group->control(0, {ControlAction::step, std::nullopt}).pending);
     for (int i = 0; i < 5; ++i) EXPECT_EQ(settled(steps[size_t(i)]).result["frames"], 2 + i);
 
     group->request_stop();

@@ -1,8 +1,11 @@
-// A WebSocket client's message to a live run or replay, answered without a
-// socket (net/websocket_session.cpp sends the reply; the fuzzer of
-// tests/fuzz/ calls it directly).
+// The WebSocket route's messages: a client's message to a live run or a
+// replay, parsed here into the app's typed commands (a live lane:
+// RunGroup::control and RunGroup::input; a replay: ReplayPlayer::control)
+// and answered without a socket (net/websocket_session.cpp sends the reply;
+// the fuzzer of tests/fuzz/ calls it directly).
 #pragma once
 
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -10,6 +13,14 @@
 #include <rrlab/storage/completion.hpp>
 
 namespace rrlab::server {
+
+// The reply to a client message: sent at once, or, when `pending` is set,
+// once it settles (an input's event stored, a single step taken): then the
+// ack carries the settled status, or an error if the work failed (settled_reply).
+struct MessageReply {
+  nlohmann::json reply;
+  std::shared_ptr<storage::Completion> pending;
+};
 
 // The reply to one message: an ack or an error ({"type": "error", ...}),
 // never an exception; an ack that waits for stored input or a step has
