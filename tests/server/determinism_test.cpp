@@ -4,6 +4,7 @@
 #include <rrlab/storage/run_store.hpp>
 
 #include "server_fixture.hpp"
+#include "support/stored_frames.hpp"
 
 namespace rrlab::testing {
 namespace {
@@ -74,7 +75,7 @@ TEST_F(Determinism, AChangedFrameFailsVerification) {
     });
     ASSERT_FALSE(data.empty());
     data[24] ^= 1;  // after u32 n, u32 k, i64 step, double t
-    store.replace_frame_data(id, 30, data);
+    rrlab::test::overwrite_frame_data(server_->db(), id, 30, data);
   }
   const CommandResult verify = run_rrlab({"replay", std::to_string(id), "--db", server_->db(), "--verify"});
   EXPECT_EQ(verify.exit_code, 1);
