@@ -9,7 +9,7 @@
 
 #include <rrlab/collision/collision_world.hpp>
 #include <rrlab/collision/mesh_loader.hpp>
-#include <rrlab/collision/mesh_shapes.hpp>
+#include "support/mesh_shapes.hpp"
 #include <rrlab/kinematics/kinematics.hpp>
 #include <rrlab/scenario/scenario.hpp>
 #include <rrlab/sim/simulator.hpp>

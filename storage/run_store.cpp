@@ -344,11 +344,6 @@ void RunStore::give_back_space() {
   }
 }
 
-void RunStore::replace_frame_data(std::int64_t run, std::int64_t seq, const std::string& data) {
-  std::lock_guard lock(mutex_);  // tests only: not counted in total_frame_bytes
-  db_->prepare("UPDATE frames SET data = ? WHERE run_id = ? AND seq = ?").bind_blob(1, data).bind(2, run).bind(3, seq).step();
-}
-
 std::optional<RunRecord> RunStore::run(std::int64_t id) {
   std::lock_guard lock(read_mutex_);
   Statement s = read_db_->prepare(std::string("SELECT ") + kRunColumns + " FROM runs WHERE id = ? AND status != 'deleting'");

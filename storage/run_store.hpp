@@ -129,9 +129,6 @@ class RunStore {
   // business. Runs that name it (source_run, compare_group) keep the number.
   bool delete_run(std::int64_t id);  // also finishes a deletion of `id` that a full disk interrupted
 
-  // Overwrites one stored frame's blob (tests of verification only).
-  void replace_frame_data(std::int64_t run, std::int64_t seq, const std::string& data);
-
   std::optional<RunRecord> run(std::int64_t id);
   std::vector<RunRecord> runs(const RunFilter& filter);
   std::vector<StoredEvent> events(std::int64_t run);

@@ -1,8 +1,10 @@
 #include <rrlab/kinematics/kinematics.hpp>
 
-#include <cassert>
 #include <cmath>
 #include <limits>
+#include <string>
+
+#include <rrlab/util/check.hpp>
 
 namespace rrlab {
 
@@ -79,6 +81,21 @@ void multiply_fixed(Eigen::Matrix3d& rot, const Eigen::Matrix3d& m, int kind) {
   rot.col(i) = ri * m(i, i) + rj * m(j, i);
   rot.col(j) = ri * m(i, j) + rj * m(j, j);
 }
+
+// The public entry points' checks of their caller's input (util/check.hpp):
+// sizes and indices a caller chooses, never assert (Release drops it).
+bool kinematics_data_fits(const Model& model, const KinematicsData& data) {
+  return int(data.joint_frames.size()) == model.dof() && data.axis_dirs.cols() == model.dof() &&
+         data.link_start.cols() == model.link_count();
+}
+const char* const kKinematicsDataMisfit = "the KinematicsData was made for a model of another size";
+std::string jacobian_size_text(Eigen::Index rows, Eigen::Index cols, int want_rows, int want_cols) {
+  return "jac is " + std::to_string(rows) + " x " + std::to_string(cols) + ", not " + std::to_string(want_rows) +
+         " x " + std::to_string(want_cols);
+}
+std::string index_range_text(const char* what, int index, int count) {
+  return std::string(what) + " " + std::to_string(index) + " outside 0.." + std::to_string(count - 1);
+}
 }  // namespace
 
 void forward_kinematics(const Model& model, const Eigen::VectorXd& q, KinematicsData& data) {
@@ -87,7 +104,11 @@ void forward_kinematics(const Model& model, const Eigen::VectorXd& q, Kinematics
 
 void forward_kinematics_from(const Model& model, const Eigen::VectorXd& q, KinematicsData& data, int first,
                              bool link_segments) {
-  assert(q.size() == model.dof() && first >= 0 && first <= model.dof());
+  RRLAB_CHECK(q.size() == model.dof(), "q has " + std::to_string(q.size()) + " entries for a model of " +
+                                           std::to_string(model.dof()) + " joints");
+  RRLAB_CHECK(first >= 0 && first <= model.dof(),
+              "first joint " + std::to_string(first) + " outside 0.." + std::to_string(model.dof()));
+  RRLAB_CHECK(kinematics_data_fits(model, data), kKinematicsDataMisfit);
   // the frame before joint `first`: the base, or the one data holds after joint first − 1
   const Eigen::Isometry3d& before = first == 0 ? model.base : data.joint_frames[first - 1];
   Eigen::Matrix3d rot = before.linear();
@@ -122,7 +143,9 @@ void forward_kinematics_from(const Model& model, const Eigen::VectorXd& q, Kinem
 
 void point_jacobian(const Model& model, const KinematicsData& data, int link,
                     const Eigen::Vector3d& p, Eigen::Ref<Eigen::MatrixXd> jac) {
-  assert(jac.rows() == 6 && jac.cols() == model.dof());
+  RRLAB_CHECK(link >= 0 && link < model.link_count(), index_range_text("link", link, model.link_count()));
+  RRLAB_CHECK(jac.rows() == 6 && jac.cols() == model.dof(), jacobian_size_text(jac.rows(), jac.cols(), 6, model.dof()));
+  RRLAB_CHECK(kinematics_data_fits(model, data), kKinematicsDataMisfit);
   const int last = model.links[link].last_joint;
   for (int j = 0; j <= last; ++j) {
     const Eigen::Vector3d axis = data.axis_dirs.col(j);
@@ -139,7 +162,9 @@ void point_jacobian(const Model& model, const KinematicsData& data, int link,
 
 void point_jacobian_linear(const Model& model, const KinematicsData& data, int link,
                            const Eigen::Vector3d& p, Eigen::Ref<Eigen::MatrixXd> jac) {
-  assert(jac.rows() == 3 && jac.cols() == model.dof());
+  RRLAB_CHECK(link >= 0 && link < model.link_count(), index_range_text("link", link, model.link_count()));
+  RRLAB_CHECK(jac.rows() == 3 && jac.cols() == model.dof(), jacobian_size_text(jac.rows(), jac.cols(), 3, model.dof()));
+  RRLAB_CHECK(kinematics_data_fits(model, data), kKinematicsDataMisfit);
   const int last = model.links[link].last_joint;
   for (int j = 0; j <= last; ++j) {
     const Eigen::Vector3d axis = data.axis_dirs.col(j);
@@ -169,16 +194,23 @@ void task_jacobian_column(const Model& model, const KinematicsData& data, const 
 
 void task_jacobian(const Model& model, const KinematicsData& data, TaskSpace space,
                    Eigen::Ref<Eigen::MatrixXd> jac) {
-  assert(jac.rows() == task_rows(space) && jac.cols() == model.dof());
+  RRLAB_CHECK(jac.rows() == task_rows(space) && jac.cols() == model.dof(),
+              jacobian_size_text(jac.rows(), jac.cols(), task_rows(space), model.dof()));
+  RRLAB_CHECK(kinematics_data_fits(model, data), kKinematicsDataMisfit);
   const Eigen::Vector3d p = data.end_effector().translation();
   for (int j = 0; j < model.dof(); ++j) task_jacobian_column(model, data, p, task_rows(space), j, jac);
 }
 
 void task_jacobian_columns(const Model& model, const KinematicsData& data, TaskSpace space, const int* columns,
                            int count, Eigen::Ref<Eigen::MatrixXd> jac) {
-  assert(jac.rows() == task_rows(space) && jac.cols() == model.dof());
+  RRLAB_CHECK(jac.rows() == task_rows(space) && jac.cols() == model.dof(),
+              jacobian_size_text(jac.rows(), jac.cols(), task_rows(space), model.dof()));
+  RRLAB_CHECK(kinematics_data_fits(model, data), kKinematicsDataMisfit);
   const Eigen::Vector3d p = data.end_effector().translation();
-  for (int c = 0; c < count; ++c) task_jacobian_column(model, data, p, task_rows(space), columns[c], jac);
+  for (int c = 0; c < count; ++c) {
+    RRLAB_CHECK(columns[c] >= 0 && columns[c] < model.dof(), index_range_text("column", columns[c], model.dof()));
+    task_jacobian_column(model, data, p, task_rows(space), columns[c], jac);
+  }
 }
 
 JacobianConditioning::JacobianConditioning(int rows, int /*cols*/)

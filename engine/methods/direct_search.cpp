@@ -9,11 +9,11 @@
 //     options, R_j = (1/ℓ) Σ w_i ψ̄_i(θ^j), θ* = argmin_j R_j.
 // Criteria: JRA ψ1 = Σ (θ_i − θ'_i)²/θ_i,max, JVM ψ2 = Σ (θ_i − θ_i,curr)²,
 // DM ψ3 = σmax/σmin of the task Jacobian, and (not in the paper) the engine's
-// obstacle clearance ψ4 = −min_link d_link, minimised.
+// obstacle clearance ψ4 = −min_link d_link, minimised: direct_search_criteria.*
+// (with the choices for θ_i,max, ψ4 and DM's length unit). Which joints are
+// perturbed, and the block switch's largest-determinant set: direct_search_joint_sets.*
 //
 // Choices where the paper is silent (README, scenarios 22–23):
-//  - θ_i,max is the joint's half range (the displacement from mid-range to
-//    the limit); joints without both limits do not count in JRA.
 //  - the block is every joint not perturbed; with exactly n − m perturbed
 //    joints it is the paper's square J_m×m (inverse); otherwise J_b⁺. The
 //    first compensation (eq 3 with eq 6) uses J_b at the current
@@ -24,9 +24,6 @@
 //    100-fold, the next reuses the last LU (a chord step: J_b moved by about
 //    those small steps, so it contracts as much again); one that does not
 //    cut it 10-fold is undone and replaced by the full step.
-//  - the perturbed joints are the set bits of `perturb_mask` (bit i−1:
-//    joint i), at most n − m of them and at most 6 (729 options); default
-//    joints 1, 2, 3, 5 as in the paper's 81-option example.
 //  - the target is the reference pose at t + dt (the method places the arm
 //    itself: it sets q_next, `integrated`).
 //  - option feasibility: Newton converged within `newton_iterations`, every
@@ -51,14 +48,6 @@
 //    nearer the target than the nearest option and than staying. Without it
 //    a hand that starts (or is pushed) a few cm off the path never gets an
 //    option that meets eq 5 within the joint speeds, and the arm stays.
-//  - ψ4 uses the first-order change of each link's distance to its nearest
-//    obstacle, d + nᵀJ_p(θ − θ_curr), from the step's distance table
-//    (exact to O(Δ²); no collision query per option).
-//  - DM mixes lengths and angles: its value depends on the length unit of
-//    the position rows, which the paper does not give. Here the position
-//    rows are divided by a stated characteristic length L (`dm_length`, m),
-//    so DM values are comparable only at the same L and robot, never with
-//    the paper's numbers.
 //  - DM rule (`dm_rule_fraction` f and `dm_rule_reference` D > 0): when the
 //    current DM reaches f·D, the weights of JRA and JVM are scaled by 0.8
 //    and 0.2 (the paper's change from (1, 1, 1) to (0.8, 0.2, 1.0)) and stay
@@ -72,23 +61,25 @@
 //    obstacle clearance), block_switch = 0.02.
 #include <algorithm>
 #include <bit>
-#include <bitset>
 #include <cstdint>
 #include <cmath>
 
+#include <rrlab/methods/direct_search_criteria.hpp>
+#include <rrlab/methods/direct_search_joint_sets.hpp>
 #include <rrlab/methods/factories.hpp>
-#include <rrlab/util/extreme_eigenvalues.hpp>
 #include <rrlab/util/right_inverse.hpp>
 #include <rrlab/util/small_lu.hpp>
 
 namespace rrlab {
 namespace {
 
-enum { kJra, kJvm, kDm, kObstacle, kCriteria };
-
-constexpr int kMaxPerturbed = 6;
-constexpr int kMaxOptions = 729;  // 3^6
-constexpr int kPower3[kMaxPerturbed] = {1, 3, 9, 27, 81, 243};
+using kapoor::kCriteria;
+using kapoor::kDm;
+using kapoor::kJra;
+using kapoor::kJvm;
+using kapoor::kObstacle;
+constexpr int kMaxPerturbed = kapoor::JointSets::kMaxPerturbed;
+constexpr int kMaxOptions = kapoor::JointSets::kMaxOptions;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();  // a criterion not computed
 // chord step: taken after a Newton iteration that cut the residual by at
@@ -111,8 +102,8 @@ class DirectSearch final : public Method {
         space_(ctx.space),
         probe_(ctx.model),
         jacobian_(m_, n_),
-        jjt_(m_, m_),
-        eigenvalues_(m_),
+        psi_(ctx.model, ctx.space),
+        sets_(n_, m_),
         block_jacobian_(m_, n_),
         block_inverse_(m_, std::max(1, n_ - 1)),
         option_inverse_(m_, std::max(1, n_ - 1)),
@@ -125,18 +116,11 @@ class DirectSearch final : public Method {
         error0_(m_),
         error_previous_(m_),
         rhs_(m_),
-        delta_theta_(n_),
-        distance_rows_(std::max(1, ctx.model.link_count()), n_),
-        distances_now_(std::max(1, ctx.model.link_count())),
-        point_jacobian_(3, n_),
-        square_block_(m_, m_),
         recovery_inverse_(m_, n_),
         recovery_step_(n_),
         recovery_q_(n_),
         probe_q_(n_) {
-    block_.assign(n_, 0);
     theta_previous_ = Eigen::VectorXd::Zero(n_);
-    joint_range_weights(ctx.model.limits);
     choose_joints();
     const char* names[] = {"jra", "jvm", "dm", "obstacle_clearance"};
     for (int c = 0; c < kCriteria; ++c) chosen_diag_[c] = declare_diagnostic(names[c]);
@@ -162,22 +146,22 @@ class DirectSearch final : public Method {
     // eq 2: δx at the current configuration
     pose_error(in.kin, error0_);
     // the block J_b and the perturbed columns J_p, from the current Jacobian
-    use_joint_set(mask_bits_);
-    for (int c = 0; c < block_count_; ++c) block_jacobian_.col(c) = in.task_jacobian.col(block_[c]);
+    sets_.use(sets_.mask_bits());
+    for (int c = 0; c < sets_.block_count(); ++c) block_jacobian_.col(c) = in.task_jacobian.col(sets_.block(c));
     block_inverse_.factor_pinv(block_jacobian_);
     bool switched = false;
-    if (p(kBlockSwitch) > 0 && block_inverse_.sigma_min() < p(kBlockSwitch) && !alternatives_.empty()) {
+    if (p(kBlockSwitch) > 0 && block_inverse_.sigma_min() < p(kBlockSwitch) && sets_.has_alternatives()) {
       // §3.1: "the full rank submatrix with the largest determinant" — only
       // when the chosen block is near singular
-      use_joint_set(largest_determinant_set(in.task_jacobian, 0));
-      for (int c = 0; c < block_count_; ++c) block_jacobian_.col(c) = in.task_jacobian.col(block_[c]);
+      sets_.use(sets_.largest_determinant_set(in.task_jacobian, 0));
+      for (int c = 0; c < sets_.block_count(); ++c) block_jacobian_.col(c) = in.task_jacobian.col(sets_.block(c));
       block_inverse_.factor_pinv(block_jacobian_);
       switched = true;
     }
-    prepare_distance_rows(in);
+    psi_.prepare_clearance(in);
 
     // the DM rule looks at the current configuration
-    const double dm_now = dexterity(in.task_jacobian);
+    const double dm_now = psi_.dexterity(in.task_jacobian, p(kDmLength));
     if (p(kDmFraction) > 0 && p(kDmReference) > 0 && dm_now >= p(kDmFraction) * p(kDmReference)) rule_active_ = true;
     out.diag.values[current_dm_diag_] = std::isfinite(dm_now) ? dm_now : -1.0;
 
@@ -189,13 +173,14 @@ class DirectSearch final : public Method {
     // 1. generate options (eq 1–6); when no option meets eq 5 within the
     // ranges and speeds, once more with the largest-determinant block (§3.1)
     int feasible = generate_options(in, with_dm);
-    if (feasible == 0 && p(kBlockSwitch) > 0 && !alternatives_.empty()) {
+    if (feasible == 0 && p(kBlockSwitch) > 0 && sets_.has_alternatives()) {
       // the block must not hold a joint that its options pushed past a limit:
       // perturbed, such a joint keeps its value or moves by ±Δ
-      const unsigned long long best = largest_determinant_set(in.task_jacobian, out_of_range_bits(in.model.limits));
-      if (best != current_bits_) {
-        use_joint_set(best);
-        for (int c = 0; c < block_count_; ++c) block_jacobian_.col(c) = in.task_jacobian.col(block_[c]);
+      const unsigned long long best =
+          sets_.largest_determinant_set(in.task_jacobian, sets_.out_of_range_bits(options_, in.model.limits));
+      if (best != sets_.current_bits()) {
+        sets_.use(best);
+        for (int c = 0; c < sets_.block_count(); ++c) block_jacobian_.col(c) = in.task_jacobian.col(sets_.block(c));
         block_inverse_.factor_pinv(block_jacobian_);
         switched = true;
         feasible = generate_options(in, with_dm);
@@ -203,7 +188,7 @@ class DirectSearch final : public Method {
     }
     out.diag.values[block_sigma_diag_] = block_inverse_.sigma_min();
     out.diag.values[switched_diag_] = switched;
-    const int count = option_count();
+    const int count = sets_.option_count();
 
     // 2. selection (eq 7–8)
     int chosen = -1;
@@ -244,7 +229,7 @@ class DirectSearch final : public Method {
       theta_ = options_.col(chosen);
       probe_fk(in.model, theta_);
       task_jacobian(in.model, probe_, space_, jacobian_);
-      criteria_(chosen, kDm) = dexterity(jacobian_);
+      criteria_(chosen, kDm) = psi_.dexterity(jacobian_, p(kDmLength));
     }
     out.integrated = true;
     if (recovered)
@@ -259,7 +244,7 @@ class DirectSearch final : public Method {
       out.diag.values[chosen_diag_[c]] = std::isfinite(v) ? v : -1.0;
       out.diag.values[weight_diag_[c]] = weights[c];
     }
-    if (!has_distances_ || chosen < 0) out.diag.values[chosen_diag_[kObstacle]] = -1.0;
+    if (!psi_.has_distances() || chosen < 0) out.diag.values[chosen_diag_[kObstacle]] = -1.0;
     else out.diag.values[chosen_diag_[kObstacle]] = -criteria_(chosen, kObstacle);
     out.diag.values[feasible_diag_] = feasible;
     out.diag.values[options_diag_] = count;
@@ -295,15 +280,15 @@ class DirectSearch final : public Method {
   // of feasible options. DM is computed for feasible options only with_dm.
   int generate_options(const StepInput& in, bool with_dm) {
     const Eigen::VectorXd& q = in.state.q;
-    const int count = option_count();
+    const int count = sets_.option_count();
     max_iterations_used_ = 0;
     int feasible = 0;
     // eq 3 with eq 6 is linear in δθ_p: J_b⁺(δx − J_p δθ_p) = J_b⁺δx −
     // Σ_i δθ_i J_b⁺ J_p,i, so its 1 + k products are formed once here
     // instead of once per option
     block_inverse_.apply(error0_, base_step_);
-    for (int i = 0; i < perturbed_count_; ++i) {
-      rhs_ = in.task_jacobian.col(perturbed_[i]);
+    for (int i = 0; i < sets_.perturbed_count(); ++i) {
+      rhs_ = in.task_jacobian.col(sets_.perturbed(i));
       block_inverse_.apply(rhs_, block_step_);
       compensation_.col(i) = block_step_;
     }
@@ -312,19 +297,19 @@ class DirectSearch final : public Method {
       // consecutive options share the kinematics of the joints before the
       // first one they differ in (probe_fk); the selection does not depend on
       // this order, only on the option's index j
-      const int j = option_of_sequence(s);
+      const int j = sets_.option_of_sequence(s);
       theta_ = q;
       int code = j;
       double d[kMaxPerturbed];
-      for (int i = 0; i < perturbed_count_; ++i) {
+      for (int i = 0; i < sets_.perturbed_count(); ++i) {
         d[i] = (code % 3 - 1) * p(kDelta);  // −Δ, 0, +Δ
         code /= 3;
-        theta_[perturbed_[i]] += d[i];
+        theta_[sets_.perturbed(i)] += d[i];
       }
-      for (int c = 0; c < block_count_; ++c) {  // eq 3 with eq 6, J_b at the current configuration
+      for (int c = 0; c < sets_.block_count(); ++c) {  // eq 3 with eq 6, J_b at the current configuration
         double step = base_step_[c];
-        for (int i = 0; i < perturbed_count_; ++i) step -= d[i] * compensation_(c, i);  // eq 6: −J_p δθ_p
-        theta_[block_[c]] += step;
+        for (int i = 0; i < sets_.perturbed_count(); ++i) step -= d[i] * compensation_(c, i);  // eq 6: −J_p δθ_p
+        theta_[sets_.block(c)] += step;
       }
       int it = 0;
       double residual = kInf, previous = kInf, before_previous = kInf;
@@ -363,15 +348,16 @@ class DirectSearch final : public Method {
         previous = residual;
         theta_previous_ = theta_;
         if (chord) error_previous_ = error_;
-        if (!chord) task_jacobian_columns(in.model, probe_, space_, block_.data(), block_count_, jacobian_);  // J_b at θ
+        if (!chord)  // J_b at θ
+          task_jacobian_columns(in.model, probe_, space_, sets_.block_joints(), sets_.block_count(), jacobian_);
         // eq 3 with J_b at θ (a full Newton step; the block is often poorly conditioned)
-        if (block_count_ == m_) {  // the paper's square J_m×m: eq 3 by LU
-          if (!chord) lu_.compute_columns(jacobian_, block_.data());
+        if (sets_.block_count() == m_) {  // the paper's square J_m×m: eq 3 by LU
+          if (!chord) lu_.compute_columns(jacobian_, sets_.block_joints());
           lu_.solve(error_, block_step_);
-          for (int c = 0; c < block_count_; ++c) theta_[block_[c]] += block_step_[c];
+          for (int c = 0; c < sets_.block_count(); ++c) theta_[sets_.block(c)] += block_step_[c];
         } else {
           if (!chord) {
-            for (int c = 0; c < block_count_; ++c) block_jacobian_.col(c) = jacobian_.col(block_[c]);
+            for (int c = 0; c < sets_.block_count(); ++c) block_jacobian_.col(c) = jacobian_.col(sets_.block(c));
             option_inverse_.factor_pinv(block_jacobian_);
           }
           apply_block_step(option_inverse_, error_);
@@ -385,11 +371,11 @@ class DirectSearch final : public Method {
                      within_speed(in.model.limits, theta_, q, in.dt);
       feasible += feasible_[j];
       // criteria at θ^j (probe_ and jacobian_ hold its kinematics)
-      criteria_(j, kJra) = (theta_ - centre_).cwiseAbs2().dot(inv_half_range_);
-      criteria_(j, kJvm) = (theta_ - q).squaredNorm();
+      criteria_(j, kJra) = psi_.joint_range(theta_);
+      criteria_(j, kJvm) = kapoor::Criteria::joint_velocity(theta_, q);
       if (feasible_[j] && with_dm) task_jacobian(in.model, probe_, space_, jacobian_);  // J at θ^j, for DM only
-      criteria_(j, kDm) = feasible_[j] && with_dm ? dexterity(jacobian_) : kNaN;
-      criteria_(j, kObstacle) = -estimated_clearance(q);
+      criteria_(j, kDm) = feasible_[j] && with_dm ? psi_.dexterity(jacobian_, p(kDmLength)) : kNaN;
+      criteria_(j, kObstacle) = -psi_.estimated_clearance(theta_, q);
     }
     return feasible;
   }
@@ -397,39 +383,6 @@ class DirectSearch final : public Method {
   void on_param_changed(ParamSlot changed) override {
     if (changed == kMask) choose_joints();
     if (changed == kDmFraction || changed == kDmReference) rule_active_ = false;
-  }
-
-  // DM = σmax/σmin with the position rows of pose tasks divided by the characteristic length L.
-  double dexterity(const Eigen::MatrixXd& jacobian) {
-    switch (m_) {  // a fixed size unrolls J Jᵀ's loops (the same sums in the same order)
-      case 2: gram<2>(jacobian); break;
-      case 3: gram<3>(jacobian); break;
-      default: gram<6>(jacobian); break;
-    }
-    eigenvalues_.compute(jjt_);  // the two ends of the spectrum only
-    const double lo = eigenvalues_.min(), hi = eigenvalues_.max();
-    return lo > 0 ? std::sqrt(hi / lo) : kInf;
-  }
-
-  // jjt_ ← J̃ J̃ᵀ (M = m_ rows; J̃: the position rows of a pose task divided by
-  // L), a column at a time (contiguous, no scaled copy); L's scaling is
-  // applied to the sums (1/L² on position × position, 1/L on mixed entries),
-  // which keeps divisions out of the loop.
-  template <int M>
-  void gram(const Eigen::MatrixXd& jacobian) {
-    double jjt[M][M] = {};
-    for (int k = 0; k < n_; ++k) {
-      const double* col = jacobian.col(k).data();
-      for (int r = 0; r < M; ++r)
-        for (int c = 0; c <= r; ++c) jjt[r][c] += col[r] * col[c];
-    }
-    if (M == 6) {  // pose: the position rows in units of L
-      const double inverse = 1.0 / p(kDmLength), inverse2 = inverse * inverse;
-      for (int r = 0; r < 6; ++r)
-        for (int c = 0; c <= r && c < 3; ++c) jjt[r][c] *= r < 3 ? inverse2 : inverse;
-    }
-    for (int r = 0; r < M; ++r)
-      for (int c = 0; c <= r; ++c) jjt_(r, c) = jjt_(c, r) = jjt[r][c];
   }
 
   // probe_ ← the kinematics at theta (frames and axes; its link segments are
@@ -447,104 +400,17 @@ class DirectSearch final : public Method {
     probe_valid_ = true;
   }
 
-  // The option index j of the s-th generated option: s's base-3 digits in
-  // reverse (the first perturbed joint is j's lowest digit, s's highest).
-  int option_of_sequence(int s) const {
-    int j = 0;
-    for (int i = perturbed_count_ - 1; i >= 0; --i) j += (s % 3) * kPower3[i], s /= 3;
-    return j;
-  }
-
-  int option_count() const {
-    int count = 1;
-    for (int i = 0; i < perturbed_count_; ++i) count *= 3;
-    return count;
-  }
-
-  // Perturbed joints: the mask's set bits (joint index < n), at most n − m and 6.
+  // Perturbed joints from the mask (direct_search_joint_sets.hpp), and the
+  // buffers sized by its block (a parameter change may allocate; steady-state steps do not).
   void choose_joints() {
-    const long mask = static_cast<long>(p(kMask));
-    const int allowed = std::min(kMaxPerturbed, std::max(0, n_ - m_));
-    mask_bits_ = 0;
-    int count = 0;
-    for (int i = 0; i < n_ && i < 64; ++i)
-      if (((mask >> i) & 1) && count < allowed) mask_bits_ |= 1ULL << i, ++count;
-    use_joint_set(mask_bits_);
-    // a parameter change may allocate; steady-state steps do not
-    block_inverse_ = RightInverse(m_, std::max(1, block_count_));
-    option_inverse_ = RightInverse(m_, std::max(1, block_count_));
-    block_jacobian_ = Eigen::MatrixXd::Zero(m_, std::max(1, block_count_));
-    block_step_ = Eigen::VectorXd::Zero(std::max(1, block_count_));
-    base_step_ = Eigen::VectorXd::Zero(std::max(1, block_count_));
-    compensation_ = Eigen::MatrixXd::Zero(std::max(1, block_count_), kMaxPerturbed);
-    alternative_block_ = Eigen::MatrixXd::Zero(m_, std::max(1, block_count_));
-    // every other set of as many perturbed joints, for the block switch
-    alternatives_.clear();
-    if (block_count_ >= m_ && n_ <= 20) {
-      for (unsigned long long bits = 0; bits < (1ULL << n_); ++bits)
-        if (static_cast<int>(std::bitset<64>(bits).count()) == count) alternatives_.push_back(bits);
-    }
-  }
-
-  void use_joint_set(unsigned long long bits) {
-    current_bits_ = bits;
-    perturbed_count_ = 0;
-    block_count_ = 0;
-    for (int i = 0; i < n_; ++i) {
-      if (i < 64 && ((bits >> i) & 1))
-        perturbed_[perturbed_count_++] = i;
-      else
-        block_[block_count_++] = i;
-    }
-  }
-
-  // The perturbed set whose block has the largest |det J_b| (square block,
-  // §3.1) or, for a wide block, the largest det(J_b J_bᵀ) = Π σ² (the same
-  // order for a square one).
-  // Sets whose perturbed joints include `required` come first (any set when none does).
-  unsigned long long largest_determinant_set(const Eigen::MatrixXd& jacobian, unsigned long long required) {
-    double best = -1;
-    bool best_has_required = false;
-    unsigned long long best_bits = mask_bits_;
-    for (unsigned long long bits : alternatives_) {
-      const bool has_required = (bits & required) == required;
-      if (best_has_required && !has_required) continue;
-      int columns[64], c = 0;
-      for (int i = 0; i < n_; ++i)
-        if (!((bits >> i) & 1)) columns[c++] = i;
-      if (block_count_ == m_) {
-        lu_.compute_columns(jacobian, columns);  // |det J_b|, in place
-      } else {
-        for (int k = 0; k < c; ++k) alternative_block_.col(k) = jacobian.col(columns[k]);
-        square_block_.noalias() = alternative_block_ * alternative_block_.transpose();
-        lu_.compute(square_block_);  // det(J_b J_bᵀ)
-      }
-      double det = std::abs(lu_.determinant());
-      if (!std::isfinite(det)) det = 0;  // a block of non-finite entries is no candidate
-      if (det > best || (has_required && !best_has_required)) best = det, best_bits = bits, best_has_required = has_required;
-    }
-    return best_bits;
-  }
-
-  // Joints outside their range in some generated option.
-  unsigned long long out_of_range_bits(const JointLimits& limits) const {
-    unsigned long long bits = 0;
-    const int count = option_count();
-    for (int j = 0; j < count; ++j)
-      for (int i = 0; i < n_ && i < 64; ++i)
-        if (options_(i, j) < limits.lower[i] || options_(i, j) > limits.upper[i]) bits |= 1ULL << i;
-    return bits;
-  }
-
-  void joint_range_weights(const JointLimits& limits) {
-    centre_ = Eigen::VectorXd::Zero(n_);
-    inv_half_range_ = Eigen::VectorXd::Zero(n_);
-    for (int i = 0; i < n_; ++i) {
-      if (!std::isfinite(limits.lower[i]) || !std::isfinite(limits.upper[i])) continue;
-      centre_[i] = 0.5 * (limits.lower[i] + limits.upper[i]);
-      const double half = 0.5 * (limits.upper[i] - limits.lower[i]);
-      if (half > 0) inv_half_range_[i] = 1.0 / half;
-    }
+    sets_.choose(static_cast<long>(p(kMask)));
+    const int block_count = std::max(1, sets_.block_count());
+    block_inverse_ = RightInverse(m_, block_count);
+    option_inverse_ = RightInverse(m_, block_count);
+    block_jacobian_ = Eigen::MatrixXd::Zero(m_, block_count);
+    block_step_ = Eigen::VectorXd::Zero(block_count);
+    base_step_ = Eigen::VectorXd::Zero(block_count);
+    compensation_ = Eigen::MatrixXd::Zero(block_count, kMaxPerturbed);
   }
 
   template <typename Vector>
@@ -587,66 +453,28 @@ class DirectSearch final : public Method {
   // θ_b += J_b⁺ e (eq 3)
   void apply_block_step(RightInverse& inverse, const Eigen::VectorXd& e) {
     inverse.apply(e, block_step_);
-    for (int c = 0; c < block_count_; ++c) theta_[block_[c]] += block_step_[c];
-  }
-
-  // Rows nᵀJ_p of each link's nearest obstacle pair, for the clearance criterion.
-  void prepare_distance_rows(const StepInput& in) {
-    has_distances_ = false;
-    links_with_distance_ = 0;
-    const DistanceTable& table = in.distances;
-    for (int link = 0; link < table.links && link < distance_rows_.rows(); ++link) {
-      const int o = table.nearest_obstacle(link);
-      if (o < 0) continue;
-      const LinkObstacleDistance& pair = table.at(link, o);
-      point_jacobian_linear(in.model, in.kin, link, pair.on_link, point_jacobian_);
-      distance_rows_.row(links_with_distance_).noalias() = pair.normal.transpose() * point_jacobian_;
-      distances_now_[links_with_distance_] = pair.distance;
-      ++links_with_distance_;
-      has_distances_ = true;
-    }
-  }
-
-  double estimated_clearance(const Eigen::VectorXd& q) {
-    double clearance = 0;  // no obstacles: the criterion is constant
-    if (!has_distances_) return clearance;
-    clearance = kInf;
-    delta_theta_.noalias() = theta_ - q;
-    for (int l = 0; l < links_with_distance_; ++l)
-      clearance = std::min(clearance, distances_now_[l] + distance_rows_.row(l).dot(delta_theta_));
-    return clearance;
+    for (int c = 0; c < sets_.block_count(); ++c) theta_[sets_.block(c)] += block_step_[c];
   }
 
   int n_, m_;
   TaskSpace space_;
   KinematicsData probe_;
   Eigen::MatrixXd jacobian_;
-  ExtremeEigenvalues::Matrix jjt_;  // at most 6 x 6 (pose), fixed capacity
-  ExtremeEigenvalues eigenvalues_;
+  kapoor::Criteria psi_;   // ψ1–ψ4 (direct_search_criteria.hpp)
+  kapoor::JointSets sets_;  // the perturbed joints and the block (direct_search_joint_sets.hpp)
   Eigen::MatrixXd block_jacobian_;
   RightInverse block_inverse_, option_inverse_;
   Eigen::MatrixXd options_, criteria_;
   Eigen::VectorXd residual_;
   Eigen::Matrix<bool, Eigen::Dynamic, 1> feasible_;
-  Eigen::VectorXd theta_, error_, error0_, error_previous_, rhs_, delta_theta_, block_step_, base_step_;
+  Eigen::VectorXd theta_, error_, error0_, error_previous_, rhs_, block_step_, base_step_;
   Eigen::MatrixXd compensation_;  // column i: J_b⁺ J_p,i at the current configuration
-  Eigen::MatrixXd distance_rows_;
-  Eigen::VectorXd distances_now_;
-  Eigen::MatrixXd point_jacobian_, square_block_;
   SmallLu lu_;
-  unsigned long long mask_bits_ = 0, current_bits_ = 0;
-  Eigen::MatrixXd alternative_block_;
   Eigen::VectorXd theta_previous_;
   int max_iterations_used_ = 0;
-  std::vector<unsigned long long> alternatives_;
-  Eigen::VectorXd centre_, inv_half_range_;
   Eigen::Vector3d target_position_ = Eigen::Vector3d::Zero();
   Eigen::Matrix3d target_orientation_ = Eigen::Matrix3d::Identity();
-  int perturbed_[kMaxPerturbed] = {}, perturbed_count_ = 0;
-  std::vector<int> block_;  // the non-perturbed joints (n entries reserved)
-  int block_count_ = 0;
-  bool rule_active_ = false, has_distances_ = false;
-  int links_with_distance_ = 0;
+  bool rule_active_ = false;
   RightInverse recovery_inverse_;
   Eigen::VectorXd recovery_step_, recovery_q_;
   Eigen::VectorXd probe_q_;  // the configuration probe_ holds when probe_valid_

@@ -1,20 +1,19 @@
 // Scenario loader: scenario JSON (the file format of scenarios/) to engine types. Every
-// check happens here, where user input enters; errors name the JSON path.
+// check happens here, where user input enters; errors name the JSON path. The
+// robot, the task, the witness and the method here; the obstacles in
+// scenario_obstacles.cpp; the checked number readers in scenario_parsing.hpp.
 #include <rrlab/scenario/scenario.hpp>
 
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <mutex>
-#include <set>
 #include <sstream>
 
-#include <rrlab/collision/mesh_loader.hpp>
-#include <rrlab/collision/polygon.hpp>
 #include <rrlab/methods/registry.hpp>
 #include <rrlab/scenario/json_reader.hpp>
-#include <rrlab/scenario/mesh_obstacle.hpp>
 #include <rrlab/scenario/physical_bounds.hpp>
+#include <rrlab/scenario/scenario_parsing.hpp>
 #include <rrlab/scenario/urdf_robot.hpp>
 #include <rrlab/util/nesting_depth.hpp>
 
@@ -28,46 +27,10 @@ Eigen::Matrix3d rpy_matrix(const std::vector<double>& rpy, double scale) {
 }
 
 namespace {
-
 using nlohmann::json;
+}  // namespace
 
-struct Units {
-  double angle = 1.0;  // radians per file unit
-};
-
-Eigen::Vector3d to_vec3(const std::vector<double>& v) {
-  return {v[0], v[1], v.size() > 2 ? v[2] : 0.0};
-}
-
-
-// Every number read below is checked against PhysicalBounds in the file's units.
-void check_all(const std::vector<double>& values, const std::string& path, const Quantity& q, const Units& units) {
-  for (size_t i = 0; i < values.size(); ++i) check_quantity(values[i], q, index_path(path, i), units.angle);
-}
-
-double bounded(JsonObject& obj, const std::string& key, const Quantity& q, const Units& units, double def) {
-  return check_quantity(obj.number(key, def), q, obj.child(key), units.angle);
-}
-
-std::vector<double> bounded_numbers(JsonObject& obj, const std::string& key, size_t min_size, size_t max_size,
-                                    const Quantity& q, const Units& units) {
-  std::vector<double> values = obj.numbers(key, min_size, max_size);
-  check_all(values, obj.child(key), q, units);
-  return values;
-}
-
-double positive(JsonObject& obj, const std::string& key, const Quantity& q, const Units& units,
-                std::optional<double> def = std::nullopt) {
-  const double v = def ? obj.number(key, *def) : obj.number(key);
-  if (!(v > 0)) throw ScenarioError(obj.child(key), "must be > 0, got " + format_number(v));
-  return check_quantity(v, q, obj.child(key), units.angle);
-}
-
-double non_negative(JsonObject& obj, const std::string& key, const Quantity& q, const Units& units, double def) {
-  const double v = obj.number(key, def);
-  if (v < 0) throw ScenarioError(obj.child(key), "must be >= 0, got " + format_number(v));
-  return check_quantity(v, q, obj.child(key), units.angle);
-}
+namespace scenario_parsing {
 
 // The quantity of a joint coordinate (or of its rate) by joint type.
 struct JointQuantity {
@@ -214,103 +177,6 @@ void parse_robot(JsonObject robot, const Units& units, const std::string& dir, S
           << l.upper[i] << "]";
       throw ScenarioError(index_path(robot.child("q0"), i), msg.str());
     }
-  }
-}
-
-// ---- obstacles ----
-
-Obstacle parse_obstacle(const json& value, const std::string& path, size_t index, const Units& units,
-                        const std::string& dir) {
-  JsonObject obj(value, path);
-  Obstacle o;
-  const std::string shape = obj.choice("shape", {"polygon", "box", "sphere", "point", "wall", "mesh"});
-  if (shape == "polygon") {
-    obj.check_keys({"id", "shape", "points", "z", "velocity"});
-    o.shape = ShapeKind::polygon;
-    const json& points = obj.array("points", ScenarioLimits::max_polygon_points);
-    for (size_t i = 0; i < points.size(); ++i) {
-      const std::string point_path = index_path(obj.child("points"), i);
-      const std::vector<double> p = json_numbers(points[i], point_path, 2, 2);
-      check_all(p, point_path, PhysicalBounds::length, units);
-      o.points.emplace_back(p[0], p[1]);
-    }
-    const std::string problem = polygon_problem(o.points);
-    if (!problem.empty()) throw ScenarioError(obj.child("points"), problem);
-    if (obj.has("z")) {
-      const std::vector<double> z = bounded_numbers(obj, "z", 2, 2, PhysicalBounds::length, units);
-      if (!(z[0] < z[1])) throw ScenarioError(obj.child("z"), "must be [z_min, z_max] with z_min < z_max");
-      o.z_min = z[0];
-      o.z_max = z[1];
-    }
-  } else if (shape == "box") {
-    obj.check_keys({"id", "shape", "center", "size", "rpy", "velocity"});
-    o.shape = ShapeKind::box;
-    o.position0 = to_vec3(bounded_numbers(obj, "center", 2, 3, PhysicalBounds::length, units));
-    const std::vector<double> size = bounded_numbers(obj, "size", 2, 3, PhysicalBounds::length, units);
-    o.size = {size[0], size[1], size.size() > 2 ? size[2] : 2.0};  // planar boxes: 2 m tall
-    for (int i = 0; i < 3; ++i)
-      if (!(o.size[i] > 0)) throw ScenarioError(index_path(obj.child("size"), i), "must be > 0");
-    if (obj.has("rpy"))
-      o.rotation = rpy_matrix(bounded_numbers(obj, "rpy", 3, 3, PhysicalBounds::angle, units), units.angle);
-  } else if (shape == "sphere") {
-    obj.check_keys({"id", "shape", "center", "radius", "velocity"});
-    o.shape = ShapeKind::sphere;
-    o.position0 = to_vec3(bounded_numbers(obj, "center", 2, 3, PhysicalBounds::length, units));
-    o.radius = positive(obj, "radius", PhysicalBounds::length, units);
-  } else if (shape == "mesh") {
-    obj.check_keys({"id", "shape", "file", "scale", "center", "rpy", "velocity"});
-    o.shape = ShapeKind::mesh;
-    o.position0 = to_vec3(bounded_numbers(obj, "center", 3, 3, PhysicalBounds::length, units));
-    if (obj.has("rpy"))
-      o.rotation = rpy_matrix(bounded_numbers(obj, "rpy", 3, 3, PhysicalBounds::angle, units), units.angle);
-    if (obj.has("scale")) {
-      const json& scale = obj.raw("scale");
-      const std::string scale_path = obj.child("scale");
-      const std::vector<double> s = scale.is_number() ? std::vector<double>(3, json_number(scale, scale_path))
-                                                      : json_numbers(scale, scale_path, 3, 3);
-      for (int i = 0; i < 3; ++i) {
-        const std::string at = scale.is_number() ? scale_path : index_path(scale_path, size_t(i));
-        if (!(s[size_t(i)] > 0) || !std::isfinite(s[size_t(i)]) || s[size_t(i)] > ScenarioLimits::max_mesh_scale)
-          throw ScenarioError(at, "must be in (0, " + format_number(ScenarioLimits::max_mesh_scale) + "], got " +
-                                      format_number(s[size_t(i)]));
-        o.scale[i] = s[size_t(i)];
-      }
-    }
-    o.file = obj.string("file");
-    o.mesh = load_obstacle_mesh(o.file, o.scale, dir, obj.child("file"));
-  } else if (shape == "point") {
-    obj.check_keys({"id", "shape", "position", "velocity"});
-    o.shape = ShapeKind::point;
-    o.position0 = to_vec3(bounded_numbers(obj, "position", 2, 3, PhysicalBounds::length, units));
-  } else {
-    obj.check_keys({"id", "shape", "point", "normal", "velocity"});
-    o.shape = ShapeKind::wall;
-    o.position0 = to_vec3(bounded_numbers(obj, "point", 2, 3, PhysicalBounds::length, units));
-    const Eigen::Vector3d normal = to_vec3(bounded_numbers(obj, "normal", 2, 3, PhysicalBounds::length, units));
-    if (normal.norm() < 1e-12) throw ScenarioError(obj.child("normal"), "must not be zero");
-    o.normal = normal.normalized();
-  }
-  o.id = obj.string("id", "obstacle" + std::to_string(index + 1));
-  if (o.id.empty() || o.id.size() > 64) throw ScenarioError(obj.child("id"), "must have 1 to 64 characters");
-  if (obj.has("velocity"))
-    o.velocity = to_vec3(bounded_numbers(obj, "velocity", 2, 3, PhysicalBounds::linear_speed, units));
-  o.position = o.position0;
-  return o;
-}
-
-void parse_obstacles(const json& value, const std::string& path, const Units& units, const std::string& dir,
-                     Scenario& sc) {
-  if (!value.is_array()) throw ScenarioError(path, "must be an array, got " + json_type_name(value));
-  if (value.size() > size_t(ScenarioLimits::max_obstacles))
-    throw ScenarioError(path, "has " + std::to_string(value.size()) + " obstacles, at most " +
-                                  std::to_string(ScenarioLimits::max_obstacles) + " allowed");
-  std::set<std::string> ids;
-  for (size_t i = 0; i < value.size(); ++i) {
-    Obstacle o = parse_obstacle(value[i], index_path(path, i), i, units, dir);
-    if (!ids.insert(o.id).second)
-      throw ScenarioError(index_path(path, i) + ".id", "duplicate obstacle id \"" + o.id + "\"");
-    check_obstacle_fits(o, sc.model, sc.scene, index_path(path, i));
-    sc.scene.obstacles.push_back(std::move(o));
   }
 }
 
@@ -463,7 +329,7 @@ void parse_method(JsonObject method, Scenario& sc) {
     sc.method.params = resolve_method_params(sc.method.name, method.raw("params"), method.child("params"));
 }
 
-}  // namespace
+}  // namespace scenario_parsing
 
 void require_method(const std::string& name, const std::string& path) {
   if (!find_method(name)) throw ScenarioError(path, "unknown method \"" + name + "\" (known: " + method_names() + ")");
@@ -477,27 +343,6 @@ std::vector<std::pair<std::string, double>> resolve_method_params(const std::str
   for (auto it = params.begin(); it != params.end(); ++it)
     resolved.push_back(resolve_method_param(method, it.key(), it.value(), object.child(it.key())));
   return resolved;
-}
-
-Obstacle parse_obstacle_json(const nlohmann::json& value, const std::string& path, const std::string& dir) {
-  return parse_obstacle(value, path, 0, Units{}, dir);
-}
-
-void check_obstacle_fits(const Obstacle& o, const Model& model, const Scene& scene, const std::string& path) {
-  if (o.shape != ShapeKind::mesh) return;
-  const auto at = [&](const char* key) { return path.empty() ? std::string(key) : path + "." + key; };
-  // Planar arms move in the x-y plane against obstacles seen as their x-y
-  // footprint; a mesh has no such footprint here (it would need a prism or a
-  // slice), so it is refused rather than approximated.
-  if (model.kind == ModelKind::planar)
-    throw ScenarioError(at("shape"), "mesh obstacles need a spatial robot (spatial_xz, dh or urdf), not a planar one");
-  long triangles = long(o.mesh->triangles.size());
-  for (const Obstacle& other : scene.obstacles)
-    if (other.mesh) triangles += long(other.mesh->triangles.size());
-  if (triangles > ScenarioLimits::max_mesh_obstacle_triangles)
-    throw ScenarioError(at("file"), "the mesh obstacles would have " + std::to_string(triangles) +
-                                            " triangles together, at most " +
-                                            std::to_string(ScenarioLimits::max_mesh_obstacle_triangles) + " allowed");
 }
 
 long Scenario::steps() const { return std::lround(duration / dt); }
@@ -569,7 +414,7 @@ Scenario parse_scenario(const json& doc, const std::string& dir) {
                                         format_number(double(ScenarioLimits::max_steps) * sc.dt) + " s), got " +
                                         format_number(sc.duration) + " s");
   if (sc.steps() < 1) throw ScenarioError("duration", "must be at least one step (dt)");
-  Units units;
+  scenario_parsing::Units units;
   if (root.choice("angle_unit", {"rad", "deg"}, "rad") == "deg") units.angle = M_PI / 180.0;
   if (root.has("seed")) {
     const json& seed = root.raw("seed");
@@ -577,13 +422,13 @@ Scenario parse_scenario(const json& doc, const std::string& dir) {
       throw ScenarioError("seed", "must be a non-negative integer");
     sc.seed = seed.get<std::uint64_t>();
   }
-  parse_robot(root.object("robot"), units, dir, sc);
-  if (root.has("obstacles")) parse_obstacles(root.raw("obstacles"), "obstacles", units, dir, sc);
-  parse_task(root.object("task"), units, sc);
-  if (root.has("witness")) parse_witness(root.object("witness"), units, sc);
+  scenario_parsing::parse_robot(root.object("robot"), units, dir, sc);
+  if (root.has("obstacles")) scenario_parsing::parse_obstacles(root.raw("obstacles"), "obstacles", units, dir, sc);
+  scenario_parsing::parse_task(root.object("task"), units, sc);
+  if (root.has("witness")) scenario_parsing::parse_witness(root.object("witness"), units, sc);
   if (root.has("perturbation")) root.object("perturbation");  // a record of how the case was drawn (perturbation.hpp)
   if (root.has("method")) {
-    parse_method(root.object("method"), sc);
+    scenario_parsing::parse_method(root.object("method"), sc);
   } else {
     sc.method.name = "pinv";
   }

@@ -23,12 +23,10 @@ TEST(BuilderPool, HealthAnswersWhileScenariosAreBuilt) {
     });
   // until the server says all four are being built (60 s at most)
   json health;
-  for (int i = 0; i < 3000; ++i) {
-    health = http(server.port(), "GET", "/api/health").json();
-    if (health["building"] == 4) break;
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  ASSERT_EQ(health["building"], 4) << "the four builds never were under way at once: " << health.dump();
+  ASSERT_TRUE(rrlab::test::eventually(
+      [&] { return (health = http(server.port(), "GET", "/api/health").json())["building"] == 4; },
+      std::chrono::seconds(60), "the four builds under way at once"))
+      << health.dump();
   // answered during the builds: health says they are still under way
   int answered_while_building = 0;
   for (int i = 0; i < 5; ++i) {

@@ -117,12 +117,9 @@ TEST_F(Control, DisconnectReleasesControl) {
     EXPECT_EQ(rest("POST", base + "/joystick", {{"linear", {0, 0}}}, "carol").status, 409);
   }
   // alice's socket closed: control is free again (the server sees the close a moment later)
-  int status = 0;
-  for (int i = 0; i < 100 && status != 200; ++i) {
-    status = rest("POST", base + "/joystick", {{"linear", {0, 0}}}, "carol").status;
-    if (status != 200) std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  }
-  EXPECT_EQ(status, 200);
+  EXPECT_TRUE(rrlab::test::eventually(
+      [&] { return rest("POST", base + "/joystick", {{"linear", {0, 0}}}, "carol").status == 200; },
+      std::chrono::seconds(30), "carol's joystick accepted once alice's socket closed"));
   // carol holds control through REST alone until she releases it
   EXPECT_EQ(rest("POST", base + "/joystick", {{"linear", {0, 0}}}, "dave").status, 409);
   EXPECT_EQ(rest("POST", base + "/control", {{"action", "release"}}, "carol").json()["controller"], "none");

@@ -4,6 +4,7 @@
 #include <rrlab/storage/run_store.hpp>
 
 #include "server_fixture.hpp"
+#include "support/stored_frames.hpp"
 
 namespace rrlab::testing {
 namespace {
@@ -21,7 +22,12 @@ TEST_F(Determinism, LiveInputsReSimulateBitForBit) {
   scenario["obstacles"].push_back({{"id", "drifter"}, {"shape", "point"}, {"position", {1.5, 1.2}}, {"velocity", {-0.05, 0}}});
   const std::int64_t id = start_live({{"scenario", scenario}, {"rate", 4}});
   const std::string base = "/api/runs/" + std::to_string(id);
-  const auto pause = [] { std::this_thread::sleep_for(std::chrono::milliseconds(150)); };
+  // between two inputs the run takes 40 steps or more, so they land on different steps
+  const auto pause = [&] {
+    const auto step = [&] { return get(base).json()["live"].value("step", 0L); };
+    const long from = step();
+    rrlab::test::eventually([&] { return step() >= from + 40; }, std::chrono::seconds(60), "40 more steps");
+  };
   pause();
   ASSERT_EQ(send("POST", base + "/joystick", {{"linear", {0.2, 0.1}}}).status, 200);
   pause();
@@ -69,7 +75,7 @@ TEST_F(Determinism, AChangedFrameFailsVerification) {
     });
     ASSERT_FALSE(data.empty());
     data[24] ^= 1;  // after u32 n, u32 k, i64 step, double t
-    store.replace_frame_data(id, 30, data);
+    rrlab::test::overwrite_frame_data(server_->db(), id, 30, data);
   }
   const CommandResult verify = run_rrlab({"replay", std::to_string(id), "--db", server_->db(), "--verify"});
   EXPECT_EQ(verify.exit_code, 1);
@@ -94,10 +100,12 @@ TEST(CrashSafety, KillDuringABatchRunLeavesASoundDatabase) {
                                          {{"scenario", long_run}, {"mode", "batch"}, {"wait", false}});
     ASSERT_EQ(running.status, 201) << running.body;
     interrupted = running.json()["id"];
-    for (int i = 0; i < 200; ++i) {  // until some of its frames are committed
-      if (http(server.port(), "GET", "/api/runs/" + std::to_string(interrupted)).json()["frames"].get<long>() > 1000) break;
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
+    rrlab::test::eventually(  // until some of its frames are committed
+        [&] {
+          return http(server.port(), "GET", "/api/runs/" + std::to_string(interrupted)).json()["frames"].get<long>() >
+                 1000;
+        },
+        std::chrono::seconds(60), "more than 1000 committed frames before the kill");
     server.kill_hard();
   }
   {
@@ -131,6 +139,7 @@ TEST(CrashSafety, KillDuringALiveRunWithInputsKeepsEveryAcknowledgedInput) {
     id = started.json()["id"];
     const std::string base = "/api/runs/" + std::to_string(id);
     WsClient steer(server.port(), "/ws/runs/" + std::to_string(id));
+    const auto step = [&] { return http(server.port(), "GET", base).json()["live"].value("step", 0L); };
     for (int i = 0; i < 10; ++i) {
       const double v = 0.02 * (i % 4) - 0.03;
       ASSERT_EQ(http_json(server.port(), "POST", base + "/joystick", {{"linear", {v, 0.02}}}).status, 200);
@@ -140,14 +149,13 @@ TEST(CrashSafety, KillDuringALiveRunWithInputsKeepsEveryAcknowledgedInput) {
       steer.send(json{{"type", "input"}, {"kind", "joystick"}, {"payload", {{"linear", {0.01, -v}}}}}.dump());
       ASSERT_TRUE(steer.read_type("ack"));
       ++acknowledged;
-      std::this_thread::sleep_for(std::chrono::milliseconds(30));
+      const long from = step();  // the next inputs on later steps
+      rrlab::test::eventually([&] { return step() >= from + 10; }, std::chrono::seconds(60), "10 more steps");
     }
     long committed = 0;
-    for (int i = 0; i < 3000 && committed <= 500; ++i) {  // until a few batches of frames are committed
-      committed = http(server.port(), "GET", base).json()["frames"].get<long>();
-      if (committed <= 500) std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
-    ASSERT_GT(committed, 500) << "waited 60 s for more than 500 committed frames before the kill";
+    ASSERT_TRUE(rrlab::test::eventually(  // until a few batches of frames are committed
+        [&] { return (committed = http(server.port(), "GET", base).json()["frames"].get<long>()) > 500; },
+        std::chrono::seconds(60), "more than 500 committed frames before the kill"));
     server.kill_hard();  // the run is still live: its task is 600 s long
   }
   long frames = 0;
@@ -184,7 +192,9 @@ TEST(Shutdown, SigtermStopsEverythingAndExitsCleanly) {
     ASSERT_EQ(http_json(server.port(), "POST", "/api/runs/" + stored + "/replay", {{"mode", "frames"}}).status, 201);
     WsClient watcher(server.port(), "/ws/runs/" + std::to_string(live));
     ASSERT_TRUE(watcher.read_type("frame"));
-    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    rrlab::test::eventually(  // the batch run has stored frames when SIGTERM comes
+        [&] { return http(server.port(), "GET", "/api/runs/" + std::to_string(batch)).json()["frames"].get<long>() > 0; },
+        std::chrono::seconds(60), "the batch run's first stored frames");
     EXPECT_EQ(server.stop(), 0);  // SIGTERM: runs stopped, frames flushed, exit 0
   }
   storage::RunStore store(db);

@@ -8,6 +8,8 @@
 #include <future>
 #include <thread>
 
+#include "support/eventually.hpp"
+
 namespace rrlab::server {
 namespace {
 
@@ -54,11 +56,10 @@ TEST(ExportPool, StopDropsQueuedTasksAndTheirReservations) {
   EXPECT_EQ(pool.reserved(), 1000u);
   std::thread stopper([&] { pool.stop(); });
   // the worker is released only once stop() has begun, so it must drop the queued task
-  for (int i = 0; i < 60000 && !pool.stopping(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(1));
-  const bool began = pool.stopping();
+  const bool began = rrlab::test::eventually([&] { return pool.stopping(); }, std::chrono::seconds(60), "stop() to begin");
   release.set_value();
   stopper.join();
-  ASSERT_TRUE(began) << "stop() did not begin within 60 s";
+  ASSERT_TRUE(began);
   EXPECT_FALSE(ran);
   EXPECT_EQ(pool.reserved(), 0u);
   pool.post([&ran] { ran = true; });  // after stop: dropped

@@ -61,22 +61,20 @@ TEST(Quotas, ALiveRunStopsStoringAtMaxRunFramesAndSaysWhy) {
   const HttpResult started = post(server, "/api/runs", {{"scenario", small_scenario("circle", 8.0)}, {"rate", 1}});
   ASSERT_EQ(started.status, 201) << started.body;
   const std::string base = "/api/runs/" + std::to_string(started.json()["id"].get<long>());
-  long step = 0;
-  for (int i = 0; i < 3000 && step < 200; ++i) {
-    step = http(server.port(), "GET", base).json()["live"].value("step", 0L);
-    if (step < 200) std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  ASSERT_GE(step, 200) << "the run did not reach step 200 within 60 s";
+  ASSERT_TRUE(rrlab::test::eventually(
+      [&] { return http(server.port(), "GET", base).json()["live"].value("step", 0L) >= 200; },
+      std::chrono::seconds(60), "the run at step 200"));
   ASSERT_EQ(post(server, base + "/control", {{"action", "pause"}}).status, 200)
       << "the run ended before it could be paused";
   ASSERT_EQ(post(server, base + "/control", {{"action", "reset"}}).status, 200);
   ASSERT_EQ(post(server, base + "/control", {{"action", "start"}}).status, 200);
   json run;
-  for (int i = 0; i < 1000; ++i) {
-    run = http(server.port(), "GET", base).json();
-    if (run["status"] == "completed" || run["status"] == "failed") break;
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
+  rrlab::test::eventually(
+      [&] {
+        run = http(server.port(), "GET", base).json();
+        return run["status"] == "completed" || run["status"] == "failed";
+      },
+      std::chrono::seconds(60), "the run to end");
   ASSERT_EQ(run["status"], "completed") << run.dump();
   EXPECT_GT(run["live"]["frames"].get<long>(), 850);  // steps taken over the reset (about 1000)
   EXPECT_EQ(run["frames"], 850);
@@ -288,11 +286,8 @@ TEST(Quotas, ReSimulatingAFramelessSweepRunIsAdmittedForTheStepsItWillStore) {
   ASSERT_EQ(started.status, 202) << started.body;
   const std::string status = "/api/sweeps/" + std::to_string(started.json()["id"].get<long>());
   json sweep;
-  for (int i = 0; i < 600; ++i) {
-    sweep = http(server.port(), "GET", status).json();
-    if (sweep["status"] != "running") break;
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  }
+  rrlab::test::eventually([&] { return (sweep = http(server.port(), "GET", status).json())["status"] != "running"; },
+                          std::chrono::seconds(60), "the sweep to end");
   ASSERT_EQ(sweep["status"], "completed") << sweep;
   const json runs = http(server.port(), "GET", status + "/runs").json()["runs"];
   ASSERT_EQ(runs.size(), 1u);

@@ -58,6 +58,7 @@ TEST_F(RunGroupUnit, FinishedCallbacksAreDestroyedBeforeTheRunHasExited) {
     struct Probe {
       std::atomic<bool>* destroyed;
       ~Probe() {
+        // about time itself: a slow destructor, which a wait_exited() that did not wait for it would outrun
         std::this_thread::sleep_for(std::chrono::milliseconds(100));
         *destroyed = true;
       }

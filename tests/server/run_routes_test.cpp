@@ -1,5 +1,7 @@
 // The run list while runs are live, and deleting runs: never while live,
 // replayed or re-simulated.
+#include <atomic>
+
 #include "server_fixture.hpp"
 
 namespace rrlab::testing {
@@ -26,13 +28,20 @@ json scenario_named(const std::string& name, const std::string& trajectory = "jo
 TEST_F(RunRoutes, ListShowsLiveStatusAndFramesStoredSoFar) {
   const std::int64_t id = start_live({{"scenario", scenario_named("list_live")}, {"rate", 1}});
   const std::string base = "/api/runs/" + std::to_string(id);
-  std::this_thread::sleep_for(std::chrono::milliseconds(300));
-  const json first = listed("scenario=list_live", id);
-  ASSERT_FALSE(first.is_null());
+  json first, second;
+  ASSERT_TRUE(rrlab::test::eventually(
+      [&] {
+        first = listed("scenario=list_live", id);
+        return !first.is_null() && first["frames"].get<long>() > 0;
+      },
+      std::chrono::seconds(60), "the live run listed with frames stored"));
   EXPECT_EQ(first["status"], "running");
-  std::this_thread::sleep_for(std::chrono::milliseconds(500));
-  const json second = listed("scenario=list_live&status=running&method=gpm&limit=5", id);
-  ASSERT_FALSE(second.is_null());
+  ASSERT_TRUE(rrlab::test::eventually(
+      [&] {
+        second = listed("scenario=list_live&status=running&method=gpm&limit=5", id);
+        return !second.is_null() && second["frames"].get<long>() > first["frames"].get<long>();
+      },
+      std::chrono::seconds(60), "the listed run's frames to grow"));
   EXPECT_GT(second["frames"].get<long>(), first["frames"].get<long>());
   EXPECT_GT(first["frames"].get<long>(), 0);
 
@@ -108,16 +117,21 @@ TEST_F(RunRoutes, NotWhileItIsResimulated) {
     const std::int64_t id = batch.json()["id"];
     const std::string base = "/api/runs/" + std::to_string(id);
     HttpResult answer;
-    std::thread resimulation([&] { answer = send("POST", base + "/replay", {{"mode", "resimulate"}}); });
+    std::atomic<bool> answered{false};
+    std::thread resimulation([&] {
+      answer = send("POST", base + "/replay", {{"mode", "resimulate"}});
+      answered = true;
+    });
     // the re-simulation's own run appears (status running) once the job has begun
+    // (or the re-simulation has answered already: then a longer one is tried)
     json target;
-    // (a deadline, not a count: on a loaded machine the job may take seconds to begin)
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
-    while (target.is_null() && std::chrono::steady_clock::now() < deadline) {
-      for (const json& run : get("/api/runs?scenario=resimulated").json())
-        if (run["source_run"] == id && run["status"] == "running") target = run;
-      if (target.is_null()) std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    }
+    rrlab::test::eventually(
+        [&] {
+          for (const json& run : get("/api/runs?scenario=resimulated").json())
+            if (run["source_run"] == id && run["status"] == "running") target = run;
+          return !target.is_null() || answered;
+        },
+        std::chrono::seconds(60), "the re-simulation to begin");
     const bool began = !target.is_null();
     const std::string target_path = began ? "/api/runs/" + std::to_string(target["id"].get<long>()) : "";
     const HttpResult source_refused = http(port(), "DELETE", base);

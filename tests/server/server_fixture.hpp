@@ -9,6 +9,7 @@
 
 #include "client.hpp"
 #include "server_process.hpp"
+#include "support/eventually.hpp"
 
 namespace rrlab::testing {
 
@@ -32,14 +33,15 @@ class ServerTest : public ::testing::Test {
   }
   // Polls GET /api/runs/{id} until its status is one of the ended ones.
   static nlohmann::json wait_ended(std::int64_t id, int seconds = 60) {
-    for (int i = 0; i < seconds * 50; ++i) {
-      const nlohmann::json run = get("/api/runs/" + std::to_string(id)).json();
-      const std::string status = run.at("status");
-      if (status == "completed" || status == "stopped" || status == "failed") return run;
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
-    ADD_FAILURE() << "run " << id << " did not end";
-    return {};
+    nlohmann::json run;
+    const bool ended = rrlab::test::eventually(
+        [&] {
+          run = get("/api/runs/" + std::to_string(id)).json();
+          const std::string status = run.at("status");
+          return status == "completed" || status == "stopped" || status == "failed";
+        },
+        std::chrono::seconds(seconds), "run " + std::to_string(id) + " to end");
+    return ended ? run : nlohmann::json{};
   }
 
   static inline std::unique_ptr<ServerProcess> server_;

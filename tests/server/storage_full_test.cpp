@@ -104,11 +104,8 @@ TEST(StorageFull, ALiveRunFailsAndDeletingRunsEndsTheCondition) {
   ASSERT_EQ(live.status, 201) << live.body;
   const std::int64_t live_id = live.json()["id"];
   json run;
-  for (int i = 0; i < 3000; ++i) {
-    run = run_of(server, live_id);
-    if (run["status"] != "running") break;
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
+  rrlab::test::eventually([&] { return (run = run_of(server, live_id))["status"] != "running"; },
+                          std::chrono::seconds(60), "the live run to end");
   ASSERT_EQ(run["status"], "failed") << run.dump();
   const std::string reason = run["summary"]["failure"];
   EXPECT_NE(reason.find("full"), std::string::npos) << reason;

@@ -22,13 +22,11 @@ class SweepRoutes : public ServerTest {
             {"steps", 200}};
   }
   json wait_ended(std::int64_t id) {
-    for (int i = 0; i < 600; ++i) {
-      const json s = get("/api/sweeps/" + std::to_string(id)).json();
-      if (s["status"] != "running") return s;
-      std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    }
-    ADD_FAILURE() << "sweep " << id << " did not end";
-    return {};
+    json s;
+    const bool ended = rrlab::test::eventually(
+        [&] { return (s = get("/api/sweeps/" + std::to_string(id)).json())["status"] != "running"; },
+        std::chrono::seconds(60), "sweep " + std::to_string(id) + " to end");
+    return ended ? s : json{};
   }
 };
 

@@ -54,10 +54,9 @@ TEST_F(StalledClient, DoesNotSlowTheRunOrOtherClients) {
 
   // The stalled client is dropped once its send queue has been stuck past --ws-stall-ms.
   int websockets = 2;
-  for (int i = 0; i < 200 && websockets > 1; ++i) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
-    websockets = http(server.port(), "GET", "/api/health").json()["websockets"];
-  }
+  rrlab::test::eventually(
+      [&] { return (websockets = http(server.port(), "GET", "/api/health").json()["websockets"]) <= 1; },
+      std::chrono::seconds(30), "the stalled client dropped");
   EXPECT_EQ(websockets, 1);
   EXPECT_TRUE(reader.read_type("frame", std::chrono::milliseconds(1000)));
 }

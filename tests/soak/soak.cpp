@@ -49,6 +49,9 @@ void expect_status(const HttpResult& r, int status, const std::string& what) {
 }
 
 std::atomic<bool> g_stop{false};
+// The soak is about time itself: its clients pace themselves as people and
+// scripts do (a message every 20 ms, a new run every few seconds) for the
+// soak's duration. Not a wait for state: those poll with a deadline.
 void sleep_ms(int ms) {
   const auto until = Clock::now() + std::chrono::milliseconds(ms);
   while (!g_stop && Clock::now() < until) std::this_thread::sleep_for(std::chrono::milliseconds(std::min(ms, 50)));
@@ -299,7 +302,7 @@ int main(int argc, char** argv) {
   long health_failures = 0;
   double health_worst_ms = 0;
   while (elapsed() < options.seconds) {
-    std::this_thread::sleep_for(std::chrono::seconds(1));
+    std::this_thread::sleep_for(std::chrono::seconds(1));  // the sampling period (about time itself)
     const long rss = resident_kib(server.pid());
     if (rss < 0) {
       problem("the server is gone");

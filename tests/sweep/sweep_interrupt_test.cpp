@@ -6,8 +6,8 @@
 #include <spawn.h>
 
 #include <chrono>
-#include <thread>
 
+#include "support/eventually.hpp"
 #include "sweep_test_support.hpp"
 
 extern char** environ;
@@ -38,29 +38,26 @@ int run_child_interrupted(const std::string& spec, const std::string& db, size_t
   if (posix_spawn(&pid, binary.c_str(), &actions, nullptr, argv.data(), environ) != 0) return -1;
   posix_spawn_file_actions_destroy(&actions);
   // wait for some runs, then interrupt
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-  while (std::chrono::steady_clock::now() < deadline) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    if (!std::filesystem::exists(db)) continue;
-    try {
-      storage::RunStore store(db);
-      stored_at_signal = store.sweep_keys("interrupted").size();
-      if (stored_at_signal >= 10) break;
-    } catch (const std::exception&) {  // the child may still be creating it
-    }
-  }
+  rrlab::test::eventually(
+      [&] {
+        if (!std::filesystem::exists(db)) return false;
+        try {
+          storage::RunStore store(db);
+          stored_at_signal = store.sweep_keys("interrupted").size();
+          return stored_at_signal >= 10;
+        } catch (const std::exception&) {  // the child may still be creating it
+          return false;
+        }
+      },
+      std::chrono::seconds(60), "10 runs stored by the sweep");
   ::kill(pid, SIGINT);
   int status = 0;
   // runs stop between two steps: the child exits at once; 60 s at most, then it is killed and reported
-  const auto exit_deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-  while (::waitpid(pid, &status, WNOHANG) == 0) {
-    if (std::chrono::steady_clock::now() > exit_deadline) {
-      ADD_FAILURE() << "rrlab sweep did not exit within 60 s of SIGINT";
-      ::kill(pid, SIGKILL);
-      ::waitpid(pid, &status, 0);
-      return -1;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  if (!rrlab::test::eventually([&] { return ::waitpid(pid, &status, WNOHANG) != 0; }, std::chrono::seconds(60),
+                               "rrlab sweep to exit after SIGINT")) {
+    ::kill(pid, SIGKILL);
+    ::waitpid(pid, &status, 0);
+    return -1;
   }
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }

@@ -7,7 +7,7 @@
 
 #include <cmath>
 
-#include <rrlab/collision/mesh_shapes.hpp>
+#include "support/mesh_shapes.hpp"
 
 namespace rrlab::collision {
 namespace {

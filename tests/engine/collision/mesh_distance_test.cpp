@@ -16,7 +16,7 @@
 
 #include <rrlab/collision/collision_world.hpp>
 #include <rrlab/collision/mesh_loader.hpp>
-#include <rrlab/collision/mesh_shapes.hpp>
+#include "support/mesh_shapes.hpp"
 #include <rrlab/collision/segment_geometry.hpp>
 #include <rrlab/scenario/scenario.hpp>
 
@@ -27,7 +27,7 @@ using nlohmann::json;
 constexpr double kRadius = 0.05, kLength = 0.4;
 
 // The capsule of kRadius around the z segment [0, kLength] as a mesh
-// (collision/mesh_shapes.hpp): 64 vertices around, 16 rings per cap.
+// (tests/support/mesh_shapes.hpp): 64 vertices around, 16 rings per cap.
 TriangleMesh test_capsule() { return capsule_mesh(kRadius, kLength, 64, 16); }
 
 // A two-joint arm whose second link is the capsule, as a mesh or a cylinder primitive.

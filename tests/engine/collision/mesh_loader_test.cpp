@@ -9,7 +9,7 @@
 #include <fstream>
 #include <string>
 
-#include <rrlab/collision/mesh_shapes.hpp>
+#include "support/mesh_shapes.hpp"
 
 namespace rrlab {
 namespace {

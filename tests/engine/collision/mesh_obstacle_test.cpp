@@ -10,7 +10,7 @@
 
 #include <rrlab/collision/collision_world.hpp>
 #include <rrlab/collision/mesh_loader.hpp>
-#include <rrlab/collision/mesh_shapes.hpp>
+#include "support/mesh_shapes.hpp"
 #include <rrlab/kinematics/kinematics.hpp>
 
 #include "engine/collision/collision_test_support.hpp"

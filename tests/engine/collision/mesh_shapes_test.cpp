@@ -1,5 +1,5 @@
 // Generated meshes: every vertex on the solid's surface, triangles facing out.
-#include <rrlab/collision/mesh_shapes.hpp>
+#include "support/mesh_shapes.hpp"
 
 #include <gtest/gtest.h>
 

@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <string>
 
-#include <rrlab/collision/mesh_shapes.hpp>
+#include "support/mesh_shapes.hpp"
 
 namespace rrlab::collision {
 namespace {

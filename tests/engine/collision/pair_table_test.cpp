@@ -12,7 +12,7 @@
 #include <vector>
 
 #include <rrlab/collision/fcl_pairs.hpp>
-#include <rrlab/collision/mesh_shapes.hpp>
+#include "support/mesh_shapes.hpp"
 
 namespace rrlab::collision {
 namespace {

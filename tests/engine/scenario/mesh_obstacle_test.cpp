@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include <rrlab/collision/mesh_shapes.hpp>
+#include "support/mesh_shapes.hpp"
 #include <rrlab/scenario/scenario.hpp>
 #include <rrlab/sim/run_inputs.hpp>
 

@@ -16,6 +16,8 @@
 #include <stdexcept>
 #include <thread>
 
+#include "support/poll_until.hpp"
+
 namespace rrlab::testing {
 
 std::string temp_dir() {
@@ -97,16 +99,12 @@ int ServerProcess::stop() {
   ::kill(pid_, SIGTERM);
   int status = 0;
   // 60 s for a clean stop, then SIGKILL: a hung shutdown is reported, not waited for until ctest's timeout
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-  while (waitpid(pid_, &status, WNOHANG) == 0) {
-    if (std::chrono::steady_clock::now() > deadline) {
-      std::fprintf(stderr, "rrlab serve (pid %d) did not stop within 60 s of SIGTERM: killed\n", int(pid_));
-      ::kill(pid_, SIGKILL);
-      waitpid(pid_, &status, 0);
-      pid_ = -1;
-      return -1;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  if (!rrlab::test::poll_until([&] { return waitpid(pid_, &status, WNOHANG) != 0; }, std::chrono::seconds(60))) {
+    std::fprintf(stderr, "rrlab serve (pid %d) did not stop within 60 s of SIGTERM: killed\n", int(pid_));
+    ::kill(pid_, SIGKILL);
+    waitpid(pid_, &status, 0);
+    pid_ = -1;
+    return -1;
   }
   pid_ = -1;
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;

@@ -1,4 +1,4 @@
-#include <rrlab/collision/mesh_shapes.hpp>
+#include "support/mesh_shapes.hpp"
 
 #include <cmath>
 #include <fstream>

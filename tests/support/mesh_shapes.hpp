@@ -1,6 +1,8 @@
 // Triangle meshes of simple solids, generated (no file): the fixtures of the
 // mesh tests and benchmarks, and a way to compare a mesh against the
 // analytic shape it approximates. Outward-facing, counter-clockwise triangles.
+// Test code, not the engine's: compiled into the engine tests and the
+// benchmarks (tests/CMakeLists.txt, bench/CMakeLists.txt).
 #pragma once
 
 #include <Eigen/Core>
