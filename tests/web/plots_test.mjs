@@ -112,7 +112,9 @@ await suite('plots', [
   ['4 lanes of 20,000 stored frames stay responsive', async (t) => {
     const { page } = t;
     await page.goto(t.base + '/');
-    await eventually(() => page.evaluate(() => window.__rrlab && window.__rrlab.plots), 'the page');
+    // the page has loaded the frame field table (the charts' metrics) before the lanes are configured
+    await eventually(() => page.evaluate(() => window.__rrlab && window.__rrlab.plots && window.__rrlab.app.frameFields.length > 0),
+      'the page and its frame field table');
     const ms = await page.evaluate(async () => {
       const plots = window.__rrlab.plots;
       const colours = ['#1e88e5', '#ef6c00', '#2e7d32', '#8e24aa'];

@@ -141,7 +141,7 @@ export class Plots {
     const specs = chartSpecs({
       lanes: this.lanes,
       orientation: this.series.some((s) => s.orientationSeen),
-      stepTimes: this.mode === 'live' || this.series.some((s) => s.column('step_us').some((v) => v !== null)),
+      stepTimes: this.mode === 'live' || this.series.some((s) => (s.column('step_us') || []).some((v) => v !== null)),
       ticked: this.names.filter((n) => this.ticked.has(n)),
       tickedMetrics: this.extras.filter((f) => this.ticked.has(`metric:${f.name}`)),
     });
