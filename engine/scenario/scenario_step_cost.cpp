@@ -17,9 +17,8 @@ double method_step_factor(const Scenario& scenario) {
   query.param = [&](std::string_view name) {
     for (const auto& [key, value] : scenario.method.params)
       if (key == name) return value;
-    for (const ParamSpec& spec : info->params)
-      if (spec.name == name) return spec.def;
-    return 0.0;
+    const int spec = find_param(info->params, name);
+    return spec >= 0 ? info->params[size_t(spec)].def : 0.0;
   };
   return info->step_cost(query);
 }

@@ -3,25 +3,34 @@
 // (one source for the file format and the API). Both are compiled in.
 #include <rrlab/server/routes/routes.hpp>
 
+#include <functional>
+
 #include <rrlab/generators/generators.hpp>
 #include <rrlab/sim/frame_fields.hpp>
 
 namespace rrlab::server {
 
 namespace {
-// "#/$defs/X" (the schema file's own definitions) -> "#/components/schemas/X"
-void move_refs(nlohmann::json& node) {
+// Calls `rewrite(key, value)` on every member of every object below `node`;
+// a member it rewrote (it returns true) is not descended into.
+void rewrite_members(nlohmann::json& node, const std::function<bool(const std::string&, nlohmann::json&)>& rewrite) {
   if (node.is_object()) {
-    for (auto it = node.begin(); it != node.end(); ++it) {
-      if (it.key() == "$ref" && it->is_string() && it->get<std::string>().rfind("#/$defs/", 0) == 0)
-        *it = "#/components/schemas/" + it->get<std::string>().substr(8);
-      else
-        move_refs(*it);
-    }
+    for (auto it = node.begin(); it != node.end(); ++it)
+      if (!rewrite(it.key(), *it)) rewrite_members(*it, rewrite);
   } else if (node.is_array()) {
-    for (auto& item : node) move_refs(item);
+    for (auto& item : node) rewrite_members(item, rewrite);
   }
 }
+
+// "#/$defs/X" (the schema file's own definitions) -> "#/components/schemas/X"
+void move_refs(nlohmann::json& node) {
+  rewrite_members(node, [](const std::string& key, nlohmann::json& value) {
+    if (key != "$ref" || !value.is_string() || value.get<std::string>().rfind("#/$defs/", 0) != 0) return false;
+    value = "#/components/schemas/" + value.get<std::string>().substr(8);
+    return true;
+  });
+}
+
 // A frame field's JSON schema, from its kind (sim/frame_fields.hpp).
 nlohmann::json frame_field_schema(const FrameField& field) {
   const nlohmann::json number = {{"type", {"number", "null"}}};
@@ -76,16 +85,11 @@ void fill_frame_schema(nlohmann::json& frame) {
 // Lists the document takes from rrlab's tables rather than spelling out: every
 // "generator" property's enum is the generator registry's families.
 void fill_from_tables(nlohmann::json& node) {
-  if (node.is_object()) {
-    for (auto it = node.begin(); it != node.end(); ++it) {
-      if (it.key() == "generator" && it->is_object() && it->contains("enum"))
-        (*it)["enum"] = generator_families();
-      else
-        fill_from_tables(*it);
-    }
-  } else if (node.is_array()) {
-    for (auto& item : node) fill_from_tables(item);
-  }
+  rewrite_members(node, [](const std::string& key, nlohmann::json& value) {
+    if (key != "generator" || !value.is_object() || !value.contains("enum")) return false;
+    value["enum"] = generator_families();
+    return true;
+  });
 }
 }  // namespace
 
