@@ -53,7 +53,7 @@ TEST(MethodRegistry, AnExternalMethodIsFoundByNameOnceRegistered) {
   EXPECT_THROW(register_external_method(info), std::invalid_argument);
 }
 
-// Each built-in row names its section of docs/methods.md, and the section is there.
+// Each built-in row names its section of docs/methods.md, and the section and its anchor are there.
 TEST(MethodRegistry, EveryBuiltInMethodHasAStepCostAndItsDocumentation) {
   std::ifstream file(test::source_path("docs/methods.md"));
   std::stringstream text;
@@ -63,7 +63,9 @@ TEST(MethodRegistry, EveryBuiltInMethodHasAStepCostAndItsDocumentation) {
     const std::string prefix = "docs/methods.md#";
     ASSERT_EQ(info.docs.rfind(prefix, 0), 0u) << info.name << ": " << info.docs;
     EXPECT_EQ(info.docs.substr(prefix.size()), info.name);
-    EXPECT_NE(text.str().find("\n## `" + info.name + "`"), std::string::npos) << "no section for " << info.name;
+    // the anchor is real: an id right above the method's section
+    EXPECT_NE(text.str().find("<a id=\"" + info.name + "\"></a>\n\n## `" + info.name + "`"), std::string::npos)
+        << "no anchored section for " << info.name;
   }
 }
 
