@@ -25,6 +25,9 @@ struct GeneratorCase {
   // check_generator_options(): the family reads its options (throwing for a
   // bad one) and returns null before drawing anything
   bool options_only = false;
+  // the family's _open variant: no obstacle is placed to block the
+  // minimum-norm solution (options "blocking" and "block_pinv" refused)
+  bool open = false;
 };
 
 // Drawn quantities are rounded to this step (m or rad) so documents read well;

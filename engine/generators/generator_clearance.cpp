@@ -5,14 +5,17 @@
 #include <limits>
 
 #include <rrlab/collision/collision_world.hpp>
+#include <rrlab/collision/segment_geometry.hpp>
 #include <rrlab/kinematics/kinematics.hpp>
 
 namespace rrlab {
 
-double capsules_clearance(const std::vector<CapsuleSegment>& capsules, const Obstacle& obstacle) {
-  if (capsules.empty()) return std::numeric_limits<double>::infinity();
-  // A stand-in chain with one link per capsule carries the radii; its link
-  // segments are then set to the capsules' own, which is all compute() reads.
+namespace {
+
+// The distance table of the capsules against the obstacle at its position0:
+// a stand-in chain with one link per capsule carries the radii; its link
+// segments are then set to the capsules' own, which is all compute() reads.
+void stand_in_distances(const std::vector<CapsuleSegment>& capsules, const Obstacle& obstacle, DistanceTable& table) {
   std::vector<PlanarLinkSpec> links;
   for (const CapsuleSegment& c : capsules) links.push_back({1.0, c.radius});
   const Model chain = make_planar(links, Eigen::Vector2d::Zero());
@@ -25,8 +28,15 @@ double capsules_clearance(const std::vector<CapsuleSegment>& capsules, const Obs
   scene.obstacles.push_back(obstacle);
   scene.obstacles.back().position = obstacle.position0;
   CollisionWorld world(chain, scene);
-  DistanceTable table;
   world.compute(kin, table);
+}
+
+}  // namespace
+
+double capsules_clearance(const std::vector<CapsuleSegment>& capsules, const Obstacle& obstacle) {
+  if (capsules.empty()) return std::numeric_limits<double>::infinity();
+  DistanceTable table;
+  stand_in_distances(capsules, obstacle, table);
   return table.min_distance;
 }
 
@@ -124,6 +134,87 @@ double sweep_clearance(const ArmSweep& sweep, const Obstacle& obstacle, double e
     if (best <= enough && enough < std::numeric_limits<double>::infinity()) break;
   }
   return best;
+}
+
+SweepRoom::SweepRoom(const ArmSweep& sweep) : sweep_(sweep) {
+  constexpr size_t kChunkSteps = 16;
+  const size_t links = size_t(std::max(sweep.links, 1)), steps = sweep.capsules.size() / links;
+  for (size_t link = 0; link < links; ++link)
+    for (size_t begin = 0; begin < steps; begin += kChunkSteps) {
+      Chunk chunk;
+      chunk.link = link;
+      chunk.begin = begin;
+      chunk.end = std::min(steps, begin + kChunkSteps);
+      for (size_t j = chunk.begin; j < chunk.end; ++j)
+        chunk.center += sweep.capsules[j * links + link].a + sweep.capsules[j * links + link].b;
+      chunk.center /= double(2 * (chunk.end - chunk.begin));
+      for (size_t j = chunk.begin; j < chunk.end; ++j) {
+        const CapsuleSegment& c = sweep.capsules[j * links + link];
+        chunk.radius = std::max(chunk.radius, std::max((c.a - chunk.center).norm(), (c.b - chunk.center).norm()) + c.radius);
+      }
+      chunk.t0 = double(chunk.begin) * sweep.dt;
+      chunk.t1 = double(chunk.end - 1) * sweep.dt;
+      chunks_.push_back(chunk);
+    }
+}
+
+double SweepRoom::at(const Eigen::Vector3d& point, double t, const Eigen::Vector3d& velocity, double enough,
+                     Eigen::Vector3d* nearest) const {
+  const size_t links = size_t(std::max(sweep_.links, 1));
+  const double speed = velocity.norm();
+  // each chunk's lower bound: the point at the chunk's middle time, which the
+  // point leaves by at most speed × half the chunk's span
+  std::vector<std::pair<double, size_t>> bounds;
+  bounds.reserve(chunks_.size());
+  for (size_t k = 0; k < chunks_.size(); ++k) {
+    const Chunk& c = chunks_[k];
+    const Eigen::Vector3d middle = point + (0.5 * (c.t0 + c.t1) - t) * velocity;
+    const double bound = (middle - c.center).norm() - c.radius - 0.5 * speed * (c.t1 - c.t0);
+    if (bound < enough) bounds.emplace_back(bound, k);
+  }
+  std::sort(bounds.begin(), bounds.end());
+  double least = enough;
+  for (const auto& [bound, k] : bounds) {
+    if (bound >= least) break;
+    for (size_t j = chunks_[k].begin; j < chunks_[k].end; ++j) {
+      const CapsuleSegment& s = sweep_.capsules[j * links + chunks_[k].link];
+      const Eigen::Vector3d p = point + (double(j) * sweep_.dt - t) * velocity;
+      const Eigen::Vector3d on_axis = collision::closest_point_on_segment(s.a, s.b, p);
+      const double d = (on_axis - p).norm() - s.radius;
+      if (d < least) {
+        least = d;
+        if (nearest) *nearest = on_axis;
+      }
+    }
+  }
+  return least;
+}
+
+std::vector<bool> capsules_met(const ArmSweep& sweep, const std::vector<size_t>& indices, const Obstacle& obstacle) {
+  Eigen::Vector3d center;
+  double radius = 0, inner = 0;
+  const bool planar = std::all_of(sweep.capsules.begin(), sweep.capsules.end(),
+                                  [](const CapsuleSegment& c) { return c.a.z() == 0 && c.b.z() == 0; });
+  bounding_ball(obstacle, planar, center, radius, inner);
+  const int links = std::max(sweep.links, 1);
+  // only capsules within the obstacle's bounding ball are measured, in one batch
+  std::vector<CapsuleSegment> near;
+  std::vector<size_t> near_at;
+  for (size_t i = 0; i < indices.size(); ++i) {
+    CapsuleSegment moved = sweep.capsules[indices[i]];
+    const Eigen::Vector3d shift = -obstacle.velocity * (double(indices[i] / size_t(links)) * sweep.dt);
+    moved.a += shift;
+    moved.b += shift;
+    if (std::isfinite(radius) && capsule_center_distance(center, moved.a, moved.b) - moved.radius - radius > 0) continue;
+    near.push_back(moved);
+    near_at.push_back(i);
+  }
+  std::vector<bool> met(indices.size(), false);
+  if (near.empty()) return met;
+  DistanceTable table;
+  stand_in_distances(near, obstacle, table);
+  for (size_t j = 0; j < near.size(); ++j) met[near_at[j]] = table.at(int(j), 0).distance <= 0;
+  return met;
 }
 
 }  // namespace rrlab

@@ -39,4 +39,34 @@ ArmSweep arm_sweep(const Model& model, const std::vector<Eigen::VectorXd>& steps
 double sweep_clearance(const ArmSweep& sweep, const Obstacle& obstacle,
                        double enough = std::numeric_limits<double>::infinity());
 
+// The least distance of a point from the swept arm's surface over its steps,
+// the point moving as an obstacle's centre does: the room an obstacle
+// centred there has. Built once per sweep: each link's steps in chunks, each
+// with a bounding ball, so that a query measures the nearest chunks only.
+class SweepRoom {
+ public:
+  explicit SweepRoom(const ArmSweep& sweep);
+  // The point is at `point` at time `t` (s) and moves at `velocity`. Exact
+  // below `enough`; a result at or above it says only "at least enough".
+  // `nearest`, when given and the result is below enough: the arm's axis
+  // point nearest to the point (at the step the point was there).
+  double at(const Eigen::Vector3d& point, double t, const Eigen::Vector3d& velocity,
+            double enough = std::numeric_limits<double>::infinity(), Eigen::Vector3d* nearest = nullptr) const;
+
+ private:
+  struct Chunk {
+    size_t link = 0, begin = 0, end = 0;  // the link's capsules at steps [begin, end)
+    Eigen::Vector3d center = Eigen::Vector3d::Zero();
+    double radius = 0;         // the capsules' surfaces lie within it
+    double t0 = 0, t1 = 0;     // s: the steps' times
+  };
+  const ArmSweep& sweep_;
+  std::vector<Chunk> chunks_;
+};
+
+// Which of the sweep's capsules (by index) `obstacle` meets (distance <= 0)
+// at the capsule's own step, as a run moves it: the same measure, one answer
+// per capsule.
+std::vector<bool> capsules_met(const ArmSweep& sweep, const std::vector<size_t>& indices, const Obstacle& obstacle);
+
 }  // namespace rrlab

@@ -24,6 +24,7 @@
 #include <cmath>
 
 #include <rrlab/generators/generator_arms.hpp>
+#include <rrlab/generators/generator_blocking.hpp>
 #include <rrlab/generators/generator_case.hpp>
 #include <rrlab/generators/generator_clutter.hpp>
 #include <rrlab/generators/generator_obstacles.hpp>
@@ -43,9 +44,11 @@ constexpr double kDefaultSpeedMin = 0.1, kDefaultSpeedMax = 0.3;  // reaches per
 nlohmann::json generate_moving_obstacles(GeneratorCase& c) {
   const GeneratorOptions options(c.options, c.family,
                                  {"dof", "link_length", "link_radius", "obstacles", "obstacle_size", "shapes",
-                                  "obstacle_speed", "clearance", "block_pinv", "waypoints", "speed", "dt", "time_law"});
+                                  "obstacle_speed", "clearance", "blocking", "block_pinv", "waypoints", "speed", "dt",
+                                  "time_law"});
   const PlanarArmOptions arm_options = read_planar_arm_options(options, false);
-  const ClutterOptions clutter = read_clutter_options(options, {1, 4}, {"sphere", "box", "polygon", "point"}, true);
+  const ClutterOptions clutter =
+      read_clutter_options(options, {2, 4}, {"sphere", "box", "polygon", "point"}, read_blocking(options, c));
   if (clutter.count.min < 1) throw ScenarioError("options.obstacles", "must be at least 1 in this family");
   const bool speed_given = options.has("obstacle_speed");
   const Range given_speed = options.range("obstacle_speed", {}, {0.001, 100.0});
@@ -59,45 +62,65 @@ nlohmann::json generate_moving_obstacles(GeneratorCase& c) {
     const GeneratedArm& arm = drawn->arm;
     const KeepOut keep_out{&drawn->sweep, clutter.clearance};
     std::optional<ArmSweep> pinv_sweep;
-    if (clutter.block_pinv && !(pinv_sweep = minimum_norm_sweep(c, *drawn, TaskSpace::xy))) continue;
-    const std::vector<size_t> straying =
-        pinv_sweep ? straying_capsules(*pinv_sweep, drawn->sweep) : std::vector<size_t>{};
+    if (clutter.blocking.max > 0 && !(pinv_sweep = minimum_norm_sweep(c, *drawn, TaskSpace::xy))) continue;
     const Range speed_range =
         speed_given ? given_speed : Range{kDefaultSpeedMin * arm.reach, kDefaultSpeedMax * arm.reach};
     const double duration = drawn->witness.duration;
-    const auto draw = [&](int k, Rng& r) -> std::optional<nlohmann::json> {
-      const double size = clutter.size.draw(r) * arm.reach;
+    const auto velocity_of = [&](Rng& r) {
       const double speed = speed_range.draw(r), heading = r.uniform(-M_PI, M_PI);
-      const Eigen::Vector3d velocity(rounded(speed * std::cos(heading)), rounded(speed * std::sin(heading)), 0);
-      Eigen::Vector3d start;
-      if (k == 0 && pinv_sweep) {
-        // at some step on the axis of one of pinv's links (where pinv strays
-        // from the witness): pinv, which ignores obstacles, runs into it
-        const size_t index = straying[r.below(straying.size())];
-        const CapsuleSegment& link = pinv_sweep->capsules[index];
-        const double t = double(index / size_t(pinv_sweep->links)) * pinv_sweep->dt;
-        start = link.a + r.uniform() * (link.b - link.a) - velocity * t;
-      } else {
-        const Eigen::Vector3d crossing = point_along(drawn->path, r.uniform());
-        start = crossing - velocity * (r.uniform(kCrossFrom, kCrossTo) * duration);
-      }
-      const std::string& shape = clutter.shapes[r.below(clutter.shapes.size())];
+      return Eigen::Vector3d(rounded(speed * std::cos(heading)), rounded(speed * std::sin(heading)), 0);
+    };
+    const auto moving = [&](const std::string& shape, const Eigen::Vector3d& start, const Eigen::Vector3d& velocity,
+                            double size, int k, Rng& r) {
       nlohmann::json o = draw_obstacle(shape, start, size, false, k + 1, r);
       o["velocity"] = {velocity.x(), velocity.y()};
       return o;
     };
-    const std::optional<nlohmann::json> obstacles = place_obstacles(clutter.count.draw(rng), keep_out, draw, rng);
-    if (!obstacles) continue;
+    const int count = clutter.count.draw(rng);
+    const int blocking = pinv_sweep ? clutter.blocking.draw(rng) : 0;
+    nlohmann::json obstacles = nlohmann::json::array();
+    if (blocking > 0) {
+      // each passes, at its anchor's step, through pinv's arm there (where
+      // pinv strays from the witness): pinv, which ignores obstacles, runs into it
+      PinvBlockers blockers(*pinv_sweep, drawn->sweep, clutter.clearance);
+      const std::optional<nlohmann::json> on_pinv = place_blockers(
+          blocking, blockers, keep_out,
+          [&](const BlockAnchor& anchor, int k, Rng& r) -> std::optional<nlohmann::json> {
+            const std::string& shape = clutter.shapes[r.below(clutter.shapes.size())];
+            const Eigen::Vector3d velocity = velocity_of(r);
+            const std::optional<double> size =
+                blockers.fitting_size(anchor, velocity, shape, false, scaled(clutter.size, arm.reach), r);
+            if (!size) return std::nullopt;
+            return moving(shape, anchor.point - velocity * anchor.t, velocity, *size, k, r);
+          },
+          rng);
+      if (!on_pinv) continue;
+      obstacles = *on_pinv;
+    }
+    // the others are aimed through a point of the hand's trace at 0.2-0.9 of the run
+    const std::optional<nlohmann::json> crossing = place_obstacles(
+        count - blocking, keep_out,
+        [&](int k, Rng& r) -> std::optional<nlohmann::json> {
+          const double size = clutter.size.draw(r) * arm.reach;
+          const Eigen::Vector3d velocity = velocity_of(r);
+          const Eigen::Vector3d through = point_along(drawn->path, r.uniform());
+          const Eigen::Vector3d start = through - velocity * (r.uniform(kCrossFrom, kCrossTo) * duration);
+          const std::string& shape = clutter.shapes[r.below(clutter.shapes.size())];
+          return moving(shape, start, velocity, size, blocking + k, r);
+        },
+        rng);
+    if (!crossing) continue;
+    for (const nlohmann::json& o : *crossing) obstacles.push_back(o);
     const std::string description =
-        case_title(c) + ": " + arm.summary + " and " + obstacle_summary(*obstacles) + " moving at " +
-        fixed_digits(speed_range.min, 3) + "-" + fixed_digits(speed_range.max, 3) +
-        " m/s, " + (clutter.block_pinv ? "the first where the arm of the minimum-norm solution (pinv) passes at some step, the others " : "each ") +
+        case_title(c) + ": " + arm.summary + " and " + obstacle_summary(obstacles) + " moving at " +
+        fixed_digits(speed_range.min, 3) + "-" + fixed_digits(speed_range.max, 3) + " m/s" +
+        blocking_summary(blocking, "obstacle", "the first ") + "; " + (blocking > 0 ? "the others " : "each ") +
         "aimed through a point of the hand's trace at 0.2-0.9 of the run, all more than " +
         fixed_digits(clutter.clearance, 3) + " m from every link of the witness arm at every step; " +
         witness_summary(drawn->witness, int(drawn->path.configurations.size()) - 1) + ".";
-    return witnessed_document(c, description, *drawn, *obstacles, TaskSpace::xy);
+    return witnessed_document(c, description, *drawn, obstacles, TaskSpace::xy, clutter.clearance);
   }
-  no_case_found(c, "options.obstacles, options.obstacle_size, options.clearance or options.block_pinv");
+  no_case_found(c, "options.obstacles, options.obstacle_size, options.clearance or options.blocking");
 }
 
 }  // namespace rrlab

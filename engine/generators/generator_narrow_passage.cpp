@@ -27,6 +27,7 @@
 #include <cmath>
 
 #include <rrlab/generators/generator_arms.hpp>
+#include <rrlab/generators/generator_blocking.hpp>
 #include <rrlab/generators/generator_case.hpp>
 #include <rrlab/generators/generator_clutter.hpp>
 #include <rrlab/generators/generator_obstacles.hpp>
@@ -40,6 +41,8 @@ namespace {
 constexpr int kWallDraws = 20;
 constexpr double kWallAtFrom = 0.2, kWallAtTo = 0.8;  // fraction of the hand's samples
 constexpr double kShortestWall = 0.25;              // of the drawn length: shorter walls are redrawn
+// each wall comes within 2 clearances (and 1 mm, for the walls' rounding) of the witness arm
+constexpr double kWallsBound = 2, kWallsRounding = 1e-3;
 
 struct Passage {
   nlohmann::json walls;
@@ -146,7 +149,7 @@ nlohmann::json generate_narrow_passage(GeneratorCase& c) {
   const Range wall_length = options.range("wall_length", {0.2, 0.4}, {0.01, 2.0});
   const Range wall_thickness = options.range("wall_thickness", {0.03, 0.08}, {0.001, 1.0});
   const double clearance = options.number("clearance", 0.05, {0.0, 1.0});
-  const bool block_pinv = options.boolean("block_pinv", true);
+  const bool block_pinv = read_block_pinv(options, c);
   const PathOptions path_options = read_path_options(options, {1, 3});
   if (c.options_only) return nullptr;
   Rng& rng = c.rng;
@@ -165,8 +168,11 @@ nlohmann::json generate_narrow_passage(GeneratorCase& c) {
       const double length = rounded(wall_length.draw(rng) * arm.reach);
       const double thickness = rounded(wall_thickness.draw(rng) * arm.reach);
       passage = passage_at(*drawn, j, length, thickness, clearance, gap_width);
-      // the rule is the engine's measure, not the construction
-      if (passage && witness_clearance(drawn->sweep, passage->walls) <= clearance) passage.reset();
+      // the rule is the engine's measure, not the construction: clear of the
+      // witness arm by the clearance, and both walls near it (they bound its gap)
+      if (passage && (witness_clearance(drawn->sweep, passage->walls) <= clearance ||
+                      obstacles_within(drawn->sweep, passage->walls, kWallsBound * clearance + kWallsRounding) < 2))
+        passage.reset();
       // with block_pinv, only walls the minimum-norm solution's arm runs into
       if (passage && pinv_sweep && witness_clearance(*pinv_sweep, passage->walls) > 0) passage.reset();
     }
@@ -177,7 +183,7 @@ nlohmann::json generate_narrow_passage(GeneratorCase& c) {
         fixed_digits(passage->thickness, 3) + " m thick, cut to the witness: every link of the witness arm stays more than " +
         fixed_digits(clearance, 3) + " m from them at every step; " +
         witness_summary(drawn->witness, int(drawn->path.configurations.size()) - 1) + ".";
-    nlohmann::json doc = witnessed_document(c, description, *drawn, passage->walls, TaskSpace::xy);
+    nlohmann::json doc = witnessed_document(c, description, *drawn, passage->walls, TaskSpace::xy, clearance);
     doc["witness"]["difficulty"]["gap_width"] = rounded(passage->gap, 1e-6);
     return doc;
   }

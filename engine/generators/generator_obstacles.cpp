@@ -35,15 +35,18 @@ nlohmann::json star_polygon(const Eigen::Vector3d& center, double size, Rng& rng
 }  // namespace
 
 ClutterOptions read_clutter_options(const GeneratorOptions& options, IntRange default_count,
-                                    const std::vector<std::string>& allowed_shapes, bool with_block_pinv) {
+                                    const std::vector<std::string>& allowed_shapes, IntRange blocking) {
   ClutterOptions o;
-  o.count = options.int_range("obstacles", default_count, {0, 64});
+  o.blocking = blocking;
+  const IntRange raised{std::max(default_count.min, blocking.max), std::max(default_count.max, blocking.max)};
+  o.count = options.int_range("obstacles", raised, {0, 64});
   o.size = options.range("obstacle_size", o.size, {0.001, 1.0});
   o.shapes = options.subset("shapes", allowed_shapes, allowed_shapes);
   o.clearance = options.number("clearance", o.clearance, {0.0, 1.0});
-  if (with_block_pinv) o.block_pinv = options.boolean("block_pinv", true);
-  if (o.block_pinv && o.count.min < 1)
-    throw ScenarioError("options.obstacles", "must be at least 1 with block_pinv (set block_pinv false for none)");
+  if (o.count.min < blocking.max)
+    throw ScenarioError("options.obstacles", "must be at least " + std::to_string(blocking.max) +
+                                                 " with blocking " + std::to_string(blocking.max) +
+                                                 " (the blocking obstacles are among them; set block_pinv false for none)");
   return o;
 }
 
@@ -72,6 +75,12 @@ nlohmann::json draw_obstacle(const std::string& shape, const Eigen::Vector3d& ce
   return o;
 }
 
+double shape_reach(const std::string& shape, bool spatial) {
+  if (shape == "box") return std::sqrt(spatial ? 3.0 : 2.0);
+  if (shape == "point") return 0;
+  return 1;
+}
+
 bool keeps_out(const nlohmann::json& obstacle, const KeepOut& keep_out) {
   Obstacle o;
   try {
@@ -83,13 +92,13 @@ bool keeps_out(const nlohmann::json& obstacle, const KeepOut& keep_out) {
 }
 
 std::optional<nlohmann::json> place_obstacles(int count, const KeepOut& keep_out, const ObstacleDraw& draw,
-                                              Rng& rng, int draws) {
+                                              Rng& rng, int draws, const ObstacleAdmit& admit) {
   nlohmann::json placed = nlohmann::json::array();
   for (int k = 0; k < count; ++k) {
     bool found = false;
     for (int attempt = 0; attempt < draws && !found; ++attempt) {
       std::optional<nlohmann::json> candidate = draw(k, rng);
-      if (!candidate || !keeps_out(*candidate, keep_out)) continue;
+      if (!candidate || !keeps_out(*candidate, keep_out) || (admit && !admit(k, *candidate))) continue;
       placed.push_back(std::move(*candidate));
       found = true;
     }

@@ -17,6 +17,8 @@ struct Range {
   double min = 0, max = 0;
   double draw(Rng& rng) const { return min == max ? min : rng.uniform(min, max); }
 };
+// `r` times `factor` (a size in reaches, in metres).
+inline Range scaled(Range r, double factor) { return {r.min * factor, r.max * factor}; }
 
 struct IntRange {
   int min = 0, max = 0;

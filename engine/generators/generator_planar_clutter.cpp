@@ -21,6 +21,7 @@
 // of the hand's trace, where it matters, the rest anywhere within reach
 // (place_clutter, generator_clutter.hpp).
 #include <rrlab/generators/generator_arms.hpp>
+#include <rrlab/generators/generator_blocking.hpp>
 #include <rrlab/generators/generator_case.hpp>
 #include <rrlab/generators/generator_clutter.hpp>
 #include <rrlab/generators/generator_path.hpp>
@@ -30,9 +31,9 @@ namespace rrlab {
 nlohmann::json generate_planar_clutter(GeneratorCase& c) {
   const GeneratorOptions options(c.options, c.family,
                                  {"dof", "link_length", "link_radius", "obstacles", "obstacle_size", "shapes",
-                                  "clearance", "block_pinv", "waypoints", "speed", "dt", "time_law"});
+                                  "clearance", "blocking", "block_pinv", "waypoints", "speed", "dt", "time_law"});
   const PlanarArmOptions arm_options = read_planar_arm_options(options, false);
-  const ClutterOptions clutter = read_clutter_options(options, {1, 8}, {"sphere", "box", "polygon", "point"}, true);
+  const ClutterOptions clutter = read_clutter_options(options, {2, 8}, {"sphere", "box", "polygon", "point"}, read_blocking(options, c));
   const PathOptions path_options = read_path_options(options);
   if (c.options_only) return nullptr;
   return generate_clutter_case(

@@ -73,7 +73,7 @@ nlohmann::json generate_planar_limits(GeneratorCase& c) {
     if (!drawn) continue;
     const std::optional<nlohmann::json> obstacles = place_clutter(clutter, *drawn, false, rng);
     if (!obstacles) continue;
-    nlohmann::json doc = witnessed_document(c, "", *drawn, *obstacles, TaskSpace::xy);
+    nlohmann::json doc = witnessed_document(c, "", *drawn, *obstacles, TaskSpace::xy, clutter.clearance);
     const std::optional<LimitCrossing> crossing = pinv_limit_crossing(doc);
     if (!crossing) continue;
     std::string description = case_title(c) + ": " + drawn->arm.summary + "; " +

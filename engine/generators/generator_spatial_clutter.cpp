@@ -22,6 +22,7 @@
 // every step; every other one is drawn within 0.25 reach of a point of the
 // hand's trace, the rest anywhere within reach (place_clutter).
 #include <rrlab/generators/generator_arms.hpp>
+#include <rrlab/generators/generator_blocking.hpp>
 #include <rrlab/generators/generator_case.hpp>
 #include <rrlab/generators/generator_clutter.hpp>
 #include <rrlab/generators/generator_path.hpp>
@@ -31,9 +32,9 @@ namespace rrlab {
 nlohmann::json generate_spatial_clutter(GeneratorCase& c) {
   const GeneratorOptions options(c.options, c.family,
                                  {"length_scale", "a_offset", "link_radius", "obstacles", "obstacle_size", "shapes",
-                                  "clearance", "block_pinv", "waypoints", "speed", "dt", "time_law"});
+                                  "clearance", "blocking", "block_pinv", "waypoints", "speed", "dt", "time_law"});
   const DhArmOptions arm_options = read_dh_arm_options(options);
-  const ClutterOptions clutter = read_clutter_options(options, {1, 8}, {"sphere", "box"}, true);
+  const ClutterOptions clutter = read_clutter_options(options, {2, 8}, {"sphere", "box"}, read_blocking(options, c));
   const PathOptions path_options = read_path_options(options);
   if (c.options_only) return nullptr;
   return generate_clutter_case(

@@ -30,6 +30,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include <rrlab/generators/generator_blocking.hpp>
 #include <rrlab/generators/generator_case.hpp>
 #include <rrlab/generators/generator_clutter.hpp>
 #include <rrlab/generators/generator_furniture.hpp>
@@ -44,6 +45,7 @@ namespace {
 
 constexpr double kShelfBoard = 0.02;       // m thick
 constexpr double kShelfApproach = 0.1;     // m in front of the opening
+constexpr Range kShelfBall{0.01, 0.05};    // m: radius of a ball on pinv's arm
 
 constexpr int kShelfCapsulePoints = 8;  // points per capsule when bounding the arm inside the shelf (every board is then checked exactly)
 
@@ -71,13 +73,14 @@ ShelfExtent shelf_inside_extent(const ArmSweep& sweep, const FloorFrame& shelf, 
 
 nlohmann::json generate_urdf_shelf(GeneratorCase& c) {
   const GeneratorOptions options(c.options, c.family,
-                                 {"arms", "reach_in", "opening_height", "gap", "clearance", "block_pinv", "speed", "dt", "time_law"});
+                                 {"arms", "reach_in", "opening_height", "gap", "clearance", "blocking", "block_pinv", "speed", "dt",
+                                  "time_law"});
   const std::vector<std::string> arms = read_urdf_arms(options);
   const Range reach_in = options.range("reach_in", {0.08, 0.2}, {0.0, 1.0});
   const Range opening = options.range("opening_height", {0.1, 0.7}, {-0.5, 1.5});
   const Range gap = options.range("gap", {0.01, 0.06}, {0.005, 0.5});
   const double clearance = options.number("clearance", 0.03, {0.0, 0.5});
-  const bool block_pinv = options.boolean("block_pinv", true);
+  const IntRange blocking = read_blocking(options, c);
   const PathOptions path = read_path_options(options);
   if (c.options_only) return nullptr;
 
@@ -124,24 +127,27 @@ nlohmann::json generate_urdf_shelf(GeneratorCase& c) {
     const KeepOut keep_out{&drawn->sweep, clearance};
     if (!std::all_of(boards.begin(), boards.end(), [&](const nlohmann::json& b) { return keeps_out(b, keep_out); }))
       continue;
-    if (block_pinv) {  // a ball where the minimum-norm arm passes, clear of the witness arm
+    const int balls = blocking.draw(rng);
+    if (balls > 0) {  // balls where the minimum-norm arm passes, clear of the witness arm
       const std::optional<ArmSweep> pinv = minimum_norm_sweep(c, *drawn, TaskSpace::pose);
-      std::optional<nlohmann::json> ball;
-      if (!pinv || !(ball = ball_on_pinv(*pinv, drawn->sweep, clearance, {0.01, 0.05}, rng))) continue;
-      boards.push_back(*ball);
+      if (!pinv) continue;
+      PinvBlockers blockers(*pinv, drawn->sweep, clearance);
+      const std::optional<nlohmann::json> on_pinv = balls_on_pinv(balls, blockers, kShelfBall, rng);
+      if (!on_pinv) continue;
+      for (const nlohmann::json& ball : *on_pinv) boards.push_back(ball);
     }
     const std::string description =
         case_title(c) + ": " + drawn->arm.summary + " reaching " + fixed_digits(depth, 3) +
         " m into a shelf compartment (" + fixed_digits(ceiling - floor_top, 3) + " m high, " + fixed_digits(left - right, 3) +
         " m wide, its opening " + fixed_digits(front, 3) + " m from the base) and out again; every board more than " +
         fixed_digits(clearance, 3) + " m from every link of the witness arm at every step" +
-        (block_pinv ? std::string(", and a ball where the arm of the minimum-norm solution (pinv) passes") : std::string()) +
+        blocking_summary(balls, "ball") +
         "; the hand keeps its start orientation on straight lines, " + fixed_digits(drawn->witness.length, 3) + " m at " +
         fixed_digits(drawn->witness.speed, 3) + " m/s (" + fixed_digits(drawn->witness.duration, 2) + " s, " +
         drawn->witness.time_law + " time law per segment).";
-    return witnessed_document(c, description, *drawn, boards, TaskSpace::pose);
+    return witnessed_document(c, description, *drawn, boards, TaskSpace::pose, clearance);
   }
-  no_case_found(c, "options.reach_in, options.opening_height, options.gap, options.clearance or options.block_pinv");
+  no_case_found(c, "options.reach_in, options.opening_height, options.gap, options.clearance or options.blocking");
 }
 
 }  // namespace rrlab

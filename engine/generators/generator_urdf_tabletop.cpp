@@ -31,6 +31,7 @@
 // minimum norm.
 #include <cmath>
 
+#include <rrlab/generators/generator_blocking.hpp>
 #include <rrlab/generators/generator_case.hpp>
 #include <rrlab/generators/generator_clutter.hpp>
 #include <rrlab/generators/generator_furniture.hpp>
@@ -54,7 +55,7 @@ struct TabletopOptions {
   IntRange objects{2, 6};
   std::vector<std::string> shapes;
   double clearance = 0.03;
-  bool block_pinv = true;
+  IntRange blocking{0, 0};  // balls on pinv's arm (among the objects)
   PathOptions path;
 };
 
@@ -80,7 +81,7 @@ std::optional<std::vector<Eigen::Vector3d>> draw_table_points(const FloorFrame& 
 nlohmann::json generate_urdf_tabletop(GeneratorCase& c) {
   const GeneratorOptions options(c.options, c.family,
                                  {"arms", "table_height", "objects", "object_size", "object_height", "shapes",
-                                  "clearance", "block_pinv", "waypoints", "speed", "dt", "time_law"});
+                                  "clearance", "blocking", "block_pinv", "waypoints", "speed", "dt", "time_law"});
   TabletopOptions o;
   o.arms = read_urdf_arms(options);
   o.height = options.range("table_height", o.height, {-0.5, 1.0});
@@ -89,9 +90,11 @@ nlohmann::json generate_urdf_tabletop(GeneratorCase& c) {
   o.object_height = options.range("object_height", o.object_height, {0.005, 1.0});
   o.shapes = options.subset("shapes", {"box", "cylinder"}, {"box", "cylinder"});
   o.clearance = options.number("clearance", o.clearance, {0.0, 0.5});
-  o.block_pinv = options.boolean("block_pinv", true);
-  if (o.block_pinv && o.objects.min < 1)
-    throw ScenarioError("options.objects", "must be at least 1 with block_pinv (set block_pinv false for none)");
+  o.blocking = read_blocking(options, c);
+  if (o.objects.min < o.blocking.max)
+    throw ScenarioError("options.objects", "must be at least " + std::to_string(o.blocking.max) + " with blocking " +
+                                               std::to_string(o.blocking.max) +
+                                               " (the balls are among them; set block_pinv false for none)");
   o.path = read_path_options(options);
   if (c.options_only) return nullptr;
 
@@ -110,11 +113,16 @@ nlohmann::json generate_urdf_tabletop(GeneratorCase& c) {
     obstacles.push_back(frame_box("table", frame, {0, 0, top - kTableThickness / 2}, {kTableDepth, kTableWidth, kTableThickness}));
     const KeepOut keep_out{&drawn->sweep, o.clearance};
     if (!keeps_out(obstacles[0], keep_out)) continue;
-    std::optional<nlohmann::json> ball;
-    if (o.block_pinv) {  // a ball hanging where the minimum-norm arm passes
+    const int blocking = o.blocking.draw(rng);
+    int balls = 0;
+    if (blocking > 0) {  // balls hanging where the minimum-norm arm passes
       const std::optional<ArmSweep> pinv = minimum_norm_sweep(c, *drawn, TaskSpace::pose);
-      if (!pinv || !(ball = ball_on_pinv(*pinv, drawn->sweep, o.clearance, kBallRadius, rng))) continue;
-      obstacles.push_back(*ball);
+      if (!pinv) continue;
+      PinvBlockers blockers(*pinv, drawn->sweep, o.clearance);
+      const std::optional<nlohmann::json> on_pinv = balls_on_pinv(blocking, blockers, kBallRadius, rng);
+      if (!on_pinv) continue;
+      for (const nlohmann::json& ball : *on_pinv) obstacles.push_back(ball);
+      balls = int(on_pinv->size());
     }
     const std::vector<Eigen::Vector3d>& trace = drawn->witness.hand;
     const auto draw = [&](int k, Rng& r) -> std::optional<nlohmann::json> {
@@ -140,20 +148,20 @@ nlohmann::json generate_urdf_tabletop(GeneratorCase& c) {
       }
       return frame_cylinder(id, frame, at, size, height);
     };
-    const int count = o.objects.draw(rng) - (ball ? 1 : 0);
+    const int count = o.objects.draw(rng) - balls;
     const std::optional<nlohmann::json> objects = place_obstacles(std::max(0, count), keep_out, draw, rng);
     if (!objects) continue;
     for (const nlohmann::json& object : *objects) obstacles.push_back(object);
     const std::string description =
         case_title(c) + ": " + drawn->arm.summary + " over a table (top " + fixed_digits(top, 3) + " m above the base) with " +
-std::to_string(objects->size()) + " objects" + (ball ? std::string(", a ball where the arm of the minimum-norm solution (pinv) passes") : std::string()) + ", each, and the table, more than " + fixed_digits(o.clearance, 3) +
+std::to_string(objects->size()) + " objects" + blocking_summary(balls, "ball") + ", each, and the table, more than " + fixed_digits(o.clearance, 3) +
         " m from every link of the witness arm at every step; the hand keeps its start orientation on straight lines through " +
         std::to_string(points->size()) + " points above the table, " + fixed_digits(drawn->witness.length, 3) + " m at " +
         fixed_digits(drawn->witness.speed, 3) + " m/s (" + fixed_digits(drawn->witness.duration, 2) + " s, " +
         drawn->witness.time_law + " time law per segment).";
-    return witnessed_document(c, description, *drawn, obstacles, TaskSpace::pose);
+    return witnessed_document(c, description, *drawn, obstacles, TaskSpace::pose, o.clearance);
   }
-  no_case_found(c, "options.table_height, options.objects, options.object_height, options.clearance or options.block_pinv");
+  no_case_found(c, "options.table_height, options.objects, options.object_height, options.clearance or options.blocking");
 }
 
 }  // namespace rrlab

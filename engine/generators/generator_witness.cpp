@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include <rrlab/generators/generator_blocking.hpp>
 #include <rrlab/generators/generator_case.hpp>
 #include <rrlab/kinematics/kinematics.hpp>
 #include <rrlab/scenario/scenario.hpp>
@@ -180,7 +181,7 @@ nlohmann::json witness_task(const GeneratedWitness& w, TaskSpace space) {
   return task;
 }
 
-nlohmann::json witness_json(const GeneratedWitness& w, std::optional<double> clearance) {
+nlohmann::json witness_json(const GeneratedWitness& w, const std::optional<ObstacleDifficulty>& obstacles) {
   nlohmann::json q = nlohmann::json::array();
   for (const Eigen::VectorXd& sample : w.samples) {
     nlohmann::json row = nlohmann::json::array();
@@ -192,7 +193,11 @@ nlohmann::json witness_json(const GeneratedWitness& w, std::optional<double> cle
                                {"min_manipulability", rounded(w.min_manipulability, 1e-9)},
                                {"interpolation_error", rounded(w.interpolation_error, 1e-9)},
                                {"peak_joint_speed", rounded(w.peak_joint_speed, 1e-6)}};
-  if (clearance && std::isfinite(*clearance)) difficulty["clearance"] = rounded(*clearance, 1e-6);
+  if (obstacles) {
+    difficulty["clearance"] = rounded(obstacles->clearance, 1e-6);
+    difficulty["tight_obstacles"] = obstacles->tight;
+    difficulty["blocking_obstacles"] = obstacles->blocking;
+  }
   if (std::isfinite(w.limit_margin)) difficulty["limit_margin"] = rounded(w.limit_margin, 1e-6);
   if (w.orientation_rpy) difficulty["orientation_error"] = rounded(w.orientation_error, 1e-9);
   return {{"dt", w.dt}, {"q", q}, {"difficulty", difficulty}};
@@ -205,13 +210,24 @@ double witness_clearance(const ArmSweep& sweep, const nlohmann::json& obstacles)
   return clearance;
 }
 
+int obstacles_within(const ArmSweep& sweep, const nlohmann::json& obstacles, double distance) {
+  int within = 0;
+  for (const nlohmann::json& o : obstacles)
+    if (sweep_clearance(sweep, parse_obstacle_json(o, "obstacle"), distance) <= distance) ++within;
+  return within;
+}
+
 nlohmann::json witnessed_document(const GeneratorCase& c, const std::string& description, const WitnessedArm& drawn,
-                                  const nlohmann::json& obstacles, TaskSpace space) {
+                                  const nlohmann::json& obstacles, TaskSpace space, double clearance) {
   nlohmann::json doc = case_document(c, description, drawn.witness.step_dt, drawn.witness.duration,
                                      robot_with_q0(drawn.arm, drawn.witness.samples[0]), obstacles,
                                      witness_task(drawn.witness, space));
-  doc["witness"] = witness_json(drawn.witness, obstacles.empty() ? std::nullopt
-                                                                  : std::optional(witness_clearance(drawn.sweep, obstacles)));
+  std::optional<ObstacleDifficulty> measured;
+  if (!obstacles.empty())
+    measured = ObstacleDifficulty{witness_clearance(drawn.sweep, obstacles),
+                                  obstacles_within(drawn.sweep, obstacles, 2 * clearance),
+                                  pinv_blocking_obstacles(doc)};
+  doc["witness"] = witness_json(drawn.witness, measured);
   return doc;
 }
 

@@ -76,13 +76,23 @@ using SmoothWitness = std::function<void(long step, Eigen::VectorXd& q)>;
 bool finish_witness(const Model& model, const SmoothWitness& smooth, long steps, double dt, TaskSpace space,
                     const Eigen::Matrix3d* orientation, GeneratedWitness& w);
 
+// What a case's obstacles make of it (recorded when it has any): the
+// witness arm's least `clearance` from them (m), how many come within twice
+// the family's clearance of it at some step (`tight`), and how many the
+// minimum-norm solution's arm meets in a pinv run (`blocking`).
+struct ObstacleDifficulty {
+  double clearance = 0;
+  int tight = 0, blocking = 0;
+};
+
 // The document's "task" (a polyline through the witness's hand samples, one
 // sample interval per segment, linear time law) and "witness" (samples and
-// the case's difficulty: `clearance` (m, when the case has obstacles),
-// `limit_margin` (rad, when the arm has limits), `path_length` (m),
-// `duration` (s), `min_manipulability`, `interpolation_error` (m)).
+// the case's difficulty: `clearance` (m), `tight_obstacles` and
+// `blocking_obstacles` (when the case has obstacles), `limit_margin` (rad,
+// when the arm has limits), `path_length` (m), `duration` (s),
+// `min_manipulability`, `interpolation_error` (m)).
 nlohmann::json witness_task(const GeneratedWitness& witness, TaskSpace space);
-nlohmann::json witness_json(const GeneratedWitness& witness, std::optional<double> clearance);
+nlohmann::json witness_json(const GeneratedWitness& witness, const std::optional<ObstacleDifficulty>& obstacles);
 
 // Draws an arm, waypoint configurations (draw_path) and the witness through
 // them; `path` then holds the configurations and, as its points and length,
@@ -115,10 +125,14 @@ std::optional<WitnessedArm> draw_witnessed_arm(DrawArm&& draw_arm, const PathOpt
 // over its steps; infinity without obstacles.
 double witness_clearance(const ArmSweep& sweep, const nlohmann::json& obstacles);
 
+// The number of `obstacles` that come within `distance` of the witness arm at some step.
+int obstacles_within(const ArmSweep& sweep, const nlohmann::json& obstacles, double distance);
+
 // The document of a witnessed case: case_document() with the witness's task
-// and its "witness" (difficulty: the clearance from `obstacles`).
+// and its "witness", its difficulty measured against `obstacles` with the
+// family's `clearance` (ObstacleDifficulty: this runs pinv on the case).
 nlohmann::json witnessed_document(const GeneratorCase& c, const std::string& description, const WitnessedArm& drawn,
-                                  const nlohmann::json& obstacles, TaskSpace space);
+                                  const nlohmann::json& obstacles, TaskSpace space, double clearance);
 
 // For descriptions: "the hand follows the witness's trace through 3 waypoint configurations, 4.12 m at 0.54 m/s (7.63 s, quintic time law)".
 std::string witness_summary(const GeneratedWitness& witness, int waypoints);

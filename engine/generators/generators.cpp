@@ -4,6 +4,7 @@
 // generator_<family>.cpp.
 #include <rrlab/generators/generators.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -83,16 +84,27 @@ void no_case_found(const GeneratorCase& c, const std::string& what_to_loosen) {
 }
 
 const std::vector<GeneratorFamily>& generator_family_table() {
-  static const std::vector<GeneratorFamily> table = {
-      {"planar_clutter", "a planar arm among static obstacles of mixed shapes", generate_planar_clutter},
-      {"planar_limits", "a planar arm with joint limits, on a path that drives pinv past one", generate_planar_limits},
-      {"narrow_passage", "a planar arm whose hand threads a gap between two walls", generate_narrow_passage},
-      {"spatial_clutter", "a 7-DOF spatial DH arm among static obstacles", generate_spatial_clutter},
-      {"moving_obstacles", "a planar arm and obstacles crossing its path at constant velocity",
-       generate_moving_obstacles},
-      {"urdf_tabletop", "a shipped URDF arm with a pose task over a cluttered table", generate_urdf_tabletop},
-      {"urdf_shelf", "a shipped URDF arm with a pose task reaching into a shelf", generate_urdf_shelf},
-  };
+  static const std::vector<GeneratorFamily> table = [] {
+    std::vector<GeneratorFamily> rows = {
+        {"planar_clutter", "a planar arm among static obstacles of mixed shapes", generate_planar_clutter},
+        {"planar_limits", "a planar arm with joint limits, on a path that drives pinv past one", generate_planar_limits},
+        {"narrow_passage", "a planar arm whose hand threads a gap between two walls", generate_narrow_passage},
+        {"spatial_clutter", "a 7-DOF spatial DH arm among static obstacles", generate_spatial_clutter},
+        {"moving_obstacles", "a planar arm and obstacles crossing its path at constant velocity",
+         generate_moving_obstacles},
+        {"urdf_tabletop", "a shipped URDF arm with a pose task over a cluttered table", generate_urdf_tabletop},
+        {"urdf_shelf", "a shipped URDF arm with a pose task reaching into a shelf", generate_urdf_shelf},
+    };
+    // each obstacle family's cases without the obstacles placed on pinv's arm:
+    // what blocking adds is the difference between the two
+    for (const char* name : {"planar_clutter", "narrow_passage", "spatial_clutter", "moving_obstacles", "urdf_tabletop",
+                             "urdf_shelf"}) {
+      const GeneratorFamily base = *std::find_if(rows.begin(), rows.end(), [&](const GeneratorFamily& f) { return f.name == name; });
+      rows.push_back({base.name + "_open", base.summary + ", without obstacles placed to block the minimum-norm solution",
+                      base.generate, true});
+    }
+    return rows;
+  }();
   return table;
 }
 
@@ -109,7 +121,10 @@ namespace {
 
 nlohmann::json generate(GeneratorCase& c) {
   for (const GeneratorFamily& family : generator_family_table())
-    if (family.name == c.family) return family.generate(c);
+    if (family.name == c.family) {
+      c.open = family.open;
+      return family.generate(c);
+    }
   std::string known;
   for (const std::string& f : generator_families()) known += (known.empty() ? "" : ", ") + f;
   throw ScenarioError("generator", "unknown family \"" + c.family + "\" (known: " + known + ")");

@@ -27,11 +27,15 @@ struct GeneratorFamily {
   std::string name;
   std::string summary;                                  // one line: what its cases are
   nlohmann::json (*generate)(GeneratorCase&) = nullptr;  // one case (generator_case.hpp)
+  // "<family>_open": the family's cases with no obstacle placed to block the
+  // minimum-norm solution (its generator with GeneratorCase::open)
+  bool open = false;
 };
 const std::vector<GeneratorFamily>& generator_family_table();
 
 // The families' names, in the table's order: planar_clutter, planar_limits,
-// narrow_passage, spatial_clutter, moving_obstacles, urdf_tabletop, urdf_shelf.
+// narrow_passage, spatial_clutter, moving_obstacles, urdf_tabletop, urdf_shelf,
+// then the obstacle families' _open variants in the same order.
 const std::vector<std::string>& generator_families();
 
 // Case `index` of `family` under `seed` with the family's options (DOF range,

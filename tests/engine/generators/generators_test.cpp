@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include <rrlab/collision/collision_world.hpp>
+#include <rrlab/generators/generator_blocking.hpp>
 #include <rrlab/generators/generator_clearance.hpp>
 #include <rrlab/generators/generator_witness.hpp>
 #include <rrlab/kinematics/kinematics.hpp>
@@ -96,6 +97,10 @@ std::string witness_problem(const json& doc) {
   for (const char* key : {"path_length", "duration", "min_manipulability", "interpolation_error"})
     if (!difficulty.contains(key)) return std::string("difficulty lacks ") + key;
   if (!sc.scene.obstacles.empty()) {
+    for (const char* key : {"tight_obstacles", "blocking_obstacles"})
+      if (!difficulty.contains(key) || !difficulty[key].is_number_integer() || difficulty[key] < 0 ||
+          difficulty[key] > int(sc.scene.obstacles.size()))
+        return std::string("difficulty lacks a count ") + key;
     const double clearance = difficulty.at("clearance").get<double>();
     if (!(clearance > 0) || s.min_distance < clearance - 1e-6)
       return "run min distance " + std::to_string(s.min_distance) + " below the recorded clearance " +
@@ -175,40 +180,62 @@ TEST(Generators, TheRegistryListsEveryFamilyOnceAndDocumented) {
 // (RRLAB_TEST_SCALE=full); `make test` plays back 80 of each family (24 of
 // the URDF ones, whose cases take seconds each), in Release (suites named ...AtScale, see the Makefile); the
 // sanitized build runs the smaller checks below.
-// block_pinv (the default): pinv, which ignores obstacles, runs into the first.
-std::string pinv_collides(const json& doc) {
-  Simulator sim(parse_scenario(doc), "pinv");
-  while (!sim.done()) sim.step();
-  return sim.summary().collided ? "" : "pinv does not collide";
+using CaseCheck = std::function<std::string(const json&)>;
+
+// The first problem `first` finds, else the first `then` finds.
+CaseCheck both(const CaseCheck& first, const CaseCheck& then) {
+  return [=](const json& doc) {
+    const std::string problem = first(doc);
+    return problem.empty() ? then(doc) : problem;
+  };
 }
 
-TEST(GeneratorWitnessesAtScale, PlanarClutter) { check_family("planar_clutter", test::scale_cases(1000, 80), json::object(), pinv_collides); }
+// Blocking (the default): pinv, which ignores obstacles, collides, and the
+// case records at least `n` distinct obstacles its arm meets.
+std::string blocked_by(const json& doc, int n) {
+  Simulator sim(parse_scenario(doc), "pinv");
+  while (!sim.done()) sim.step();
+  if (!sim.summary().collided) return "pinv does not collide";
+  const int blocking = doc["witness"]["difficulty"].value("blocking_obstacles", -1);
+  if (blocking < n) return "blocking_obstacles " + std::to_string(blocking) + ", at least " + std::to_string(n) + " expected";
+  return "";
+}
+std::string blocked_once(const json& doc) { return blocked_by(doc, 1); }
+std::string blocked_twice(const json& doc) { return blocked_by(doc, kDefaultBlocking.min); }
+
+TEST(GeneratorWitnessesAtScale, PlanarClutter) { check_family("planar_clutter", test::scale_cases(1000, 80), json::object(), blocked_twice); }
+
+// Two walls, each within 2 clearances (and 1 mm) of the witness arm: both bound its gap.
+std::string two_walls_bound_the_gap(const json& doc) {
+  if (doc["obstacles"].size() != 2) return "not two walls";
+  if (doc["witness"]["difficulty"]["tight_obstacles"] != 2) return "a wall stands off the witness arm";
+  return "";
+}
 
 TEST(GeneratorWitnessesAtScale, NarrowPassage) {
-  check_family("narrow_passage", test::scale_cases(1000, 80), json::object(), [](const json& doc) -> std::string {
-    if (doc["obstacles"].size() != 2) return "not two walls";
-    return pinv_collides(doc);
-  });
+  check_family("narrow_passage", test::scale_cases(1000, 80), json::object(), both(two_walls_bound_the_gap, blocked_once));
 }
 
 std::string spatial_problem(const json& doc) {
   if (doc["task"]["space"] != "xyz" || doc["robot"]["kind"] != "dh" || doc["robot"]["links"].size() != 7)
     return "not a 7-DOF DH arm on an xyz task";
-  return pinv_collides(doc);
+  return "";
 }
 
-TEST(GeneratorWitnessesAtScale, SpatialClutter) { check_family("spatial_clutter", test::scale_cases(1000, 80), json::object(), spatial_problem); }
+TEST(GeneratorWitnessesAtScale, SpatialClutter) {
+  check_family("spatial_clutter", test::scale_cases(1000, 80), json::object(), both(spatial_problem, blocked_twice));
+}
 
 std::string moving_obstacles_problem(const json& doc) {
   const size_t n = doc["obstacles"].size();
   if (n < 1 || n > 4) return "obstacle count " + std::to_string(n);
   for (const json& o : doc["obstacles"])
     if (!o.contains("velocity")) return "obstacle " + o["id"].get<std::string>() + " does not move";
-  return pinv_collides(doc);
+  return "";
 }
 
 TEST(GeneratorWitnessesAtScale, MovingObstacles) {
-  check_family("moving_obstacles", test::scale_cases(1000, 80), json::object(), moving_obstacles_problem);
+  check_family("moving_obstacles", test::scale_cases(1000, 80), json::object(), both(moving_obstacles_problem, blocked_twice));
 }
 
 std::string pinv_crosses_a_limit(const json& doc) {
@@ -227,31 +254,43 @@ TEST(GeneratorWitnessesAtScale, PlanarLimitsMakePinvViolateALimit) {
 }
 
 // The URDF families: a pose task (fixed orientation) on a shipped arm whose
-// URDF the case carries inline; block_pinv (the default) hangs a ball on
-// pinv's arm.
+// URDF the case carries inline; blocking (the default) hangs balls on pinv's arm.
 std::string urdf_pose_problem(const json& doc) {
   if (doc["task"]["space"] != "pose" || !doc["task"].contains("orientation")) return "not a pose task with an orientation";
   if (doc["robot"]["kind"] != "urdf" || !doc["robot"].contains("urdf")) return "not an inline URDF arm";
-  return pinv_collides(doc);
+  return "";
 }
 
-TEST(GeneratorWitnessesAtScale, UrdfTabletop) { check_family("urdf_tabletop", test::scale_cases(200, 24), json::object(), urdf_pose_problem); }
-TEST(GeneratorWitnessesAtScale, UrdfShelf) { check_family("urdf_shelf", test::scale_cases(200, 24), json::object(), urdf_pose_problem); }
+TEST(GeneratorWitnessesAtScale, UrdfTabletop) {
+  check_family("urdf_tabletop", test::scale_cases(200, 24), json::object(), both(urdf_pose_problem, blocked_twice));
+}
+TEST(GeneratorWitnessesAtScale, UrdfShelf) {
+  check_family("urdf_shelf", test::scale_cases(200, 24), json::object(), both(urdf_pose_problem, blocked_twice));
+}
 
-// The same checks on fewer cases, for the sanitized build.
+// The same checks on fewer cases, for the sanitized build; and the _open
+// variants, whose witnesses are built the same way.
 TEST(Generators, EveryFamilysCasesCarryAWitnessThatSolvesThem) {
-  check_family("planar_clutter", 10, json::object(), pinv_collides);
-  check_family("narrow_passage", 10, json::object(), pinv_collides);
-  check_family("spatial_clutter", 10, json::object(), spatial_problem);
-  check_family("moving_obstacles", 10, json::object(), moving_obstacles_problem);
+  check_family("planar_clutter", 10, json::object(), blocked_twice);
+  check_family("narrow_passage", 10, json::object(), both(two_walls_bound_the_gap, blocked_once));
+  check_family("spatial_clutter", 10, json::object(), both(spatial_problem, blocked_twice));
+  check_family("moving_obstacles", 10, json::object(), both(moving_obstacles_problem, blocked_twice));
   check_family("planar_limits", 5, json::object(), pinv_crosses_a_limit);
-  check_family("urdf_tabletop", 3, json::object(), urdf_pose_problem);
-  check_family("urdf_shelf", 3, json::object(), urdf_pose_problem);
+  check_family("urdf_tabletop", 3, json::object(), both(urdf_pose_problem, blocked_twice));
+  check_family("urdf_shelf", 3, json::object(), both(urdf_pose_problem, blocked_twice));
+  check_family("planar_clutter_open", 5, json::object());
+  check_family("narrow_passage_open", 5, json::object(), two_walls_bound_the_gap);
+  check_family("spatial_clutter_open", 5, json::object(), spatial_problem);
+  check_family("moving_obstacles_open", 5, json::object(), moving_obstacles_problem);
+  check_family("urdf_tabletop_open", 2, json::object(), urdf_pose_problem);
+  check_family("urdf_shelf_open", 2, json::object(), urdf_pose_problem);
 }
 
 // Options away from the defaults keep the guarantees, witness included.
 TEST(Generators, NonDefaultOptionsKeepTheGuarantees) {
   check_family("planar_clutter", 5, {{"obstacles", {8, 8}}, {"obstacle_size", {0.2, 0.3}}, {"clearance", 0.2}});
+  check_family("planar_clutter", 5, {{"blocking", 3}}, [](const json& doc) { return blocked_by(doc, 3); });
+  check_family("moving_obstacles", 5, {{"blocking", {1, 3}}, {"obstacles", {3, 4}}}, [](const json& doc) { return blocked_by(doc, 1); });
   check_family("planar_clutter", 5, {{"dof", 3}, {"waypoints", 10}, {"time_law", "linear"}});
   check_family("planar_clutter", 2, {{"dof", 64}, {"link_length", {0.01, 0.02}}, {"link_radius", 0.004}});
   // a 3-link arm has one redundant joint: pinv rarely strays into a wall the witness passes
@@ -261,6 +300,8 @@ TEST(Generators, NonDefaultOptionsKeepTheGuarantees) {
   check_family("moving_obstacles", 5, {{"obstacles", 4}, {"obstacle_speed", {0.01, 3}}, {"shapes", {"point"}}});
   check_family("planar_clutter", 3, {{"dt", 0.002}, {"speed", 2.0}});
   check_family("planar_clutter", 5, {{"block_pinv", false}, {"obstacles", 0}});
+  check_family("planar_clutter", 3, {{"blocking", 0}, {"obstacles", 1}});
+  check_family("planar_clutter_open", 3, {{"obstacles", 1}, {"dof", 4}});
   check_family("urdf_tabletop", 3, {{"arms", {"panda"}}, {"objects", 8}, {"time_law", "linear"}, {"block_pinv", false}});
   check_family("urdf_shelf", 3, {{"arms", {"iiwa14", "panda"}}, {"gap", 0.005}, {"clearance", 0.05}});
 }
@@ -268,7 +309,7 @@ TEST(Generators, NonDefaultOptionsKeepTheGuarantees) {
 TEST(Generators, SameInputsGiveTheSameDocument) {
   const json options = {{"dof", {4, 9}}, {"time_law", "linear"}};
   for (const std::string& family : generator_families()) {
-    const bool fixed_arms = family == "spatial_clutter" || family.rfind("urdf_", 0) == 0;  // no "dof" option
+    const bool fixed_arms = family.rfind("spatial_clutter", 0) == 0 || family.rfind("urdf_", 0) == 0;  // no "dof" option
     const json opts = fixed_arms ? json{{"time_law", "linear"}} : options;
     for (int index : {0, 31}) {
       const json doc = generate_scenario(family, opts, 42, index);
@@ -333,15 +374,23 @@ TEST(Generators, BadOptionsNameTheirPath) {
   expect_error("spatial_clutter", {{"dof", 7}}, "options.dof", "unknown option of spatial_clutter");
   expect_error("narrow_passage", {{"gap_width", 0.03}}, "options.gap_width", "allowed range");
   expect_error("planar_clutter", {{"block_pinv", 1}}, "options.block_pinv", "must be true or false");
-  expect_error("spatial_clutter", {{"obstacles", 0}}, "options.obstacles", "at least 1 with block_pinv");
+  expect_error("spatial_clutter", {{"obstacles", 0}}, "options.obstacles", "at least 2 with blocking 2");
+  expect_error("planar_clutter", {{"obstacles", {2, 8}}, {"blocking", 3}}, "options.obstacles", "at least 3 with blocking 3");
+  expect_error("planar_clutter", {{"blocking", 17}}, "options.blocking", "allowed range [0, 16]");
+  expect_error("planar_clutter", {{"blocking", 1}, {"block_pinv", false}}, "options.blocking", "must be 0 with block_pinv false");
+  expect_error("planar_clutter_open", {{"block_pinv", false}}, "options.block_pinv", "places no obstacle to block");
+  expect_error("urdf_shelf_open", {{"blocking", 0}}, "options.blocking", "places no obstacle to block");
+  expect_error("narrow_passage_open", {{"block_pinv", true}}, "options.block_pinv", "places no obstacle to block");
+  expect_error("narrow_passage", {{"blocking", 1}}, "options.blocking", "unknown option of narrow_passage");
   expect_error("urdf_tabletop", {{"arms", {"ur5"}}}, "options.arms[0]", "iiwa14, panda, gen3");
-  expect_error("urdf_tabletop", {{"objects", 0}}, "options.objects", "at least 1 with block_pinv");
+  expect_error("urdf_tabletop", {{"objects", 1}}, "options.objects", "at least 2 with blocking 2");
   expect_error("urdf_shelf", {{"gap", 0.0}}, "options.gap", "0.005");
   expect_error("urdf_shelf", {{"dof", 7}}, "options.dof", "unknown option of urdf_shelf");
   expect_error("planar_limits", {{"block_pinv", true}}, "options.block_pinv", "unknown option");
   expect_error("narrow_passage", {{"block_pinv", "yes"}}, "options.block_pinv", "must be true or false");
   expect_error("planar_limits", {{"limit_deg", {60, 200}}}, "options.limit_deg[1]", "[10, 180]");
-  expect_error("moving_obstacles", {{"obstacles", 0}}, "options.obstacles", "at least 1");
+  expect_error("moving_obstacles", {{"obstacles", 0}}, "options.obstacles", "at least 2");
+  expect_error("moving_obstacles_open", {{"obstacles", 0}}, "options.obstacles", "at least 1 in this family");
   expect_error("moving_obstacles", {{"obstacle_speed", 0}}, "options.obstacle_speed", "allowed range [0.001, 100]");
   expect_error("planar_limits", {{"limit_deg", {10, 12}}, {"dof", 3}}, "generator", "loosen options.limit_deg");
   expect_error("torus_maze", json::object(), "generator", "unknown family");
