@@ -6,20 +6,24 @@
 // | dof            | joints (links) of the arm, [min, max] or a number    | [3, 12]                     | —       |
 // | link_length    | each link's length, drawn per link                   | [0.2, 0.6]                  | m       |
 // | link_radius    | every link's capsule radius                          | 0.02                        | m       |
-// | obstacles      | obstacle count                                       | [1, 4]                      | —       |
+// | obstacles      | obstacle count (the blocking ones among them)        | [2, 4]                      | —       |
 // | obstacle_size  | sphere radius / box half-edge / polygon radius       | [0.04, 0.12]                | × reach |
 // | shapes         | shapes drawn from (uniformly)                        | sphere, box, polygon, point | —       |
 // | obstacle_speed | each obstacle's speed, its direction uniform         | [0.1, 0.3] × reach per second | m/s     |
 // | clearance      | least distance from the witness arm at every step   | 0.05                   | m       |
+// | blocking       | obstacles passing through pinv's arm, each met where no other is | 2          | —       |
+// | block_pinv     | false: blocking 0                                    | true                        | —       |
 // | waypoints      | waypoints after the start                            | [2, 4]                      | —       |
 // | speed          | hand speed the witness is timed by                     | 0.2 × reach per second      | m/s     |
 // | dt             | time step                                            | 0.01                        | s       |
 // | time_law       | "quintic" (rest to rest) or "linear" (the witness) | quintic                       | —       |
 //
-// Each obstacle is aimed to pass through a random point of the hand's trace at
-// a random time in [0.2, 0.9] of the run (not when the hand is there), so it
-// crosses the path while the arm works, and keeps the clearance from the
-// witness arm at every step: the witness dodges every obstacle in time.
+// The first `blocking` pass, at some step, through the arm of the
+// minimum-norm solution (generator_blocking.hpp); each other obstacle is
+// aimed to pass through a random point of the hand's trace at a random time
+// in [0.2, 0.9] of the run (not when the hand is there), so it crosses the
+// path while the arm works. All keep the clearance from the witness arm at
+// every step: the witness dodges every obstacle in time.
 #include <algorithm>
 #include <cmath>
 

@@ -21,7 +21,8 @@
 // whole run, that passes through the walls' strip (grown by its radius and the
 // clearance) marks an interval across the trace; the walls begin where the
 // interval around the hand ends, and stop before any other. So the witness
-// passes with the clearance, and the gap is as narrow as the witness allows.
+// passes with the clearance, and the gap is as narrow as the witness allows;
+// each wall comes within two clearances of the witness arm, so both bound it.
 // With block_pinv the minimum-norm solution's arm (a pinv run) must hit a wall.
 #include <algorithm>
 #include <cmath>

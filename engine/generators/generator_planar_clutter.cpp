@@ -6,10 +6,11 @@
 // | dof           | joints (links) of the arm, [min, max] or a number    | [3, 12]                 | —        |
 // | link_length   | each link's length, drawn per link                   | [0.2, 0.6]              | m        |
 // | link_radius   | every link's capsule radius                          | 0.02                    | m        |
-// | obstacles     | obstacle count                                       | [1, 8]                  | —        |
+// | obstacles     | obstacle count (the blocking ones among them)        | [2, 8]                  | —        |
 // | obstacle_size | sphere radius / box half-edge / polygon radius       | [0.04, 0.12]            | × reach  |
 // | shapes        | shapes drawn from (uniformly)                        | sphere, box, polygon, point | —    |
-// | block_pinv    | the first obstacle stands on the arm of pinv       | true                    | —        |
+// | blocking      | obstacles on pinv's arm, each met where no other is  | 2                       | —        |
+// | block_pinv    | false: blocking 0                                    | true                    | —        |
 // | clearance     | least distance from the witness arm, every step | 0.05                    | m        |
 // | waypoints     | waypoints after the start                            | [2, 4]                  | —        |
 // | speed         | hand speed the witness is timed by                     | 0.2 × reach per second  | m/s      |
@@ -17,8 +18,9 @@
 // | time_law      | "quintic" (rest to rest) or "linear" (the witness) | quintic                   | —        |
 //
 // Every obstacle keeps the clearance from the witness arm at every step: the
-// task stays feasible. Every other one is drawn within 0.25 reach of a point
-// of the hand's trace, where it matters, the rest anywhere within reach
+// task stays feasible. The first `blocking` stand on the arm of the
+// minimum-norm solution (generator_blocking.hpp); of the others every other
+// one is drawn beside the witness arm, the rest anywhere within reach
 // (place_clutter, generator_clutter.hpp).
 #include <rrlab/generators/generator_arms.hpp>
 #include <rrlab/generators/generator_blocking.hpp>

@@ -7,10 +7,12 @@
 // | length_scale  | factor on each of the iiwa's d (0.36, 0.42, 0.40, 0.126 m), drawn per link | [0.8, 1.2] | — |
 // | a_offset      | each link's a (the iiwa has 0)                          | [-0.05, 0.05]           | m       |
 // | link_radius   | every link's capsule radius                             | 0.05                    | m       |
-// | obstacles     | obstacle count                                          | [1, 8]                  | —       |
+// | obstacles     | obstacle count (the blocking ones among them)           | [2, 8]                  | —       |
 // | obstacle_size | sphere radius / box half-edge                           | [0.04, 0.12]            | × reach |
 // | shapes        | shapes drawn from (uniformly)                           | sphere, box             | —       |
 // | clearance     | least distance from the witness arm, every step    | 0.05                    | m       |
+// | blocking      | obstacles on pinv's arm, each met where no other is     | 2                       | —       |
+// | block_pinv    | false: blocking 0                                       | true                    | —       |
 // | waypoints     | waypoints after the start                               | [2, 4]                  | —       |
 // | speed         | hand speed the witness is timed by                        | 0.2 × reach per second  | m/s     |
 // | dt            | time step                                               | 0.01                    | s       |
@@ -19,8 +21,9 @@
 // Each alpha is +90 or -90 deg (drawn; the last 0), joint limits are the
 // iiwa's (+-170, 120, 170, 120, 170, 120, 175 deg), configurations are drawn
 // within 0.9 of them. Obstacles keep the clearance from the witness arm at
-// every step; every other one is drawn within 0.25 reach of a point of the
-// hand's trace, the rest anywhere within reach (place_clutter).
+// every step; the first `blocking` stand on the arm of the minimum-norm
+// solution, of the others every other one beside the witness arm, the rest
+// anywhere within reach (place_clutter).
 #include <rrlab/generators/generator_arms.hpp>
 #include <rrlab/generators/generator_blocking.hpp>
 #include <rrlab/generators/generator_case.hpp>

@@ -9,7 +9,8 @@
 // | opening_height  | height of the compartment's opening above the base        | [0.1, 0.7]         | m    |
 // | gap             | the compartment's play (at least 5 mm): each board's extra distance from the witness arm, beyond the clearance | [0.01, 0.06] | m |
 // | clearance       | least distance of every board from the witness arm        | 0.03               | m    |
-// | block_pinv      | a ball (radius 1-5 cm) where the minimum-norm arm (pinv) passes | true         | —    |
+// | blocking        | balls (radius 1-5 cm) reaching into the minimum-norm arm (pinv) | 2            | —    |
+// | block_pinv      | false: blocking 0                                         | true               | —    |
 // | speed           | hand speed the witness is timed by                        | 0.2 × reach per s  | m/s  |
 // | dt              | time step                                                 | 0.01               | s    |
 // | time_law        | "linear" or "quintic" (per segment)                       | quintic            | —    |
@@ -22,11 +23,11 @@
 // around the witness: its floor, ceiling and sides are the clearance plus
 // the gap from the part of the witness arm inside the shelf at any step; a
 // board above and below it make the next compartments, the back closes it.
-// Every board keeps the clearance from every link at every step. With
-// block_pinv a ball hangs on the arm of a pinv run of the case without
-// obstacles, clear of the witness arm (ball_on_pinv; without it pinv's arm, whose hand and
-// forearm inside the shelf move as the witness's, hit no board in 30 of 30
-// cases): the witness's own self-motion is needed.
+// Every board keeps the clearance from every link at every step. `blocking`
+// balls reach into the arm of a pinv run of the case without obstacles, each
+// where no other is, clear of the witness arm (balls_on_pinv; without them
+// pinv's arm, whose hand and forearm inside the shelf move as the witness's,
+// hit no board in 30 of 30 cases): the witness's own self-motion is needed.
 #include <algorithm>
 #include <cmath>
 

@@ -12,7 +12,8 @@
 // | object_height | an object's height                                           | [0.05, 0.3]        | m    |
 // | shapes        | shapes drawn from: "box", "cylinder"                         | box, cylinder      | —    |
 // | clearance     | least distance of table and objects from the witness arm     | 0.03               | m    |
-// | block_pinv    | the first object hangs where the minimum-norm arm (pinv) passes | true            | —    |
+// | blocking      | balls (among the objects) reaching into the minimum-norm arm (pinv) | 2       | —    |
+// | block_pinv    | false: blocking 0                                            | true               | —    |
 // | waypoints     | hand points above the table after the start                  | [2, 4]             | —    |
 // | speed         | hand speed the witness is timed by                           | 0.2 × reach per s  | m/s  |
 // | dt            | time step                                                    | 0.01               | s    |
@@ -24,11 +25,11 @@
 // task's. Hand points are 0.1-0.35 m above the table top, 0.1 m apart at
 // least. The table, then every object, keeps the clearance from every link of
 // the witness arm at every step; every other object stands under a point of
-// the hand's trace (the hand passes over it), the others beside one. With
-// block_pinv one of the objects is a ball (radius 1-5 cm) hanging on the arm
-// of a pinv run of the case without obstacles, clear of the witness arm
-// (ball_on_pinv): tracking the path takes a use of the redundancy other than
-// minimum norm.
+// the hand's trace (the hand passes over it), the others beside one. The
+// first `blocking` objects are balls (radius 1-5 cm) reaching into the arm of
+// a pinv run of the case without obstacles, each where no other is, clear of
+// the witness arm (balls_on_pinv): tracking the path takes a use of the
+// redundancy other than minimum norm.
 #include <cmath>
 
 #include <rrlab/generators/generator_blocking.hpp>
