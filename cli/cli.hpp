@@ -87,6 +87,7 @@ struct ReportOptions {
 // 3 nothing to verify (replay --verify of a run that stored no frames).
 int run(const RunOptions& options);
 int methods();
+int collisions(const std::string& scenario_file);
 // generate: 0 every case written, 2 bad input (an option, an unknown family, an unwritable --out).
 int generate(const GenerateOptions& options);
 int serve(const ServeOptions& options);

@@ -139,6 +139,11 @@ int main(int argc, char** argv) {
 
   app.add_subcommand("methods", "print every method with its parameter specs as JSON");
 
+  std::string collisions_file;
+  CLI::App* collisions_cmd =
+      app.add_subcommand("collisions", "print a scenario robot's allowed-collision matrix (self-collision pairs) as JSON");
+  collisions_cmd->add_option("scenario", collisions_file, "scenario JSON file")->required();
+
   rrlab::cli::SweepOptions sweep;
   CLI::App* sweep_cmd = app.add_subcommand("sweep", "run a sweep spec's runs (resumable, shardable) into a database");
   sweep_cmd->add_option("spec", sweep.spec_file, "sweep spec JSON file")->required();
@@ -199,5 +204,6 @@ int main(int argc, char** argv) {
   if (merge_cmd->parsed()) return rrlab::cli::merge(merge);
   if (generate_cmd->parsed()) return rrlab::cli::generate(generate);
   if (report_cmd->parsed()) return rrlab::cli::report(report);
+  if (collisions_cmd->parsed()) return rrlab::cli::collisions(collisions_file);
   return rrlab::cli::methods();
 }
