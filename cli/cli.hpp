@@ -66,6 +66,7 @@ struct GenerateOptions {
   std::optional<std::string> scenarios_dir;   // the catalogue (perturb)
   std::uint64_t seed = 1;
   int count = 1, first = 0;
+  std::vector<int> cases;            // exactly these indices (a report's unsolved cases), instead of count/first
   std::vector<std::string> options;  // KEY=VALUE, VALUE as JSON where it parses
   std::string out_dir;
   bool list = false;  // print the families (name, tab, summary) instead

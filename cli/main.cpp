@@ -173,9 +173,17 @@ int main(int argc, char** argv) {
   // the seeds a sweep spec's entries take (sweep/sweep_spec.cpp): a file is a sweep's case
   whole_number_in(generate_cmd->add_option("--seed", generate.seed, "the family's seed (as a sweep entry's \"seed\")"),
                   0, kInt64Max);
-  whole_number_in(generate_cmd->add_option("--count", generate.count, "cases to write"), 1, 1'000'000);
-  whole_number_in(generate_cmd->add_option("--first", generate.first, "index of the first case (default 0)"), 0,
-                  1'000'000'000);
+  CLI::Option* count_option =
+      whole_number_in(generate_cmd->add_option("--count", generate.count, "cases to write"), 1, 1'000'000);
+  CLI::Option* first_option = whole_number_in(
+      generate_cmd->add_option("--first", generate.first, "index of the first case (default 0)"), 0, 1'000'000'000);
+  whole_number_in(generate_cmd->add_option("--cases", generate.cases,
+                                           "exactly these case indices, comma-separated (a sweep report's unsolved "
+                                           "cases), instead of --count and --first")
+                      ->delimiter(','),
+                  0, 1'000'000'000)
+      ->excludes(count_option)
+      ->excludes(first_option);
   generate_cmd->add_option("--option", generate.options, "family option KEY=VALUE, VALUE as JSON (repeatable)");
   generate_cmd->add_option("--out", generate.out_dir, "directory to write FAMILY-INDEX.json (NAME-pINDEX.json) files into");
 

@@ -130,6 +130,26 @@ void difficulty_charts(std::ostream& out, const SweepReport& report, const std::
   }
 }
 
+// What to try when the first choice fails: the pair per family, then each
+// family's unsolved cases with the commands that write them.
+void fallbacks_html(std::ostream& out, const SweepReport& report, const std::string& sweep) {
+  out << "<h3>What to try when the first choice fails</h3>\n<p class=\"note\">" << escape(fallback_rule_text())
+      << "</p>\n<table><tr><th>family</th><th>first choice, then fallback (solved/cases)</th><th>cost µs/step</th>"
+         "<th>solved by some configuration</th><th>unsolved</th></tr>\n";
+  for (const FamilyFallback& f : report.fallbacks) {
+    if (f.sweep != sweep) continue;
+    out << "<tr><td>" << escape(f.family) << "</td><td>" << escape(fallback_choice_text(f)) << "</td><td class=\"n\">"
+        << short_number(f.cost_us) << "</td><td class=\"n\">" << f.solved_by_some << "/" << f.cases
+        << "</td><td class=\"n\">" << f.unsolved << "</td></tr>\n";
+  }
+  out << "</table>\n";
+  for (const FamilyFallback& f : report.fallbacks) {
+    if (f.sweep != sweep || f.unsolved == 0) continue;
+    out << "<p><b>" << escape(f.family) << "</b>, unsolved: " << escape(unsolved_text(f)) << "</p>\n";
+    for (const std::string& command : unsolved_commands(f)) out << "<pre>" << escape(command) << "</pre>\n";
+  }
+}
+
 }  // namespace
 
 void write_report_html(std::ostream& out, const SweepReport& report) {
@@ -163,14 +183,17 @@ void write_report_html(std::ostream& out, const SweepReport& report) {
     }
     out << "</table>\n";
     difficulty_charts(out, report, sweep);
-    out << "<h3>Which method when</h3>\n<p class=\"note\">Per family: the best configuration and every "
-           "one whose success is not significantly below it (paired on the same cases, exact McNemar p &lt; 0.05), "
-           "with step time.</p>\n<table><tr><th>family</th><th>configurations (success, step µs p50, × pinv)</th></tr>\n";
+    out << "<h3>Which method when</h3>\n<p class=\"note\">" << escape(verdict_rule_text())
+        << "</p>\n<table><tr><th>family</th><th>cases</th><th>detects</th>"
+           "<th>configurations (success, step µs p50, × pinv)</th></tr>\n";
     for (const FamilyVerdict& v : report.verdicts) {
       if (v.sweep != sweep) continue;
-      out << "<tr><td>" << escape(v.family) << "</td><td>" << escape(contenders_text(report, v)) << "</td></tr>\n";
+      out << "<tr><td>" << escape(v.family) << "</td><td class=\"n\">" << v.cases << "</td><td>"
+          << escape(detectable_text(v)) << "</td><td>" << escape(verdict_text(report, v)) << "</td></tr>\n";
     }
-    out << "</table>\n<h3>Against pinv and the family's best</h3>\n<table><tr><th>family</th><th>method config</th>"
+    out << "</table>\n";
+    fallbacks_html(out, report, sweep);
+    out << "<h3>Against pinv and the family's best</h3>\n<table><tr><th>family</th><th>method config</th>"
            "<th>against</th><th>cases</th><th>success W/L/T</th><th>McNemar p</th></tr>\n";
     for (const FamilyComparison& c : report.comparisons) {
       if (c.sweep != sweep) continue;

@@ -18,6 +18,17 @@ std::string percent(double share);
 std::string failure_modes_text(const GroupStats& g);
 // "a (95.0%, 8 µs, 4×); b (...)": a verdict's contenders with success and step time.
 std::string contenders_text(const SweepReport& report, const FamilyVerdict& verdict);
+// The verdict as a row reads it: its contenders, or why none are listed.
+std::string verdict_text(const SweepReport& report, const FamilyVerdict& verdict);
+// "8.1 points (discordance ≤ 9.0%)", or why no difference can be detected.
+std::string detectable_text(const FamilyVerdict& verdict);
+// The rule of "which method when" and of the fallback section, in prose
+// (the same sentences in every format).
+std::string verdict_rule_text();
+std::string fallback_rule_text();
+// "a, then b" with what each solves; the unsolved cases' count and listing.
+std::string fallback_choice_text(const FamilyFallback& fallback);
+std::string unsolved_text(const FamilyFallback& fallback);
 // Why a sweep's table of every two configurations is left out ("" when it is not).
 std::string pairs_omitted_text(const SweepReport& report, const std::string& sweep);
 // A p-value with 4 decimals, or in exponent form below 1e-4.

@@ -97,7 +97,13 @@ export class SweepPage {
     const { families, configs, cell, best } = table;
     const verdicts = (report.verdicts || []).map((v) => {
       const cost = (config) => { const g = cell(v.family, config); return g && Number.isFinite(g.step_us_p50) ? ` (${fmt(g.step_us_p50)} µs/step)` : ''; };
-      return `<tr><td>${escapeHtml(v.family)}</td><td>${v.not_worse.map((c) => `${escapeHtml(c)}${cost(c)}`).join(', ')}</td></tr>`;
+      // too few cases or no success: no configuration is offered as a pick (docs/results.md, which method when)
+      const listed = v.status === 'too_few_cases'
+        ? `too few cases to separate the methods (a difference of 20 points needs about ${v.cases_needed} cases); best observed, not separated: ${escapeHtml(v.best)}`
+        : v.status === 'no_success' ? 'no configuration succeeded on any case'
+          : v.not_worse.map((c) => `${escapeHtml(c)}${cost(c)}`).join(', ');
+      const detects = Number.isFinite(v.detectable_difference) ? `${(100 * v.detectable_difference).toFixed(1)} points` : v.status ? 'none' : '—';
+      return `<tr><td>${escapeHtml(v.family)}</td><td>${detects}</td><td>${listed}</td></tr>`;
     }).join('');
     const headRow = `<tr><th>method</th>${families.map((f) => `<th>${escapeHtml(f)}</th>`).join('')}</tr>`;
     const rows = configs.map((c) => `<tr><th scope="row">${escapeHtml(c)}</th>${families.map((f) => {
@@ -121,7 +127,8 @@ export class SweepPage {
     const legend = charts ? `<p class="small">${configs.map((c, i) => `<span class="legend-item" data-colour="${i}">${escapeHtml(c)}</span>`).join(' ')}</p>` : '';
     const ranking = (report.ranking || []).map((r, i) => `<tr><td>${i + 1}</td><td>${escapeHtml(r.config)}</td><td>${Math.round(100 * r.success_rate)} %</td><td>${r.n}</td></tr>`).join('');
     return `<h3>Which method when</h3>
-      <table class="sweep-verdicts"><tr><th>family</th><th>not significantly worse than the best (cost per step)</th></tr>${verdicts}</table>
+      <p class="small muted">Detects: the smallest difference in success these cases detect (80 % power, p &lt; 0.05); past 20 points none is listed.</p>
+      <table class="sweep-verdicts"><tr><th>family</th><th>detects</th><th>not significantly worse than the best (cost per step)</th></tr>${verdicts}</table>
       <h3>Success by method and family</h3>
       <p class="small muted">Success rate with its 95 % Wilson interval; bold: a family's best. Click a cell for its runs.</p>
       <table class="sweep-success">${headRow}${rows}</table>
