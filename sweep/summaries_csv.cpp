@@ -29,7 +29,8 @@ std::string quoted(const std::string& text) {
   return out + "\"";
 }
 
-constexpr const char* kSummaryColumns[] = {"steps", "collided", "min_distance", "max_tracking_error",
+constexpr const char* kSummaryColumns[] = {"steps", "collided", "min_distance", "self_collided", "min_self_distance",
+                                           "max_tracking_error",
                                            "final_tracking_error", "joint_limit_violated", "min_joint_limit_margin",
                                            "max_qdot_ratio", "max_qddot_ratio", "max_condition_number",
                                            "nonfinite_steps"};
