@@ -3,6 +3,7 @@
 // step cost, success against difficulty as an inline SVG, and the method
 // configurations as the compare endpoint takes them. Pure: no DOM.
 import { escapeHtml } from './dom.js';
+import { failureModeText } from './failure_modes.js';
 
 // "dls{lambda=0.1,damping=fixed}" → {name: 'dls', params: {lambda: 0.1, damping: 'fixed'}};
 // a bare name → the name.
@@ -49,9 +50,9 @@ export function formatRate(group) {
   return `${pct(group.success_rate)} % [${pct(lo)}–${pct(hi)} %]`;
 }
 
-// "collision 3 · stalled 1", most frequent first ('' when none).
+// "collision 3 · self-collision 1", most frequent first ('' when none).
 export function formatFailureModes(modes) {
-  return Object.entries(modes || {}).sort((a, b) => b[1] - a[1]).map(([mode, n]) => `${mode} ${n}`).join(' · ');
+  return Object.entries(modes || {}).sort((a, b) => b[1] - a[1]).map(([mode, n]) => `${failureModeText(mode)} ${n}`).join(' · ');
 }
 
 // Success against difficulty of one family: an SVG (as text) with one line per

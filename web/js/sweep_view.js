@@ -9,6 +9,7 @@ import { app, LANE_COLOURS } from './state.js';
 import { escapeHtml } from './dom.js';
 import { fmt } from './dom.js';
 import { successTable, formatRate, formatFailureModes, difficultySvg, parseConfig } from './sweep_report.js';
+import { outcomeText } from './failure_modes.js';
 
 const $ = (id) => document.getElementById(id);
 const POLL_MS = 1000;
@@ -147,7 +148,7 @@ export class SweepPage {
     const box = $('sweep-cell');
     const rows = page.runs.map((r) => `<tr data-run="${r.run}">
       <td class="mono">${escapeHtml(r.case)}</td>
-      <td class="${r.success ? 'pass' : 'fail'}">${r.success ? 'pass' : `fail${r.failure_mode ? `: ${escapeHtml(r.failure_mode)}${Number.isFinite(r.failure_t) ? ` at ${r.failure_t.toFixed(2)} s` : ''}` : ''}`}</td>
+      <td class="${r.success ? 'pass' : 'fail'}">${escapeHtml(outcomeText(r))}</td>
       <td>${fmt(r.min_distance)}</td><td>${fmt(r.max_tracking_error)}</td>
       <td class="actions"><button type="button" class="run-open" title="${r.frames ? 'replay its stored frames' : 'the sweep stored no frames: re-simulate the run from its recorded inputs, then replay it'}">${r.frames ? 'Replay' : 'Re-simulate'}</button>
         <button type="button" class="run-compare" title="run every method of this sweep on this case, side by side">Compare methods</button></td></tr>`).join('');
