@@ -38,7 +38,8 @@ constexpr const char* kSummaryColumns[] = {"steps", "collided", "min_distance", 
 // The generated cases' difficulty (witness.difficulty), empty for other runs.
 constexpr const char* kDifficultyColumns[] = {"clearance",  "limit_margin",       "gap_width",
                                               "path_length", "duration",          "min_manipulability",
-                                              "interpolation_error", "peak_joint_speed"};
+                                              "interpolation_error", "peak_joint_speed", "blocking_obstacles",
+                                              "tight_obstacles"};
 
 }  // namespace
 

@@ -1,6 +1,7 @@
 #include <rrlab/sweep/sweep_report.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -30,7 +31,15 @@ struct RunFacts {
   double step_p50 = 0, step_p99 = 0;
   double clearance = std::numeric_limits<double>::quiet_NaN();     // the witness's, generated cases
   double limit_margin = std::numeric_limits<double>::quiet_NaN();  // the witness's, generated cases
+  std::array<int, kCountMeasures.size()> counts;                    // kCountMeasures; -1: not given
 };
+
+// An obstacle count of the difficulty: a non-negative integer, else -1.
+int count_or_none(const nlohmann::json& d, const char* key) {
+  if (!d.contains(key) || !d[key].is_number()) return -1;
+  const double v = d[key].get<double>();
+  return v >= 0 && v <= 1e9 && v == std::floor(v) ? int(v) : -1;
+}
 
 double number_or(const nlohmann::json& j, const char* key, double def) {
   return j.contains(key) && j[key].is_number() ? j[key].get<double>() : def;
@@ -38,11 +47,13 @@ double number_or(const nlohmann::json& j, const char* key, double def) {
 
 RunFacts facts_of(const storage::SweepRunEntry& e) {
   RunFacts f{&e};
+  f.counts.fill(-1);
   if (e.difficulty_json) {
     try {
       const nlohmann::json d = parse_json(*e.difficulty_json);
       f.clearance = number_or(d, "clearance", f.clearance);
       f.limit_margin = number_or(d, "limit_margin", f.limit_margin);
+      for (size_t m = 0; m < kCountMeasures.size(); ++m) f.counts[m] = count_or_none(d, kCountMeasures[m]);
     } catch (const std::exception&) {  // a difficulty that is not JSON counts as none
     }
   }
@@ -147,6 +158,39 @@ void difficulty_bins(const std::map<GroupKey, std::vector<const RunFacts*>>& gro
         g.by_difficulty[k].successes += f->entry->row.success ? 1 : 0;
       }
     }
+  }
+}
+
+// Success against the obstacle counts, every configuration of a (sweep,
+// family) binned alike (bins 0 .. kCountBins - 1, the last open); a measure
+// is kept where the family's cases fill two bins or more. Memory: the groups'
+// bins, whatever the runs.
+void count_bins(const std::map<GroupKey, std::vector<const RunFacts*>>& groups, std::vector<GroupStats>& stats) {
+  constexpr size_t kMeasures = kCountMeasures.size();
+  std::map<std::pair<std::string, std::string>, std::array<std::array<bool, kCountBins>, kMeasures>> filled;
+  for (GroupStats& g : stats) {
+    std::array<CountDifficulty, kMeasures> counts;
+    for (size_t m = 0; m < kMeasures; ++m) {
+      counts[m].measure = kCountMeasures[m];
+      for (size_t k = 0; k < kCountBins; ++k)
+        counts[m].bins[k] = {double(k), k + 1 < kCountBins ? double(k) : kInf, 0, 0};
+    }
+    for (const RunFacts* f : groups.at({g.sweep, g.config_key, g.family}))
+      for (size_t m = 0; m < kMeasures; ++m) {
+        if (f->counts[m] < 0) continue;
+        DifficultyBin& bin = counts[m].bins[std::min(size_t(f->counts[m]), kCountBins - 1)];
+        ++bin.n;
+        bin.successes += f->entry->row.success ? 1 : 0;
+      }
+    auto& family = filled[{g.sweep, g.family}];
+    for (size_t m = 0; m < kMeasures; ++m)
+      for (size_t k = 0; k < kCountBins; ++k) family[m][k] = family[m][k] || counts[m].bins[k].n > 0;
+    g.by_count.assign(counts.begin(), counts.end());
+  }
+  for (GroupStats& g : stats) {
+    const auto& family = filled.at({g.sweep, g.family});
+    for (size_t m = kMeasures; m-- > 0;)  // by_count holds every measure here, in order
+      if (std::count(family[m].begin(), family[m].end(), true) < 2) g.by_count.erase(g.by_count.begin() + long(m));
   }
 }
 
@@ -329,6 +373,7 @@ SweepReport build_report(const std::vector<storage::SweepRunEntry>& entries, con
   for (const auto& [key, runs] : groups) report.groups.push_back(group_stats(runs));
   step_ratios(groups, report.groups);
   difficulty_bins(groups, report.groups);
+  count_bins(groups, report.groups);
 
   for (const auto& [sweep, configs] : by_config) {
     report.sweeps.push_back(sweep);

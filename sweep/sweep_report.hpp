@@ -32,9 +32,12 @@
 //    first choice with a fallback and the cases no configuration solves
 //    (sweep_fallback.hpp);
 //  - success against difficulty per group: the family's cases binned at the
-//    quartiles of the witness's clearance (or limit margin).
+//    quartiles of the witness's clearance (or limit margin), and by the
+//    obstacles the minimum-norm arm meets and those tight on the witness
+//    (integer bins 0, 1, 2, 3, 4+).
 #pragma once
 
+#include <array>
 #include <atomic>
 #include <limits>
 #include <map>
@@ -55,6 +58,19 @@ struct DifficultyBin {
   size_t n = 0, successes = 0;
 };
 
+// Success against an obstacle count of the case, the witness.difficulty
+// measures below: bin k holds the cases with k obstacles, the last those with
+// kCountBins - 1 or more (low = k, high = k; the last's high is +inf).
+inline constexpr size_t kCountBins = 5;
+// blocking: distinct obstacles the minimum-norm (pinv) arm meets over the run;
+// tight: obstacles within twice the family's clearance of the witness arm.
+inline constexpr std::array<const char*, 2> kCountMeasures = {"blocking_obstacles", "tight_obstacles"};
+
+struct CountDifficulty {
+  std::string measure;  // one of kCountMeasures
+  std::array<DifficultyBin, kCountBins> bins;
+};
+
 struct GroupStats {
   std::string sweep, config_key, family;
   size_t n = 0, successes = 0;
@@ -72,6 +88,10 @@ struct GroupStats {
   // every configuration of the family). Empty for cases without a witness.
   std::string difficulty_measure;
   std::vector<DifficultyBin> by_difficulty;
+  // Success against each obstacle count (kCountMeasures order) that the
+  // family's cases carry and that puts them in two bins or more (one bin
+  // separates nothing); the same measures for every configuration of the family.
+  std::vector<CountDifficulty> by_count;
 };
 
 struct WinLossTie {

@@ -47,6 +47,15 @@ const char* status_name(VerdictStatus status) {
   return "contenders";
 }
 
+// Success by difficulty bin; an open last bin's high (+inf) is null.
+template <typename Bins>
+nlohmann::json bins_json(const Bins& bins) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const DifficultyBin& b : bins)
+    out.push_back({{"low", number(b.low)}, {"high", number(b.high)}, {"n", b.n}, {"successes", b.successes}});
+  return out;
+}
+
 nlohmann::json name_or_null(const std::string& name) { return name.empty() ? nlohmann::json() : nlohmann::json(name); }
 
 // One family's fallback row; its unsolved keys while `key_budget` lasts.
@@ -96,9 +105,8 @@ nlohmann::json report_json(const SweepReport& report, size_t max_rows) {
   note_cut("groups", report.groups.size(), group_rows.size());
   for (size_t row : group_rows) {
     const GroupStats& g = report.groups[row];
-    nlohmann::json bins = nlohmann::json::array();
-    for (const DifficultyBin& b : g.by_difficulty)
-      bins.push_back({{"low", number(b.low)}, {"high", number(b.high)}, {"n", b.n}, {"successes", b.successes}});
+    nlohmann::json counts = nlohmann::json::object();
+    for (const CountDifficulty& c : g.by_count) counts[c.measure] = bins_json(c.bins);
     groups.push_back({{"sweep", g.sweep},
                       {"config", g.config_key},
                       {"family", g.family},
@@ -116,7 +124,8 @@ nlohmann::json report_json(const SweepReport& report, size_t max_rows) {
                       {"step_ratio_to_pinv", number(g.step_ratio_to_pinv)},
                       {"failure_modes", g.failure_modes},
                       {"difficulty", {{"measure", g.difficulty_measure.empty() ? nlohmann::json() : nlohmann::json(g.difficulty_measure)},
-                                      {"bins", bins}}}});
+                                      {"bins", bins_json(g.by_difficulty)}}},
+                      {"difficulty_counts", counts}});
   }
   const std::vector<size_t> pair_rows = rows_to_show(report.pairs.size(), max_rows, [&](size_t i) {
     return std::min(rank(report.pairs[i].sweep, report.pairs[i].a), rank(report.pairs[i].sweep, report.pairs[i].b));
@@ -172,7 +181,10 @@ nlohmann::json report_json(const SweepReport& report, size_t max_rows) {
                               {"detectable_difference", number(v.detectable)},
                               {"discordance", number(v.discordance)}};
     if (v.contenders.size() > kMaxVerdictNames) verdict["not_worse_total"] = v.contenders.size();
-    if (v.status == VerdictStatus::kTooFewCases) verdict["cases_needed"] = v.cases_needed;
+    if (v.status == VerdictStatus::kTooFewCases) {
+      verdict["cases_needed"] = v.cases_needed;
+      verdict["separable_difference"] = kSeparableDifference;  // the difference cases_needed is for
+    }
     verdicts.push_back(std::move(verdict));
   }
   nlohmann::json fallbacks = nlohmann::json::array();

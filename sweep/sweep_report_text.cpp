@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 #include <algorithm>
+#include <array>
+#include <tuple>
 
 namespace rrlab::sweep {
 
@@ -63,7 +65,56 @@ void write_fallbacks_markdown(std::ostream& out, const SweepReport& report, cons
   }
 }
 
+// Success against the obstacle counts: one row per family, measure and
+// configuration, a column per bin ("successes/n").
+void write_counts_markdown(std::ostream& out, const SweepReport& report, const std::string& sweep) {
+  const std::vector<CountRow> rows = count_rows(report, sweep);
+  if (rows.empty()) return;
+  out << "\n### Success against obstacle counts\n\n" << count_rule_text() << "\n\n| family | count | method config |";
+  const std::array<DifficultyBin, kCountBins>& first = report.groups[rows.front().group].by_count[rows.front().measure].bins;
+  for (const DifficultyBin& b : first) out << ' ' << count_bin_label(b) << " |";
+  out << "\n|---|---|---|";
+  for (size_t k = 0; k < kCountBins; ++k) out << "---:|";
+  out << '\n';
+  for (const CountRow& row : rows) {
+    const GroupStats& g = report.groups[row.group];
+    const CountDifficulty& c = g.by_count[row.measure];
+    out << "| " << cell(row.family) << " | " << c.measure << " | " << cell(g.config_key) << " |";
+    for (const DifficultyBin& b : c.bins)
+      out << ' ' << (b.n ? std::to_string(b.successes) + "/" + std::to_string(b.n) : "—") << " |";
+    out << '\n';
+  }
+}
+
 }  // namespace
+
+std::string count_rule_text() {
+  return "Success against two counts of each generated case's witness.difficulty: blocking_obstacles, the distinct "
+         "obstacles the minimum-norm (pinv) arm meets over the run, and tight_obstacles, the obstacles within twice "
+         "the family's clearance of the witness arm. Bins of 0, 1, 2, 3 and " + std::to_string(kCountBins - 1) +
+         " or more obstacles; a cell is the configuration's successes of the family's cases in that bin. A count "
+         "is shown for a family whose cases fill at least two bins.";
+}
+
+std::string count_bin_label(const DifficultyBin& bin) {
+  const std::string low = std::to_string(long(bin.low));
+  if (!std::isfinite(bin.high)) return low + "+";
+  return bin.high == bin.low ? low : low + "–" + std::to_string(long(bin.high));
+}
+
+std::vector<CountRow> count_rows(const SweepReport& report, const std::string& sweep) {
+  std::vector<CountRow> rows;
+  for (size_t i = 0; i < report.groups.size(); ++i) {
+    const GroupStats& g = report.groups[i];
+    if (g.sweep != sweep) continue;
+    for (size_t m = 0; m < g.by_count.size(); ++m) rows.push_back({g.family, m, i});
+  }
+  // the groups are by configuration, then family: by family, then measure, configurations in that order
+  std::stable_sort(rows.begin(), rows.end(), [](const CountRow& x, const CountRow& y) {
+    return std::tie(x.family, x.measure) < std::tie(y.family, y.measure);
+  });
+  return rows;
+}
 
 std::string failure_modes_text(const GroupStats& g) {
   std::vector<std::pair<size_t, std::string>> modes;
@@ -207,6 +258,7 @@ void write_report_markdown(std::ostream& out, const SweepReport& report) {
           << percent(g.nonfinite_share) << " | " << short_number(g.step_us_p50) << " | " << short_number(g.step_us_p99)
           << " | " << short_number(g.step_ratio_to_pinv) << " | " << cell(failure_modes_text(g)) << " |\n";
     }
+    write_counts_markdown(out, report, sweep);
     out << "\n### Which method when\n\n" << verdict_rule_text() << "\n\n"
         << "| family | cases | detects | configurations (success, step µs p50, × pinv) |\n|---|---:|---|---|\n";
     for (const FamilyVerdict& v : report.verdicts) {

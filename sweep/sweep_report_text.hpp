@@ -3,6 +3,8 @@
 #pragma once
 
 #include <ostream>
+#include <string>
+#include <vector>
 
 #include <rrlab/sweep/sweep_report.hpp>
 
@@ -29,6 +31,17 @@ std::string fallback_rule_text();
 // "a, then b" with what each solves; the unsolved cases' count and listing.
 std::string fallback_choice_text(const FamilyFallback& fallback);
 std::string unsolved_text(const FamilyFallback& fallback);
+// Success against the obstacle counts: the rule in prose (every format), a
+// bin's label ("0", "4+"), and each (family, measure, group) of a sweep in
+// that order (the groups' indices into report.groups).
+std::string count_rule_text();
+std::string count_bin_label(const DifficultyBin& bin);
+struct CountRow {
+  std::string family;
+  size_t measure = 0;  // index into GroupStats::by_count
+  size_t group = 0;
+};
+std::vector<CountRow> count_rows(const SweepReport& report, const std::string& sweep);
 // Why a sweep's table of every two configurations is left out ("" when it is not).
 std::string pairs_omitted_text(const SweepReport& report, const std::string& sweep);
 // A p-value with 4 decimals, or in exponent form below 1e-4.
