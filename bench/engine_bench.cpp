@@ -9,6 +9,7 @@
 #include <kdl/chainjnttojacsolver.hpp>
 
 #include <rrlab/collision/collision_world.hpp>
+#include <rrlab/collision/self_collision.hpp>
 #include <rrlab/kinematics/kinematics.hpp>
 #include <rrlab/methods/registry.hpp>
 #include <rrlab/scenario/scenario.hpp>
@@ -155,6 +156,28 @@ void BM_rrlab_sim_step_planar7(benchmark::State& state) { sim_step(state, "01_pl
 void BM_rrlab_sim_step_dh7_pose(benchmark::State& state) { sim_step(state, "03_dh7_pose.json"); }
 BENCHMARK(BM_rrlab_sim_step_planar7);
 BENCHMARK(BM_rrlab_sim_step_dh7_pose);
+
+// The self-collision part of a step: every pair the robot's allowed-collision
+// matrix keeps, at the scenario's start (planar 7 links: 15 pairs; the 12-link
+// Chen arm: 55; the iiwa14 URDF capsules: 14).
+void self_distances(benchmark::State& state, const std::string& file) {
+  const Scenario scenario = load_scenario_file(std::string(RRLAB_SOURCE_DIR) + "/scenarios/" + file);
+  KinematicsData kin(scenario.model);
+  forward_kinematics(scenario.model, scenario.q0, kin);
+  SelfCollisionWorld world(scenario.model);
+  SelfDistanceTable table;
+  for (auto _ : state) {
+    world.compute(kin, table);
+    benchmark::DoNotOptimize(table.min_distance);
+  }
+  state.counters["pairs"] = double(table.pairs.size());
+}
+void BM_rrlab_self_distances_planar7(benchmark::State& state) { self_distances(state, "01_planar7_obstacles.json"); }
+void BM_rrlab_self_distances_planar12(benchmark::State& state) { self_distances(state, "16_chen_sim1_planar12.json"); }
+void BM_rrlab_self_distances_iiwa14(benchmark::State& state) { self_distances(state, "40_urdf_iiwa14_pose.json"); }
+BENCHMARK(BM_rrlab_self_distances_planar7);
+BENCHMARK(BM_rrlab_self_distances_planar12);
+BENCHMARK(BM_rrlab_self_distances_iiwa14);
 
 }  // namespace
 }  // namespace rrlab

@@ -66,6 +66,7 @@ struct GenerateOptions {
   std::optional<std::string> scenarios_dir;   // the catalogue (perturb)
   std::uint64_t seed = 1;
   int count = 1, first = 0;
+  std::vector<int> cases;            // exactly these indices (a report's unsolved cases), instead of count/first
   std::vector<std::string> options;  // KEY=VALUE, VALUE as JSON where it parses
   std::string out_dir;
   bool list = false;  // print the families (name, tab, summary) instead
@@ -87,6 +88,7 @@ struct ReportOptions {
 // 3 nothing to verify (replay --verify of a run that stored no frames).
 int run(const RunOptions& options);
 int methods();
+int collisions(const std::string& scenario_file);
 // generate: 0 every case written, 2 bad input (an option, an unknown family, an unwritable --out).
 int generate(const GenerateOptions& options);
 int serve(const ServeOptions& options);

@@ -1,12 +1,14 @@
 // rrlab generate FAMILY --seed S --count N [--first I] [--option KEY=VALUE ...] --out DIR:
 // the cases a sweep entry {"generator": FAMILY, "seed": S, "count": N, KEY: VALUE}
-// runs, as scenario files DIR/FAMILY-INDEX.json (witness included).
+// runs, as scenario files DIR/FAMILY-INDEX.json (witness included); with
+// --cases I,J,... exactly those indices (the unsolved cases a report lists).
 // rrlab generate --perturb SCENARIO ... likewise writes the cases of a sweep
 // entry {"perturb": SCENARIO, ...} as DIR/NAME-pINDEX.json; a dotted KEY
 // (obstacles.shift=0.03) sets a key of an object option.
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <set>
 
 #include <rrlab/generators/generators.hpp>
 #include <rrlab/generators/perturbation.hpp>
@@ -19,6 +21,8 @@
 namespace rrlab::cli {
 
 namespace {
+
+constexpr size_t kMaxCases = 1'000'000;  // as --count
 
 // KEY=VALUE: VALUE as JSON (numbers, [min, max], arrays of names), else as a
 // string; KEY may be dotted (a.b: key b of object option a).
@@ -52,6 +56,21 @@ sweep::ScenarioEntry perturbation_entry(const GenerateOptions& options, const nl
   return sweep::parse_scenario_entry(entry, "--perturb", {".", scenarios});
 }
 
+// The indices to write: --cases as given (each once), else --first onwards.
+std::vector<int> case_indices(const GenerateOptions& options) {
+  if (options.cases.empty()) {
+    std::vector<int> indices(size_t(options.count));
+    for (int i = 0; i < options.count; ++i) indices[size_t(i)] = options.first + i;
+    return indices;
+  }
+  if (options.cases.size() > kMaxCases)
+    throw ScenarioError("--cases", "at most " + std::to_string(kMaxCases) + " indices, got " + std::to_string(options.cases.size()));
+  std::set<int> seen;
+  for (int index : options.cases)
+    if (!seen.insert(index).second) throw ScenarioError("--cases", "index " + std::to_string(index) + " is given twice");
+  return options.cases;
+}
+
 }  // namespace
 
 int generate(const GenerateOptions& options) {
@@ -70,6 +89,7 @@ int generate(const GenerateOptions& options) {
       std::cerr << "rrlab: error: generate needs a FAMILY or --perturb SCENARIO (one of them)\n";
       return 2;
     }
+    const std::vector<int> indices = case_indices(options);
     std::optional<sweep::ScenarioEntry> perturbed;
     if (!options.perturb.empty()) perturbed = perturbation_entry(options, family_options);
     std::error_code error;
@@ -78,8 +98,7 @@ int generate(const GenerateOptions& options) {
       std::cerr << "rrlab: error: --out: cannot create '" << options.out_dir << "': " << error.message() << '\n';
       return 2;
     }
-    for (int i = 0; i < options.count; ++i) {
-      const int index = options.first + i;
+    for (const int index : indices) {
       const nlohmann::json doc =
           perturbed ? perturb_scenario(perturbed->scenario->json, perturbed->dir, perturbed->name, perturbed->perturbation,
                                        options.seed, index)

@@ -139,6 +139,11 @@ int main(int argc, char** argv) {
 
   app.add_subcommand("methods", "print every method with its parameter specs as JSON");
 
+  std::string collisions_file;
+  CLI::App* collisions_cmd =
+      app.add_subcommand("collisions", "print a scenario robot's allowed-collision matrix (self-collision pairs) as JSON");
+  collisions_cmd->add_option("scenario", collisions_file, "scenario JSON file")->required();
+
   rrlab::cli::SweepOptions sweep;
   CLI::App* sweep_cmd = app.add_subcommand("sweep", "run a sweep spec's runs (resumable, shardable) into a database");
   sweep_cmd->add_option("spec", sweep.spec_file, "sweep spec JSON file")->required();
@@ -168,9 +173,17 @@ int main(int argc, char** argv) {
   // the seeds a sweep spec's entries take (sweep/sweep_spec.cpp): a file is a sweep's case
   whole_number_in(generate_cmd->add_option("--seed", generate.seed, "the family's seed (as a sweep entry's \"seed\")"),
                   0, kInt64Max);
-  whole_number_in(generate_cmd->add_option("--count", generate.count, "cases to write"), 1, 1'000'000);
-  whole_number_in(generate_cmd->add_option("--first", generate.first, "index of the first case (default 0)"), 0,
-                  1'000'000'000);
+  CLI::Option* count_option =
+      whole_number_in(generate_cmd->add_option("--count", generate.count, "cases to write"), 1, 1'000'000);
+  CLI::Option* first_option = whole_number_in(
+      generate_cmd->add_option("--first", generate.first, "index of the first case (default 0)"), 0, 1'000'000'000);
+  whole_number_in(generate_cmd->add_option("--cases", generate.cases,
+                                           "exactly these case indices, comma-separated (a sweep report's unsolved "
+                                           "cases), instead of --count and --first")
+                      ->delimiter(','),
+                  0, 1'000'000'000)
+      ->excludes(count_option)
+      ->excludes(first_option);
   generate_cmd->add_option("--option", generate.options, "family option KEY=VALUE, VALUE as JSON (repeatable)");
   generate_cmd->add_option("--out", generate.out_dir, "directory to write FAMILY-INDEX.json (NAME-pINDEX.json) files into");
 
@@ -199,5 +212,6 @@ int main(int argc, char** argv) {
   if (merge_cmd->parsed()) return rrlab::cli::merge(merge);
   if (generate_cmd->parsed()) return rrlab::cli::generate(generate);
   if (report_cmd->parsed()) return rrlab::cli::report(report);
+  if (collisions_cmd->parsed()) return rrlab::cli::collisions(collisions_file);
   return rrlab::cli::methods();
 }

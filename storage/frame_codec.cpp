@@ -3,6 +3,7 @@
 #include <bit>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -153,6 +154,8 @@ Frame unpack_frame(std::string_view in) {
   f.q.resize(n);
   f.qdot.resize(n);
   f.diagnostics.resize(k);
+  // a blob from before self-collision knows no self distance: null, not 0
+  if (version < 3) f.min_self_distance = std::numeric_limits<double>::quiet_NaN();
   unpack_fields(f, in.data(), n, k, version, kFieldIndices);
   return f;
 }

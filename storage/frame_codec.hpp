@@ -13,19 +13,21 @@
 
 namespace rrlab::storage {
 
-// Layout (version 2, kFrameBlobVersion): u32 version word (0x52460000 |
+// Layout (version 3, kFrameBlobVersion): u32 version word (0x52460000 |
 // version), u32 n (joints), u32 k (diagnostics), then the blob fields of
 // kFrameFields (sim/frame_fields.hpp) in its order, the step as an i64 and
 // every other number as a double: t, q[n], qdot[n], ee[3], ee_quat[4]
 // (w x y z), target[3], task_error, orientation_error, min_distance,
-// min_distance_link, collided, joint_limit_margin, manipulability,
-// condition_number, diagnostics[k]. Version 1 (runs stored before the word
-// existed) starts at n and has the same fields. A version's fields are the
-// blob fields whose `since` is at most that version.
+// min_distance_link, collided, min_self_distance, self_link_a, self_link_b,
+// self_collided, joint_limit_margin, manipulability, condition_number,
+// diagnostics[k]. Version 2 has no self-collision fields (a decoded frame's
+// min_self_distance is NaN: unknown); version 1 (runs stored before the
+// word existed) starts at n and has version 2's fields. A version's fields
+// are the blob fields whose `since` is at most that version.
 void pack_frame(const Frame& frame, std::string& out, int version = kFrameBlobVersion);
 std::string pack_frame(const Frame& frame);
 
-// The format version of a packed frame (1 or 2); throws std::runtime_error
+// The format version of a packed frame (1 to kFrameBlobVersion); throws std::runtime_error
 // on a blob too short to say, or of a version this build does not know.
 int frame_blob_version(std::string_view blob);
 

@@ -64,11 +64,13 @@ int stored_version(const std::string& blob) {
   }
 }
 
-// The result fields of a summary: what a re-simulation must reproduce (step times differ run to run).
+// The result fields of a summary: what a re-simulation must reproduce (step
+// times differ run to run), by the summary's format (frame.hpp, kSummaryFormat).
 constexpr const char* kSummaryResultFields[] = {"steps", "collided", "min_distance", "max_tracking_error",
                                                 "final_tracking_error", "joint_limit_violated", "min_joint_limit_margin",
                                                 "max_condition_number", "nonfinite_steps", "max_qdot_ratio",
                                                 "max_qddot_ratio", "final_q"};
+constexpr const char* kSummaryFormat2Fields[] = {"obstacle_collided", "self_collided", "min_self_distance"};
 
 // A run without frames whose summary says it completed steps: as many steps, the summary compared after.
 void resimulate_from_summary(Simulator& sim, const RunRecord& run, EventReplayer& replayer,
@@ -90,11 +92,21 @@ void resimulate_from_summary(Simulator& sim, const RunRecord& run, EventReplayer
 
 std::string summary_difference(const RunRecord& run, const Summary& fresh_summary) {
   const json stored = json::parse(*run.summary_json, nullptr, false);
-  const json fresh = summary_to_json(fresh_summary);
-  for (const char* field : kSummaryResultFields) {
+  json fresh = summary_to_json(fresh_summary);
+  const int format = stored.is_object() && stored.contains("format") && stored["format"].is_number_integer()
+                         ? stored["format"].get<int>()
+                         : 1;
+  // format 1: `collided` meant an obstacle contact, and no link pair was checked
+  if (format < 2) fresh["collided"] = fresh["obstacle_collided"];
+  auto differs = [&](const char* field) {
     const json a = stored.contains(field) ? stored[field] : json(), b = fresh.contains(field) ? fresh[field] : json();
-    if (a != b) return std::string(field) + " " + a.dump() + " vs " + b.dump();
-  }
+    return a != b ? std::string(field) + " " + a.dump() + " vs " + b.dump() : std::string();
+  };
+  for (const char* field : kSummaryResultFields)
+    if (std::string d = differs(field); !d.empty()) return d;
+  if (format >= 2)
+    for (const char* field : kSummaryFormat2Fields)
+      if (std::string d = differs(field); !d.empty()) return d;
   return "";
 }
 

@@ -12,8 +12,8 @@ namespace rrlab::sweep {
 namespace {
 
 // In the order equal times are settled.
-enum Kind { kNonfinite, kCollision, kJointLimit, kJointSpeed, kTrackingLost, kStalled, kKinds };
-constexpr std::array<const char*, kKinds> kNames = {"nonfinite",   "collision",     "joint_limit",
+enum Kind { kNonfinite, kCollision, kSelfCollision, kJointLimit, kJointSpeed, kTrackingLost, kStalled, kKinds };
+constexpr std::array<const char*, kKinds> kNames = {"nonfinite",   "collision",   "self_collision", "joint_limit",
                                                     "joint_speed", "tracking_lost", "stalled"};
 // The path time the hand is at: searched this far back from the present.
 constexpr double kProgressSearch = 2.0;  // s
@@ -49,6 +49,7 @@ void FailureWatch::frame(const Frame& f) {
     if (!criteria_.nonfinite) note(kNonfinite, f.t);
   }
   if (!criteria_.collision && f.collided) note(kCollision, f.t);
+  if (!criteria_.collision && f.self_collided) note(kSelfCollision, f.t);
   if (criteria_.min_distance && !(f.min_distance >= *criteria_.min_distance)) note(kCollision, f.t);
   if (criteria_.joint_limits && f.joint_limit_margin < 0) note(kJointLimit, f.t);
   if (criteria_.joint_speeds) {

@@ -4,6 +4,8 @@
 // Modes, each with the time it began:
 // - collision: a link touches an obstacle (or comes nearer than the
 //   criteria's min_distance), unless the criteria allow collisions;
+// - self_collision: two links the allowed-collision matrix keeps touch,
+//   unless the criteria allow collisions;
 // - joint_limit: a joint past its limit, when the criteria hold limits;
 // - joint_speed: a joint faster than its velocity limit, when the criteria
 //   hold speeds;
@@ -29,7 +31,7 @@
 namespace rrlab::sweep {
 
 struct FirstFailure {
-  std::string mode;  // collision, joint_limit, joint_speed, tracking_lost, stalled, nonfinite
+  std::string mode;  // collision, self_collision, joint_limit, joint_speed, tracking_lost, stalled, nonfinite
   double t = 0;      // s
 };
 

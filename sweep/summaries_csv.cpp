@@ -29,7 +29,8 @@ std::string quoted(const std::string& text) {
   return out + "\"";
 }
 
-constexpr const char* kSummaryColumns[] = {"steps", "collided", "min_distance", "max_tracking_error",
+constexpr const char* kSummaryColumns[] = {"steps", "collided", "min_distance", "self_collided", "min_self_distance",
+                                           "max_tracking_error",
                                            "final_tracking_error", "joint_limit_violated", "min_joint_limit_margin",
                                            "max_qdot_ratio", "max_qddot_ratio", "max_condition_number",
                                            "nonfinite_steps"};
@@ -37,7 +38,8 @@ constexpr const char* kSummaryColumns[] = {"steps", "collided", "min_distance", 
 // The generated cases' difficulty (witness.difficulty), empty for other runs.
 constexpr const char* kDifficultyColumns[] = {"clearance",  "limit_margin",       "gap_width",
                                               "path_length", "duration",          "min_manipulability",
-                                              "interpolation_error", "peak_joint_speed"};
+                                              "interpolation_error", "peak_joint_speed", "blocking_obstacles",
+                                              "tight_obstacles"};
 
 }  // namespace
 

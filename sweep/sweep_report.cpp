@@ -1,6 +1,7 @@
 #include <rrlab/sweep/sweep_report.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -10,6 +11,7 @@
 #include <tuple>
 
 #include <rrlab/methods/witness_playback.hpp>
+#include <rrlab/sweep/sweep_power.hpp>
 #include <rrlab/util/nesting_depth.hpp>
 
 namespace rrlab::sweep {
@@ -29,7 +31,15 @@ struct RunFacts {
   double step_p50 = 0, step_p99 = 0;
   double clearance = std::numeric_limits<double>::quiet_NaN();     // the witness's, generated cases
   double limit_margin = std::numeric_limits<double>::quiet_NaN();  // the witness's, generated cases
+  std::array<int, kCountMeasures.size()> counts;                    // kCountMeasures; -1: not given
 };
+
+// An obstacle count of the difficulty: a non-negative integer, else -1.
+int count_or_none(const nlohmann::json& d, const char* key) {
+  if (!d.contains(key) || !d[key].is_number()) return -1;
+  const double v = d[key].get<double>();
+  return v >= 0 && v <= 1e9 && v == std::floor(v) ? int(v) : -1;
+}
 
 double number_or(const nlohmann::json& j, const char* key, double def) {
   return j.contains(key) && j[key].is_number() ? j[key].get<double>() : def;
@@ -37,11 +47,13 @@ double number_or(const nlohmann::json& j, const char* key, double def) {
 
 RunFacts facts_of(const storage::SweepRunEntry& e) {
   RunFacts f{&e};
+  f.counts.fill(-1);
   if (e.difficulty_json) {
     try {
       const nlohmann::json d = parse_json(*e.difficulty_json);
       f.clearance = number_or(d, "clearance", f.clearance);
       f.limit_margin = number_or(d, "limit_margin", f.limit_margin);
+      for (size_t m = 0; m < kCountMeasures.size(); ++m) f.counts[m] = count_or_none(d, kCountMeasures[m]);
     } catch (const std::exception&) {  // a difficulty that is not JSON counts as none
     }
   }
@@ -149,6 +161,39 @@ void difficulty_bins(const std::map<GroupKey, std::vector<const RunFacts*>>& gro
   }
 }
 
+// Success against the obstacle counts, every configuration of a (sweep,
+// family) binned alike (bins 0 .. kCountBins - 1, the last open); a measure
+// is kept where the family's cases fill two bins or more. Memory: the groups'
+// bins, whatever the runs.
+void count_bins(const std::map<GroupKey, std::vector<const RunFacts*>>& groups, std::vector<GroupStats>& stats) {
+  constexpr size_t kMeasures = kCountMeasures.size();
+  std::map<std::pair<std::string, std::string>, std::array<std::array<bool, kCountBins>, kMeasures>> filled;
+  for (GroupStats& g : stats) {
+    std::array<CountDifficulty, kMeasures> counts;
+    for (size_t m = 0; m < kMeasures; ++m) {
+      counts[m].measure = kCountMeasures[m];
+      for (size_t k = 0; k < kCountBins; ++k)
+        counts[m].bins[k] = {double(k), k + 1 < kCountBins ? double(k) : kInf, 0, 0};
+    }
+    for (const RunFacts* f : groups.at({g.sweep, g.config_key, g.family}))
+      for (size_t m = 0; m < kMeasures; ++m) {
+        if (f->counts[m] < 0) continue;
+        DifficultyBin& bin = counts[m].bins[std::min(size_t(f->counts[m]), kCountBins - 1)];
+        ++bin.n;
+        bin.successes += f->entry->row.success ? 1 : 0;
+      }
+    auto& family = filled[{g.sweep, g.family}];
+    for (size_t m = 0; m < kMeasures; ++m)
+      for (size_t k = 0; k < kCountBins; ++k) family[m][k] = family[m][k] || counts[m].bins[k].n > 0;
+    g.by_count.assign(counts.begin(), counts.end());
+  }
+  for (GroupStats& g : stats) {
+    const auto& family = filled.at({g.sweep, g.family});
+    for (size_t m = kMeasures; m-- > 0;)  // by_count holds every measure here, in order
+      if (std::count(family[m].begin(), family[m].end(), true) < 2) g.by_count.erase(g.by_count.begin() + long(m));
+  }
+}
+
 constexpr const char* kPinv = "pinv";
 
 // The group key's configuration is pinv with its defaults.
@@ -201,11 +246,56 @@ bool better(const GroupStats& x, const GroupStats& y) {
   return x.config_key < y.config_key;
 }
 
+// The family's fallback pair and unsolved cases (sweep_fallback.hpp), its
+// configurations in the verdict's `order` (the witness lane apart).
+FamilyFallback fallback_of(const CaseRuns& cases, const SweepReport& report, const std::string& sweep,
+                           const std::string& family, const std::vector<size_t>& order) {
+  FamilyOutcomes outcomes;
+  std::map<std::string, size_t> column;
+  for (size_t i : order) {
+    column[report.groups[i].config_key] = outcomes.configs.size();
+    outcomes.configs.push_back(report.groups[i].config_key);
+    outcomes.step_us.push_back(report.groups[i].step_us_p50);
+  }
+  outcomes.cases.reserve(cases.size());
+  for (const auto& [case_key, runs] : cases) {
+    FamilyOutcomes::Case& one = outcomes.cases.emplace_back();
+    one.scenario_key = case_key.first;
+    one.seed = case_key.second;
+    one.outcome.assign(outcomes.configs.size(), -1);
+    for (const auto& [config, run] : runs) {
+      const std::int8_t outcome = run->entry->row.success ? 1 : 0;
+      if (config == kWitnessMethod) one.witness = outcome;
+      else if (const auto at = column.find(config); at != column.end()) one.outcome[at->second] = outcome;
+    }
+  }
+  FamilyFallback fallback = family_fallback(outcomes);
+  fallback.sweep = sweep;
+  fallback.family = family;
+  return fallback;
+}
+
+// The verdict's power (FamilyVerdict): `basis` are the comparisons with the
+// best it rests on, taken together at their fewest cases and largest
+// discordance (one power search per family, however many configurations);
+// none: the best alone, every case taken as discordant.
+void state_power(FamilyVerdict& verdict, const std::vector<FamilyComparison>& basis) {
+  size_t cases = verdict.cases;
+  double psi = basis.empty() ? 1.0 : 0.0;
+  for (const FamilyComparison& c : basis) {
+    cases = std::min(cases, c.cases);
+    psi = std::max(psi, wilson_interval(c.success.wins + c.success.losses, c.cases).high);
+  }
+  verdict.detectable = min_detectable_difference(cases, psi);
+  verdict.discordance = psi;
+}
+
 // Per sweep and family: every configuration against pinv and against the
 // best, and the configurations not significantly worse than the best
 // (`cases`: (sweep, family) -> the family's cases). Two comparisons per
 // configuration, each over the family's cases: linear in the runs.
 void compare_within_families(std::map<std::pair<std::string, std::string>, CaseRuns>& cases, SweepReport& report) {
+  static_assert(kSignificance == kPowerAlpha, "the power is the power of the report's test");
   std::map<std::pair<std::string, std::string>, std::vector<size_t>> families;  // (sweep, family) -> groups
   for (size_t i = 0; i < report.groups.size(); ++i)
     families[{report.groups[i].sweep, report.groups[i].family}].push_back(i);
@@ -217,25 +307,44 @@ void compare_within_families(std::map<std::pair<std::string, std::string>, CaseR
     // the witness lane is a reference (it solves every case by construction), never the best
     std::erase_if(order, [&](size_t i) { return report.groups[i].config_key == kWitnessMethod; });
     if (order.empty()) continue;
-    const std::string& best = report.groups[order.front()].config_key;
+    const GroupStats& top = report.groups[order.front()];
+    const std::string& best = top.config_key;
     std::string pinv;
     for (size_t i : members)
       if (is_pinv(report.groups[i].config_key)) pinv = report.groups[i].config_key;
     FamilyVerdict verdict{sweep, family, best, {}};
+    verdict.cases = top.n;
+    verdict.best_group = order.front();
+    std::vector<size_t> listed;
+    std::vector<FamilyComparison> no_difference, runner_up;
     for (size_t i : order) {
       const std::string& config = report.groups[i].config_key;
       if (!pinv.empty() && config != pinv)
         report.comparisons.push_back(compare_on_family(cases[where], sweep, family, config, pinv, "pinv"));
       if (config == best) {
-        verdict.contenders.push_back(i);
+        listed.push_back(i);
         continue;
       }
       const FamilyComparison against_best = compare_on_family(cases[where], sweep, family, config, best, "best");
       report.comparisons.push_back(against_best);
+      if (runner_up.empty()) runner_up.push_back(against_best);
       const bool worse = against_best.success.losses > against_best.success.wins && against_best.mcnemar_p < kSignificance;
-      if (!worse) verdict.contenders.push_back(i);
+      if (worse) continue;
+      no_difference.push_back(against_best);
+      // never a configuration without a success beside one with
+      if (report.groups[i].successes > 0) listed.push_back(i);
+    }
+    state_power(verdict, no_difference.empty() ? runner_up : no_difference);
+    if (top.successes == 0) {
+      verdict.status = VerdictStatus::kNoSuccess;
+    } else if (!no_difference.empty() && !(verdict.detectable <= kSeparableDifference)) {
+      verdict.status = VerdictStatus::kTooFewCases;
+      verdict.cases_needed = cases_needed(kSeparableDifference, verdict.discordance);
+    } else {
+      verdict.contenders = std::move(listed);
     }
     report.verdicts.push_back(std::move(verdict));
+    report.fallbacks.push_back(fallback_of(cases[where], report, sweep, family, order));
   }
 }
 }  // namespace
@@ -264,6 +373,7 @@ SweepReport build_report(const std::vector<storage::SweepRunEntry>& entries, con
   for (const auto& [key, runs] : groups) report.groups.push_back(group_stats(runs));
   step_ratios(groups, report.groups);
   difficulty_bins(groups, report.groups);
+  count_bins(groups, report.groups);
 
   for (const auto& [sweep, configs] : by_config) {
     report.sweeps.push_back(sweep);

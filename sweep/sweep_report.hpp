@@ -24,11 +24,20 @@
 //    p-value;
 //  - "which method when": per sweep × family, the configurations whose
 //    success is not significantly below the best's (not: fewer wins than
-//    losses against it with p < 0.05), best first, with their step time;
+//    losses against it with p < 0.05) and that succeed at least once, best
+//    first, with their step time, and the smallest difference the family's
+//    cases detect (sweep_power.hpp); past kSeparableDifference no
+//    configurations are listed: the cases are too few to separate them;
+//  - what to try when the first choice fails: per sweep × family, the best
+//    first choice with a fallback and the cases no configuration solves
+//    (sweep_fallback.hpp);
 //  - success against difficulty per group: the family's cases binned at the
-//    quartiles of the witness's clearance (or limit margin).
+//    quartiles of the witness's clearance (or limit margin), and by the
+//    obstacles the minimum-norm arm meets and those tight on the witness
+//    (integer bins 0, 1, 2, 3, 4+).
 #pragma once
 
+#include <array>
 #include <atomic>
 #include <limits>
 #include <map>
@@ -37,6 +46,7 @@
 #include <vector>
 
 #include <rrlab/storage/run_store.hpp>
+#include <rrlab/sweep/sweep_fallback.hpp>
 #include <rrlab/sweep/sweep_stats.hpp>
 
 namespace rrlab::sweep {
@@ -46,6 +56,19 @@ namespace rrlab::sweep {
 struct DifficultyBin {
   double low = 0, high = 0;
   size_t n = 0, successes = 0;
+};
+
+// Success against an obstacle count of the case, the witness.difficulty
+// measures below: bin k holds the cases with k obstacles, the last those with
+// kCountBins - 1 or more (low = k, high = k; the last's high is +inf).
+inline constexpr size_t kCountBins = 5;
+// blocking: distinct obstacles the minimum-norm (pinv) arm meets over the run;
+// tight: obstacles within twice the family's clearance of the witness arm.
+inline constexpr std::array<const char*, 2> kCountMeasures = {"blocking_obstacles", "tight_obstacles"};
+
+struct CountDifficulty {
+  std::string measure;  // one of kCountMeasures
+  std::array<DifficultyBin, kCountBins> bins;
 };
 
 struct GroupStats {
@@ -65,6 +88,10 @@ struct GroupStats {
   // every configuration of the family). Empty for cases without a witness.
   std::string difficulty_measure;
   std::vector<DifficultyBin> by_difficulty;
+  // Success against each obstacle count (kCountMeasures order) that the
+  // family's cases carry and that puts them in two bins or more (one bin
+  // separates nothing); the same measures for every configuration of the family.
+  std::vector<CountDifficulty> by_count;
 };
 
 struct WinLossTie {
@@ -86,13 +113,35 @@ struct FamilyComparison {
   double mcnemar_p = 1;
 };
 
+// How a family's verdict reads.
+enum class VerdictStatus {
+  kContenders,   // the best and every configuration not separated from it
+  kTooFewCases,  // the cases detect no difference of kSeparableDifference: nothing listed
+  kNoSuccess,    // no configuration succeeded on any case
+};
+
 // Which method when: the family's best and those not significantly worse.
+// A configuration without a success is never listed when the best has one.
+// `detectable`: the smallest difference in success (a share) the cases
+// detect, with power 0.8 at p < 0.05 (sweep_power.hpp), on the comparisons
+// with the best that found no difference (the runner-up's when every other
+// configuration is significantly worse; every case discordant when there is
+// no other), at their fewest cases and the largest 95 % upper Wilson bound of
+// their discordant shares (`discordance`). Past kSeparableDifference
+// (while some comparison found no difference) the status is kTooFewCases,
+// with the cases a difference of kSeparableDifference needs at it.
 struct FamilyVerdict {
   std::string sweep, family, best;
   std::vector<size_t> contenders;  // indices into SweepReport::groups: the best first, then by success rate
+  size_t best_group = 0;           // the best's index into SweepReport::groups
+  VerdictStatus status = VerdictStatus::kContenders;
+  size_t cases = 0;  // the best's
+  double detectable = 0, discordance = 1;  // detectable: +inf when no difference can be
+  size_t cases_needed = 0;                 // kTooFewCases only
 };
 
 inline constexpr double kSignificance = 0.05;
+inline constexpr double kSeparableDifference = 0.20;
 // Every two configurations are paired only up to this many in a sweep (32: at
 // most 496 pairs); the report grows linearly in configurations x families.
 inline constexpr size_t kMaxPairedConfigs = 32;
@@ -112,6 +161,7 @@ struct SweepReport {
   std::vector<RankEntry> ranking;       // by sweep, best first
   std::vector<FamilyComparison> comparisons;  // by sweep, family, then configuration (the family's best first)
   std::vector<FamilyVerdict> verdicts;        // by sweep, family
+  std::vector<FamilyFallback> fallbacks;      // by sweep, family
 };
 
 inline constexpr double kDistanceTie = 1e-9;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <span>
 #include <string>
 
 #include <rrlab/sweep/sweep_report_text.hpp>
@@ -67,14 +68,61 @@ void success_chart(std::ostream& out, const SweepReport& report, const std::stri
   out << "</svg>\n";
 }
 
-// Success against difficulty, one chart per family: the family's bins (the
-// quartiles of its cases' witness clearance or limit margin) on x, harder
-// (smaller) first, success on y, one line per configuration.
-void difficulty_charts(std::ostream& out, const SweepReport& report, const std::string& sweep) {
+// One line of a success-by-bin chart: a configuration and its bins.
+struct BinLine {
+  const std::string* config;
+  std::span<const DifficultyBin> bins;
+};
+
+// Success per bin, one line per configuration: the bins evenly spaced on x
+// (their labels below, `axis` under them), success on y, a legend beside.
+void bins_svg(std::ostream& out, const std::string& aria, const std::string& axis, const std::vector<std::string>& labels,
+              const std::vector<BinLine>& lines) {
   static const char* kColours[] = {"#4a7fb5", "#d9822b", "#3a9d5d", "#c23b3b", "#8e6bbf", "#8c6d46",
                                    "#d46fb0", "#6f6f6f", "#b5b531", "#2fb3c4", "#1f3b73", "#e0a100"};
   constexpr double kLeft = 50, kPlot = 420, kHeight = 200, kTop = 16, kLegend = 260;
   constexpr double kGap = 70;  // between the plot and its legend: room for the last bin's label
+  const double height = std::max(kHeight, 18.0 * double(lines.size())) + kTop + 46;
+  const double step = labels.size() > 1 ? kPlot / double(labels.size() - 1) : 0;
+  out << "<svg role=\"img\" aria-label=\"" << escape(aria) << "\" width=\"" << fixed(kLeft + kPlot + kGap + kLegend)
+      << "\" height=\"" << fixed(height) << "\" xmlns=\"http://www.w3.org/2000/svg\">\n";
+  const auto y_of = [&](double rate) { return kTop + kHeight * (1 - rate); };
+  for (int tick = 0; tick <= 100; tick += 25)
+    out << "<line x1=\"" << fixed(kLeft) << "\" x2=\"" << fixed(kLeft + kPlot) << "\" y1=\"" << fixed(y_of(tick / 100.0))
+        << "\" y2=\"" << fixed(y_of(tick / 100.0)) << "\" stroke=\"#ddd\"/><text x=\"" << fixed(kLeft - 6) << "\" y=\""
+        << fixed(y_of(tick / 100.0) + 4) << "\" font-size=\"11\" text-anchor=\"end\" fill=\"#555\">" << tick << "%</text>\n";
+  for (size_t k = 0; k < labels.size(); ++k)
+    out << "<text x=\"" << fixed(kLeft + step * double(k)) << "\" y=\"" << fixed(kTop + kHeight + 16)
+        << "\" font-size=\"11\" text-anchor=\"middle\" fill=\"#555\">" << escape(labels[k]) << "</text>\n";
+  out << "<text x=\"" << fixed(kLeft + kPlot / 2) << "\" y=\"" << fixed(kTop + kHeight + 34)
+      << "\" font-size=\"11\" text-anchor=\"middle\" fill=\"#555\">" << escape(axis) << "</text>\n";
+  for (size_t i = 0; i < lines.size(); ++i) {
+    const char* colour = kColours[i % (sizeof kColours / sizeof kColours[0])];
+    std::string path;
+    for (size_t k = 0; k < lines[i].bins.size(); ++k) {
+      const DifficultyBin& b = lines[i].bins[k];
+      if (b.n == 0) continue;
+      path += (path.empty() ? "M" : "L") + fixed(kLeft + step * double(k)) + " " + fixed(y_of(double(b.successes) / double(b.n)));
+    }
+    out << "<path d=\"" << path << "\" stroke=\"" << colour << "\" stroke-width=\"2\" fill=\"none\"/>\n";
+    for (size_t k = 0; k < lines[i].bins.size(); ++k) {
+      const DifficultyBin& b = lines[i].bins[k];
+      if (b.n == 0) continue;
+      out << "<circle cx=\"" << fixed(kLeft + step * double(k)) << "\" cy=\"" << fixed(y_of(double(b.successes) / double(b.n)))
+          << "\" r=\"3\" fill=\"" << colour << "\"><title>" << escape(*lines[i].config) << ": " << b.successes << " of "
+          << b.n << "</title></circle>\n";
+    }
+    out << "<rect x=\"" << fixed(kLeft + kPlot + kGap) << "\" y=\"" << fixed(kTop + 18.0 * double(i)) << "\" width=\"12\" height=\"3\" fill=\""
+        << colour << "\"/><text x=\"" << fixed(kLeft + kPlot + kGap + 18) << "\" y=\"" << fixed(kTop + 18.0 * double(i) + 5)
+        << "\" font-size=\"12\">" << escape(*lines[i].config) << "</text>\n";
+  }
+  out << "</svg>\n";
+}
+
+// Success against difficulty, one chart per family: the family's bins (the
+// quartiles of its cases' witness clearance or limit margin) on x, harder
+// (smaller) first, success on y, one line per configuration.
+void difficulty_charts(std::ostream& out, const SweepReport& report, const std::string& sweep) {
   std::vector<std::string> families;
   for (const GroupStats& g : report.groups)
     if (g.sweep == sweep && !g.by_difficulty.empty() && std::find(families.begin(), families.end(), g.family) == families.end())
@@ -84,49 +132,62 @@ void difficulty_charts(std::ostream& out, const SweepReport& report, const std::
          "of the witness's clearance from the obstacles (or, without obstacles, its joint-limit margin): the "
          "narrowest cases on the left. Success per bin for every configuration (hover a point for its count).</p>\n";
   for (const std::string& family : families) {
-    std::vector<const GroupStats*> lines;
+    std::vector<BinLine> lines;
+    const GroupStats* first = nullptr;  // the family's bins and measure (every configuration's are the same)
     for (const GroupStats& g : report.groups)
-      if (g.sweep == sweep && g.family == family && !g.by_difficulty.empty()) lines.push_back(&g);
-    const std::vector<DifficultyBin>& bins = lines.front()->by_difficulty;
-    const double height = std::max(kHeight, 18.0 * double(lines.size())) + kTop + 46;
-    const double step = bins.size() > 1 ? kPlot / double(bins.size() - 1) : 0;
-    out << "<h4>" << escape(family) << " (" << escape(lines.front()->difficulty_measure) << ")</h4>\n"
-        << "<svg role=\"img\" aria-label=\"success against " << escape(lines.front()->difficulty_measure) << " in "
-        << escape(family) << "\" width=\"" << fixed(kLeft + kPlot + kGap + kLegend) << "\" height=\"" << fixed(height)
-        << "\" xmlns=\"http://www.w3.org/2000/svg\">\n";
-    const auto y_of = [&](double rate) { return kTop + kHeight * (1 - rate); };
-    for (int tick = 0; tick <= 100; tick += 25)
-      out << "<line x1=\"" << fixed(kLeft) << "\" x2=\"" << fixed(kLeft + kPlot) << "\" y1=\"" << fixed(y_of(tick / 100.0))
-          << "\" y2=\"" << fixed(y_of(tick / 100.0)) << "\" stroke=\"#ddd\"/><text x=\"" << fixed(kLeft - 6) << "\" y=\""
-          << fixed(y_of(tick / 100.0) + 4) << "\" font-size=\"11\" text-anchor=\"end\" fill=\"#555\">" << tick << "%</text>\n";
-    for (size_t k = 0; k < bins.size(); ++k)
-      out << "<text x=\"" << fixed(kLeft + step * double(k)) << "\" y=\"" << fixed(kTop + kHeight + 16)
-          << "\" font-size=\"11\" text-anchor=\"middle\" fill=\"#555\">" << short_number(bins[k].low) << "–"
-          << short_number(bins[k].high) << "</text>\n";
-    out << "<text x=\"" << fixed(kLeft + kPlot / 2) << "\" y=\"" << fixed(kTop + kHeight + 34)
-        << "\" font-size=\"11\" text-anchor=\"middle\" fill=\"#555\">" << escape(lines.front()->difficulty_measure)
-        << (lines.front()->difficulty_measure == "clearance" ? " (m)" : " (rad)") << "</text>\n";
-    for (size_t i = 0; i < lines.size(); ++i) {
-      const char* colour = kColours[i % (sizeof kColours / sizeof kColours[0])];
-      std::string path;
-      for (size_t k = 0; k < lines[i]->by_difficulty.size(); ++k) {
-        const DifficultyBin& b = lines[i]->by_difficulty[k];
-        if (b.n == 0) continue;
-        path += (path.empty() ? "M" : "L") + fixed(kLeft + step * double(k)) + " " + fixed(y_of(double(b.successes) / double(b.n)));
+      if (g.sweep == sweep && g.family == family && !g.by_difficulty.empty()) {
+        if (!first) first = &g;
+        lines.push_back({&g.config_key, g.by_difficulty});
       }
-      out << "<path d=\"" << path << "\" stroke=\"" << colour << "\" stroke-width=\"2\" fill=\"none\"/>\n";
-      for (size_t k = 0; k < lines[i]->by_difficulty.size(); ++k) {
-        const DifficultyBin& b = lines[i]->by_difficulty[k];
-        if (b.n == 0) continue;
-        out << "<circle cx=\"" << fixed(kLeft + step * double(k)) << "\" cy=\"" << fixed(y_of(double(b.successes) / double(b.n)))
-            << "\" r=\"3\" fill=\"" << colour << "\"><title>" << escape(lines[i]->config_key) << ": " << b.successes << " of "
-            << b.n << "</title></circle>\n";
-      }
-      out << "<rect x=\"" << fixed(kLeft + kPlot + kGap) << "\" y=\"" << fixed(kTop + 18.0 * double(i)) << "\" width=\"12\" height=\"3\" fill=\""
-          << colour << "\"/><text x=\"" << fixed(kLeft + kPlot + kGap + 18) << "\" y=\"" << fixed(kTop + 18.0 * double(i) + 5)
-          << "\" font-size=\"12\">" << escape(lines[i]->config_key) << "</text>\n";
+    std::vector<std::string> labels;
+    for (const DifficultyBin& b : first->by_difficulty) labels.push_back(short_number(b.low) + "–" + short_number(b.high));
+    const std::string& measure = first->difficulty_measure;
+    out << "<h4>" << escape(family) << " (" << escape(measure) << ")</h4>\n";
+    bins_svg(out, "success against " + measure + " in " + family, measure + (measure == "clearance" ? " (m)" : " (rad)"),
+             labels, lines);
+  }
+}
+
+// Success against the obstacle counts: one chart per family and count, the
+// bins 0 .. 4+ on x (more obstacles, harder, to the right).
+void count_charts(std::ostream& out, const SweepReport& report, const std::string& sweep) {
+  const std::vector<CountRow> rows = count_rows(report, sweep);
+  if (rows.empty()) return;
+  out << "<h3>Success against obstacle counts</h3>\n<p class=\"note\">" << escape(count_rule_text()) << "</p>\n";
+  for (size_t begin = 0; begin < rows.size();) {
+    size_t end = begin;
+    std::vector<BinLine> lines;
+    for (; end < rows.size() && rows[end].family == rows[begin].family && rows[end].measure == rows[begin].measure; ++end) {
+      const GroupStats& g = report.groups[rows[end].group];
+      lines.push_back({&g.config_key, g.by_count[rows[end].measure].bins});
     }
-    out << "</svg>\n";
+    const CountDifficulty& first = report.groups[rows[begin].group].by_count[rows[begin].measure];
+    std::vector<std::string> labels;
+    for (const DifficultyBin& b : first.bins) labels.push_back(count_bin_label(b));
+    const std::string& family = rows[begin].family;
+    out << "<h4>" << escape(family) << " (" << first.measure << ")</h4>\n";
+    bins_svg(out, "success against " + first.measure + " in " + family, first.measure + " (count)", labels, lines);
+    begin = end;
+  }
+}
+
+// What to try when the first choice fails: the pair per family, then each
+// family's unsolved cases with the commands that write them.
+void fallbacks_html(std::ostream& out, const SweepReport& report, const std::string& sweep) {
+  out << "<h3>What to try when the first choice fails</h3>\n<p class=\"note\">" << escape(fallback_rule_text())
+      << "</p>\n<table><tr><th>family</th><th>first choice, then fallback (solved/cases)</th><th>cost µs/step</th>"
+         "<th>solved by some configuration</th><th>unsolved</th></tr>\n";
+  for (const FamilyFallback& f : report.fallbacks) {
+    if (f.sweep != sweep) continue;
+    out << "<tr><td>" << escape(f.family) << "</td><td>" << escape(fallback_choice_text(f)) << "</td><td class=\"n\">"
+        << short_number(f.cost_us) << "</td><td class=\"n\">" << f.solved_by_some << "/" << f.cases
+        << "</td><td class=\"n\">" << f.unsolved << "</td></tr>\n";
+  }
+  out << "</table>\n";
+  for (const FamilyFallback& f : report.fallbacks) {
+    if (f.sweep != sweep || f.unsolved == 0) continue;
+    out << "<p><b>" << escape(f.family) << "</b>, unsolved: " << escape(unsolved_text(f)) << "</p>\n";
+    for (const std::string& command : unsolved_commands(f)) out << "<pre>" << escape(command) << "</pre>\n";
   }
 }
 
@@ -163,14 +224,18 @@ void write_report_html(std::ostream& out, const SweepReport& report) {
     }
     out << "</table>\n";
     difficulty_charts(out, report, sweep);
-    out << "<h3>Which method when</h3>\n<p class=\"note\">Per family: the best configuration and every "
-           "one whose success is not significantly below it (paired on the same cases, exact McNemar p &lt; 0.05), "
-           "with step time.</p>\n<table><tr><th>family</th><th>configurations (success, step µs p50, × pinv)</th></tr>\n";
+    count_charts(out, report, sweep);
+    out << "<h3>Which method when</h3>\n<p class=\"note\">" << escape(verdict_rule_text())
+        << "</p>\n<table><tr><th>family</th><th>cases</th><th>detects</th>"
+           "<th>configurations (success, step µs p50, × pinv)</th></tr>\n";
     for (const FamilyVerdict& v : report.verdicts) {
       if (v.sweep != sweep) continue;
-      out << "<tr><td>" << escape(v.family) << "</td><td>" << escape(contenders_text(report, v)) << "</td></tr>\n";
+      out << "<tr><td>" << escape(v.family) << "</td><td class=\"n\">" << v.cases << "</td><td>"
+          << escape(detectable_text(v)) << "</td><td>" << escape(verdict_text(report, v)) << "</td></tr>\n";
     }
-    out << "</table>\n<h3>Against pinv and the family's best</h3>\n<table><tr><th>family</th><th>method config</th>"
+    out << "</table>\n";
+    fallbacks_html(out, report, sweep);
+    out << "<h3>Against pinv and the family's best</h3>\n<table><tr><th>family</th><th>method config</th>"
            "<th>against</th><th>cases</th><th>success W/L/T</th><th>McNemar p</th></tr>\n";
     for (const FamilyComparison& c : report.comparisons) {
       if (c.sweep != sweep) continue;

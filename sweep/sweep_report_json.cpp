@@ -5,6 +5,8 @@
 #include <map>
 #include <numeric>
 
+#include <rrlab/sweep/sweep_report_text.hpp>
+
 namespace rrlab::sweep {
 
 namespace {
@@ -36,6 +38,53 @@ std::vector<size_t> rows_to_show(size_t count, size_t max_rows, RankOf rank_of) 
   return rows;
 }
 
+const char* status_name(VerdictStatus status) {
+  switch (status) {
+    case VerdictStatus::kTooFewCases: return "too_few_cases";
+    case VerdictStatus::kNoSuccess: return "no_success";
+    case VerdictStatus::kContenders: break;
+  }
+  return "contenders";
+}
+
+// Success by difficulty bin; an open last bin's high (+inf) is null.
+template <typename Bins>
+nlohmann::json bins_json(const Bins& bins) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const DifficultyBin& b : bins)
+    out.push_back({{"low", number(b.low)}, {"high", number(b.high)}, {"n", b.n}, {"successes", b.successes}});
+  return out;
+}
+
+nlohmann::json name_or_null(const std::string& name) { return name.empty() ? nlohmann::json() : nlohmann::json(name); }
+
+// One family's fallback row; its unsolved keys while `key_budget` lasts.
+nlohmann::json fallback_json(const FamilyFallback& f, size_t& key_budget) {
+  nlohmann::json keys = nlohmann::json::array();
+  for (size_t k = 0; k < f.unsolved_listed.size() && key_budget > 0; ++k, --key_budget)
+    keys.push_back({{"case", f.unsolved_listed[k].scenario_key}, {"seed", f.unsolved_listed[k].seed}});
+  nlohmann::json commands = nlohmann::json::array();
+  if (keys.size() == f.unsolved_listed.size())
+    for (const std::string& command : unsolved_commands(f)) commands.push_back(command);
+  return {{"sweep", f.sweep},
+          {"family", f.family},
+          {"cases", f.cases},
+          {"solved_by_some", f.solved_by_some},
+          {"first", name_or_null(f.first)},
+          {"second", name_or_null(f.second)},
+          {"pair_cases", f.pair_cases},
+          {"first_solved", f.first_solved},
+          {"pair_solved", f.pair_solved},
+          {"cost_us", number(f.cost_us)},
+          {"configs_considered", f.configs_considered},
+          {"configs_total", f.configs_total},
+          {"unsolved",
+           {{"total", f.unsolved},
+            {"witness_solves", f.witness_solves ? nlohmann::json(*f.witness_solves) : nlohmann::json()},
+            {"listed", keys},
+            {"generate", commands}}}};
+}
+
 }  // namespace
 
 nlohmann::json report_json(const SweepReport& report, size_t max_rows) {
@@ -56,9 +105,8 @@ nlohmann::json report_json(const SweepReport& report, size_t max_rows) {
   note_cut("groups", report.groups.size(), group_rows.size());
   for (size_t row : group_rows) {
     const GroupStats& g = report.groups[row];
-    nlohmann::json bins = nlohmann::json::array();
-    for (const DifficultyBin& b : g.by_difficulty)
-      bins.push_back({{"low", number(b.low)}, {"high", number(b.high)}, {"n", b.n}, {"successes", b.successes}});
+    nlohmann::json counts = nlohmann::json::object();
+    for (const CountDifficulty& c : g.by_count) counts[c.measure] = bins_json(c.bins);
     groups.push_back({{"sweep", g.sweep},
                       {"config", g.config_key},
                       {"family", g.family},
@@ -76,7 +124,8 @@ nlohmann::json report_json(const SweepReport& report, size_t max_rows) {
                       {"step_ratio_to_pinv", number(g.step_ratio_to_pinv)},
                       {"failure_modes", g.failure_modes},
                       {"difficulty", {{"measure", g.difficulty_measure.empty() ? nlohmann::json() : nlohmann::json(g.difficulty_measure)},
-                                      {"bins", bins}}}});
+                                      {"bins", bins_json(g.by_difficulty)}}},
+                      {"difficulty_counts", counts}});
   }
   const std::vector<size_t> pair_rows = rows_to_show(report.pairs.size(), max_rows, [&](size_t i) {
     return std::min(rank(report.pairs[i].sweep, report.pairs[i].a), rank(report.pairs[i].sweep, report.pairs[i].b));
@@ -123,12 +172,38 @@ nlohmann::json report_json(const SweepReport& report, size_t max_rows) {
     nlohmann::json contenders = nlohmann::json::array();
     for (size_t k = 0; k < v.contenders.size() && k < kMaxVerdictNames; ++k)
       contenders.push_back(report.groups[v.contenders[k]].config_key);
-    nlohmann::json verdict = {{"sweep", v.sweep}, {"family", v.family}, {"best", v.best}, {"not_worse", contenders}};
+    nlohmann::json verdict = {{"sweep", v.sweep},
+                              {"family", v.family},
+                              {"best", v.best},
+                              {"status", status_name(v.status)},
+                              {"not_worse", contenders},
+                              {"cases", v.cases},
+                              {"detectable_difference", number(v.detectable)},
+                              {"discordance", number(v.discordance)}};
     if (v.contenders.size() > kMaxVerdictNames) verdict["not_worse_total"] = v.contenders.size();
+    if (v.status == VerdictStatus::kTooFewCases) {
+      verdict["cases_needed"] = v.cases_needed;
+      verdict["separable_difference"] = kSeparableDifference;  // the difference cases_needed is for
+    }
     verdicts.push_back(std::move(verdict));
   }
-  nlohmann::json out = {{"sweeps", report.sweeps}, {"groups", groups},           {"pairs", pairs},
-                        {"ranking", ranking},      {"comparisons", comparisons}, {"verdicts", verdicts}};
+  nlohmann::json fallbacks = nlohmann::json::array();
+  const std::vector<size_t> fallback_rows = rows_to_show(report.fallbacks.size(), max_rows, [](size_t) { return 0; });
+  note_cut("fallbacks", report.fallbacks.size(), fallback_rows.size());
+  size_t key_budget = kMaxUnsolvedKeys, keys_listed = 0;
+  for (size_t row : fallback_rows) {
+    fallbacks.push_back(fallback_json(report.fallbacks[row], key_budget));
+    keys_listed += report.fallbacks[row].unsolved_listed.size();
+  }
+  note_cut("unsolved_keys", keys_listed, std::min(keys_listed, kMaxUnsolvedKeys));
+  nlohmann::json out = {{"sweeps", report.sweeps},
+                        {"groups", groups},
+                        {"pairs", pairs},
+                        {"ranking", ranking},
+                        {"comparisons", comparisons},
+                        {"verdicts", verdicts},
+                        {"fallbacks", fallbacks},
+                        {"rules", {{"verdicts", verdict_rule_text()}, {"fallbacks", fallback_rule_text()}}}};
   nlohmann::json omitted = nlohmann::json::object();
   for (const auto& [sweep, configs] : report.pairs_omitted) omitted[sweep] = configs;
   if (!omitted.empty()) out["pairs_omitted"] = {{"configurations", omitted}, {"max_paired", kMaxPairedConfigs}};

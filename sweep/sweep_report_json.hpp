@@ -15,6 +15,9 @@ namespace rrlab::sweep {
 // every run stays readable through GET /api/sweeps/{id}/runs.
 inline constexpr size_t kMaxReportRows = 5000;
 inline constexpr size_t kMaxVerdictNames = 200;
+// Unsolved case keys listed over all families (each lists at most
+// kMaxUnsolvedListed): past it a family gives its count alone.
+inline constexpr size_t kMaxUnsolvedKeys = 2000;
 
 nlohmann::json report_json(const SweepReport& report, size_t max_rows = kMaxReportRows);
 

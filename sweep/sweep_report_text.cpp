@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 #include <algorithm>
+#include <array>
+#include <tuple>
 
 namespace rrlab::sweep {
 
@@ -32,11 +34,87 @@ std::string cell(const std::string& text) {
   return out;
 }
 
+// A share as percentage points: "20 points".
+std::string points(double share) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.1f", 100 * share);
+  std::string text = buf;
+  if (text.ends_with(".0")) text.resize(text.size() - 2);
+  return text + " points";
+}
+
 std::string wlt(const WinLossTie& t) {
   return std::to_string(t.wins) + "/" + std::to_string(t.losses) + "/" + std::to_string(t.ties);
 }
 
+// "What to try when the first choice fails": the pair per family, then each
+// family's unsolved cases with the commands that write them.
+void write_fallbacks_markdown(std::ostream& out, const SweepReport& report, const std::string& sweep) {
+  out << "\n### What to try when the first choice fails\n\n" << fallback_rule_text() << "\n\n"
+      << "| family | first choice, then fallback (solved/cases) | cost µs/step | solved by some configuration | unsolved |\n"
+         "|---|---|---:|---:|---:|\n";
+  for (const FamilyFallback& f : report.fallbacks) {
+    if (f.sweep != sweep) continue;
+    out << "| " << cell(f.family) << " | " << cell(fallback_choice_text(f)) << " | " << short_number(f.cost_us) << " | "
+        << f.solved_by_some << "/" << f.cases << " | " << f.unsolved << " |\n";
+  }
+  for (const FamilyFallback& f : report.fallbacks) {
+    if (f.sweep != sweep || f.unsolved == 0) continue;
+    out << "\n- **" << cell(f.family) << "**, unsolved: " << unsolved_text(f) << "\n";
+    for (const std::string& command : unsolved_commands(f)) out << "  - `" << command << "`\n";
+  }
+}
+
+// Success against the obstacle counts: one row per family, measure and
+// configuration, a column per bin ("successes/n").
+void write_counts_markdown(std::ostream& out, const SweepReport& report, const std::string& sweep) {
+  const std::vector<CountRow> rows = count_rows(report, sweep);
+  if (rows.empty()) return;
+  out << "\n### Success against obstacle counts\n\n" << count_rule_text() << "\n\n| family | count | method config |";
+  const std::array<DifficultyBin, kCountBins>& first = report.groups[rows.front().group].by_count[rows.front().measure].bins;
+  for (const DifficultyBin& b : first) out << ' ' << count_bin_label(b) << " |";
+  out << "\n|---|---|---|";
+  for (size_t k = 0; k < kCountBins; ++k) out << "---:|";
+  out << '\n';
+  for (const CountRow& row : rows) {
+    const GroupStats& g = report.groups[row.group];
+    const CountDifficulty& c = g.by_count[row.measure];
+    out << "| " << cell(row.family) << " | " << c.measure << " | " << cell(g.config_key) << " |";
+    for (const DifficultyBin& b : c.bins)
+      out << ' ' << (b.n ? std::to_string(b.successes) + "/" + std::to_string(b.n) : "—") << " |";
+    out << '\n';
+  }
+}
+
 }  // namespace
+
+std::string count_rule_text() {
+  return "Success against two counts of each generated case's witness.difficulty: blocking_obstacles, the distinct "
+         "obstacles the minimum-norm (pinv) arm meets over the run, and tight_obstacles, the obstacles within twice "
+         "the family's clearance of the witness arm. Bins of 0, 1, 2, 3 and " + std::to_string(kCountBins - 1) +
+         " or more obstacles; a cell is the configuration's successes of the family's cases in that bin. A count "
+         "is shown for a family whose cases fill at least two bins.";
+}
+
+std::string count_bin_label(const DifficultyBin& bin) {
+  const std::string low = std::to_string(long(bin.low));
+  if (!std::isfinite(bin.high)) return low + "+";
+  return bin.high == bin.low ? low : low + "–" + std::to_string(long(bin.high));
+}
+
+std::vector<CountRow> count_rows(const SweepReport& report, const std::string& sweep) {
+  std::vector<CountRow> rows;
+  for (size_t i = 0; i < report.groups.size(); ++i) {
+    const GroupStats& g = report.groups[i];
+    if (g.sweep != sweep) continue;
+    for (size_t m = 0; m < g.by_count.size(); ++m) rows.push_back({g.family, m, i});
+  }
+  // the groups are by configuration, then family: by family, then measure, configurations in that order
+  std::stable_sort(rows.begin(), rows.end(), [](const CountRow& x, const CountRow& y) {
+    return std::tie(x.family, x.measure) < std::tie(y.family, y.measure);
+  });
+  return rows;
+}
 
 std::string failure_modes_text(const GroupStats& g) {
   std::vector<std::pair<size_t, std::string>> modes;
@@ -52,9 +130,81 @@ std::string contenders_text(const SweepReport& report, const FamilyVerdict& verd
   for (size_t i : verdict.contenders) {
     const GroupStats& g = report.groups[i];
     list += (list.empty() ? "" : "; ") + g.config_key + " (" + percent(g.success_rate) + ", " +
-            short_number(g.step_us_p50) + " µs, " + short_number(g.step_ratio_to_pinv) + "×)";
+            short_number(g.step_us_p50) + " µs" +
+            (std::isnan(g.step_ratio_to_pinv) ? "" : ", " + short_number(g.step_ratio_to_pinv) + "×") + ")";
   }
   return list;
+}
+
+std::string verdict_text(const SweepReport& report, const FamilyVerdict& verdict) {
+  switch (verdict.status) {
+    case VerdictStatus::kNoSuccess:
+      return "no configuration succeeded on any case";
+    case VerdictStatus::kTooFewCases:
+      return "too few cases to separate the methods (a difference of " + points(kSeparableDifference) + " needs about " +
+             std::to_string(verdict.cases_needed) + " cases); best observed, not separated from the others: " +
+             verdict.best + " (" + percent(report.groups[verdict.best_group].success_rate) + ")";
+    case VerdictStatus::kContenders:
+      break;
+  }
+  return contenders_text(report, verdict);
+}
+
+std::string detectable_text(const FamilyVerdict& verdict) {
+  if (!std::isfinite(verdict.detectable)) return "none: too few cases for p < 0.05";
+  return points(verdict.detectable) + " (discordance ≤ " + percent(verdict.discordance) + ")";
+}
+
+std::string verdict_rule_text() {
+  return "Per family: the best configuration (success rate, then median max tracking error; never the witness "
+         "lane) and every one whose success is not significantly below it (paired on the same cases: not fewer "
+         "wins than losses with an exact McNemar p < 0.05) and that succeeds at least once (a configuration without "
+         "a success is never listed beside one with), with step time. Detects: the smallest difference in success "
+         "the cases detect with 80 % power at two-sided p < 0.05 (the exact McNemar test's power, at the "
+         "discordance, the share of cases where exactly one of the two succeeds, taken at its 95 % upper Wilson "
+         "bound), over the comparisons with the best that found no difference, at their largest discordance (where every other "
+         "configuration is significantly worse, the runner-up's, for information: the best stands alone; with one "
+         "configuration, every case taken as discordant). Where it exceeds " +
+         points(kSeparableDifference) +
+         " while some configuration is not shown worse, there are too few cases to separate the methods: none is "
+         "listed, the best observed is named as not separated, and the row gives about how many cases a difference "
+         "of " + points(kSeparableDifference) + " needs.";
+}
+
+std::string fallback_rule_text() {
+  return "Per family: the first choice A and the fallback B that together solve the most cases (a case counts when A "
+         "solves it or, failing A, B does), then the lowest cost per step (A's step time plus B's times A's failure "
+         "share), one configuration before two (B only when it solves a case A fails); pairs among the family's " +
+         std::to_string(kMaxFallbackConfigs) +
+         " most successful configurations. An offline upper bound: B is credited with what it did when run from "
+         "the start, not from where A failed. The witness lane is the certificate, not a method: never a "
+         "candidate, never counted as solving. Unsolved: the cases no configuration solves; those the witness "
+         "solves are the frontier. The commands write exactly the listed cases (the first " +
+         std::to_string(kMaxUnsolvedListed) +
+         " of a family); add the sweep entry's options, if it had any, as --option KEY=VALUE.";
+}
+
+std::string fallback_choice_text(const FamilyFallback& f) {
+  if (f.first.empty()) return "—";
+  const std::string first = f.first + " " + std::to_string(f.first_solved) + "/" + std::to_string(f.pair_cases);
+  if (f.second.empty()) return first + ", alone: no configuration solves a case it fails";
+  return first + ", then " + f.second + ": " + std::to_string(f.pair_solved) + "/" + std::to_string(f.pair_cases) +
+         " (" + percent(double(f.pair_solved) / double(f.pair_cases)) + ", +" +
+         std::to_string(f.pair_solved - f.first_solved) + ")";
+}
+
+std::string unsolved_text(const FamilyFallback& f) {
+  std::string text = std::to_string(f.unsolved) + " of " + std::to_string(f.cases);
+  if (f.witness_solves) text += " (the witness solves " + std::to_string(*f.witness_solves) + ")";
+  if (f.unsolved == 0) return text;
+  text += ": ";
+  for (size_t i = 0; i < f.unsolved_listed.size(); ++i) {
+    const CaseRef& ref = f.unsolved_listed[i];
+    text += (i ? ", " : "") + ref.scenario_key + (f.several_seeds ? " (seed " + std::to_string(ref.seed) + ")" : "");
+  }
+  if (f.unsolved_listed.size() < f.unsolved)
+    text += " (the first " + std::to_string(f.unsolved_listed.size()) + " of " + std::to_string(f.unsolved) + ")";
+  return text;
 }
 
 std::string pairs_omitted_text(const SweepReport& report, const std::string& sweep) {
@@ -108,14 +258,15 @@ void write_report_markdown(std::ostream& out, const SweepReport& report) {
           << percent(g.nonfinite_share) << " | " << short_number(g.step_us_p50) << " | " << short_number(g.step_us_p99)
           << " | " << short_number(g.step_ratio_to_pinv) << " | " << cell(failure_modes_text(g)) << " |\n";
     }
-    out << "\n### Which method when\n\nPer family: the best configuration (success rate, then median max "
-           "tracking error) and every one whose success is not significantly below it (paired on the same "
-           "cases: not fewer wins than losses with an exact McNemar p < 0.05), with step time.\n\n"
-        << "| family | configurations (success, step µs p50, × pinv) |\n|---|---|\n";
+    write_counts_markdown(out, report, sweep);
+    out << "\n### Which method when\n\n" << verdict_rule_text() << "\n\n"
+        << "| family | cases | detects | configurations (success, step µs p50, × pinv) |\n|---|---:|---|---|\n";
     for (const FamilyVerdict& v : report.verdicts) {
       if (v.sweep != sweep) continue;
-      out << "| " << cell(v.family) << " | " << cell(contenders_text(report, v)) << " |\n";
+      out << "| " << cell(v.family) << " | " << v.cases << " | " << detectable_text(v) << " | "
+          << cell(verdict_text(report, v)) << " |\n";
     }
+    write_fallbacks_markdown(out, report, sweep);
     out << "\n### Against pinv and the family's best\n\nPaired on the same cases of a family: the "
            "configuration's wins/losses/ties on success, and the exact McNemar p-value of the wins against "
            "the losses.\n\n"

@@ -182,4 +182,17 @@ void fcl_mesh_obstacle(const MeshBvh& bvh, const Eigen::Isometry3d& link_pose, c
   }
 }
 
+double fcl_mesh_mesh(const MeshBvh& a, const Eigen::Isometry3d& pose_a, const MeshBvh& b,
+                     const Eigen::Isometry3d& pose_b, Vector3d& on_a, Vector3d& on_b) {
+  fcl::DistanceRequestd request(true, false, 0.0, 0.0, 1e-10, fcl::GST_INDEP);
+  fcl::DistanceResultd result;
+  fcl::distance(&a, pose_a, &b, pose_b, request, result);
+  on_a = result.nearest_points[0];
+  on_b = result.nearest_points[1];
+  if (result.min_distance > 0) return result.min_distance;
+  on_a = pose_a.translation();  // no points from FCL's mesh distance at contact
+  on_b = pose_b.translation();
+  return -kMeshContact;
+}
+
 }  // namespace rrlab::collision

@@ -38,4 +38,9 @@ void fcl_capsule_obstacle(const FclCapsule& capsule, const ObstacleGeometry& g, 
 void fcl_mesh_obstacle(const MeshBvh& bvh, const Eigen::Isometry3d& link_pose, const ObstacleGeometry& g,
                        const FclObstacle& shapes, LinkObstacleDistance& out);
 
+// Two mesh links (self-collision): FCL's BVH distance, nearest points in
+// `on_a`, `on_b` (world). Touching or penetrating reports -kMeshContact.
+double fcl_mesh_mesh(const MeshBvh& a, const Eigen::Isometry3d& pose_a, const MeshBvh& b,
+                     const Eigen::Isometry3d& pose_b, Eigen::Vector3d& on_a, Eigen::Vector3d& on_b);
+
 }  // namespace rrlab::collision

@@ -52,6 +52,12 @@ struct Link {
   std::shared_ptr<const TriangleMesh> mesh;
 };
 
+// Two links (0-based, a < b) whose contact is a self-collision.
+struct SelfPair {
+  int a = 0, b = 0;
+  bool operator==(const SelfPair& o) const { return a == o.a && b == o.b; }
+};
+
 struct JointLimits {
   Eigen::VectorXd lower, upper;         // position; -inf/+inf when unbounded
   Eigen::VectorXd velocity, acceleration;  // magnitudes; +inf when unbounded
@@ -66,6 +72,9 @@ struct Model {
   std::vector<Joint> joints;
   std::vector<Link> links;
   JointLimits limits;
+  // The link pairs checked for self-collision: every pair the allowed-collision
+  // matrix keeps (collision/allowed_collisions.hpp). Empty: nothing checked.
+  std::vector<SelfPair> self_pairs;
 
   // one per joint, set by the builders (plan_joints); when its size is not
   // dof() (a model assembled by hand) kinematics classifies each joint as it goes

@@ -78,6 +78,13 @@ std::string JsonObject::string(const std::string& key, const std::string& def) {
   return has(key) ? string(key) : def;
 }
 
+bool JsonObject::boolean(const std::string& key, bool def) {
+  if (!has(key)) return def;
+  const nlohmann::json& v = raw(key);
+  if (!v.is_boolean()) throw ScenarioError(child(key), "must be true or false, got " + json_type_name(v));
+  return v.get<bool>();
+}
+
 std::string JsonObject::choice(const std::string& key, std::initializer_list<const char*> options,
                                const char* def) {
   if (!has(key) && def) return def;

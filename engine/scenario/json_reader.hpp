@@ -31,6 +31,7 @@ class JsonObject {
   std::optional<double> optional_number(const std::string& key);
   std::string string(const std::string& key);
   std::string string(const std::string& key, const std::string& def);
+  bool boolean(const std::string& key, bool def);
   std::string choice(const std::string& key, std::initializer_list<const char*> options,
                      const char* def = nullptr);
   // A fixed-length or bounded-length array of numbers.

@@ -10,6 +10,7 @@
 #include <mutex>
 #include <sstream>
 
+#include <rrlab/collision/allowed_collisions.hpp>
 #include <rrlab/methods/registry.hpp>
 #include <rrlab/scenario/json_reader.hpp>
 #include <rrlab/scenario/physical_bounds.hpp>
@@ -122,10 +123,37 @@ Eigen::VectorXd parse_limit_vector(JsonObject& limits, const std::string& key, c
   return out;
 }
 
+// robot.self_collision (default true) and robot.allowed_collisions: pairs of
+// 1-based link numbers never checked, as an SRDF's disable list.
+void parse_self_collision(JsonObject& robot, Model& model) {
+  const bool enabled = robot.boolean("self_collision", true);
+  std::vector<SelfPair> allowed;
+  if (robot.has("allowed_collisions")) {
+    const json& pairs = robot.array("allowed_collisions", size_t(model.link_count()) * size_t(model.link_count()));
+    const std::string path = robot.child("allowed_collisions");
+    for (size_t i = 0; i < pairs.size(); ++i) {
+      const std::string at = index_path(path, i);
+      const std::vector<double> links = json_numbers(pairs[i], at, 2, 2);
+      for (size_t k = 0; k < 2; ++k)
+        if (links[k] != std::floor(links[k]) || links[k] < 1 || links[k] > model.link_count())
+          throw ScenarioError(index_path(at, k), "must be a link number from 1 to " + std::to_string(model.link_count()));
+      if (links[0] == links[1]) throw ScenarioError(at, "names one link twice: a pair is two links");
+      const int a = int(links[0]) - 1, b = int(links[1]) - 1;
+      allowed.push_back({std::min(a, b), std::max(a, b)});
+    }
+  }
+  try {
+    assign_self_pairs(model, enabled, allowed);
+  } catch (const SelfCollisionError& e) {
+    throw ScenarioError(robot.child("self_collision"), e.what());
+  }
+}
+
 void parse_robot(JsonObject robot, const Units& units, const std::string& dir, Scenario& sc) {
   const std::string kind = robot.choice("kind", {"planar", "spatial_xz", "dh", "urdf"});
   if (kind == "urdf") {
-    robot.check_keys({"kind", "file", "urdf", "base_link", "tip_link", "link_radius", "base", "base_rpy", "q0", "limits"});
+    robot.check_keys({"kind", "file", "urdf", "base_link", "tip_link", "link_radius", "base", "base_rpy", "q0", "limits",
+                      "self_collision", "allowed_collisions"});
     std::string text;
     sc.model = parse_urdf_robot(robot, units.angle, dir, text);
     // The scenario carries its URDF inline from here on, so a stored run
@@ -135,7 +163,7 @@ void parse_robot(JsonObject robot, const Units& units, const std::string& dir, S
       sc.json["robot"]["urdf"] = text;
     }
   } else {
-    robot.check_keys({"kind", "base", "base_rpy", "links", "q0", "limits"});
+    robot.check_keys({"kind", "base", "base_rpy", "links", "q0", "limits", "self_collision", "allowed_collisions"});
     sc.model = parse_links(robot, kind, units);
   }
   const int n = sc.model.dof();
@@ -168,6 +196,7 @@ void parse_robot(JsonObject robot, const Units& units, const std::string& dir, S
       if (l.lower[i] >= l.upper[i])
         throw ScenarioError(index_path(limits.child("lower"), i), "must be below the upper limit");
   }
+  parse_self_collision(robot, sc.model);
   // Also against a URDF's own limits when the scenario gives none.
   const JointLimits& l = sc.model.limits;
   for (int i = 0; i < n; ++i) {

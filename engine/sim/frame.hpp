@@ -25,7 +25,10 @@ struct Frame {
   double orientation_error = 0;  // rad (pose tasks)
   double min_distance = 0;       // +inf without obstacles
   int min_distance_link = -1;
-  bool collided = false;
+  bool collided = false;          // an obstacle contact
+  double min_self_distance = 0;   // +inf without self pairs
+  int self_link_a = -1, self_link_b = -1;  // the nearest self pair
+  bool self_collided = false;
   double joint_limit_margin = 0;  // min over bounded joints of the distance to a limit; +inf if none
   double manipulability = 0, condition_number = 0;
   Eigen::VectorXd diagnostics;    // the method's named scalars
@@ -40,8 +43,10 @@ struct StepTimeStats {
 struct Summary {
   std::string scenario, method;
   long steps = 0;
-  bool collided = false;
+  bool collided = false;           // any collision: with an obstacle or of the arm with itself
+  bool obstacle_collided = false, self_collided = false;
   double min_distance = 0;
+  std::optional<double> min_self_distance;  // absent when no link pair is checked
   double max_tracking_error = 0, final_tracking_error = 0;
   bool joint_limit_violated = false;
   double min_joint_limit_margin = 0;
@@ -51,6 +56,12 @@ struct Summary {
   Eigen::VectorXd final_q;
   StepTimeStats step_us;
 };
+
+// The summary's format: absent (1) before self-collision, when `collided`
+// meant an obstacle contact only; 2 adds obstacle_collided, self_collided and
+// min_self_distance, and `collided` is any collision. A stored summary is
+// re-simulated and compared under the rules of its format.
+inline constexpr int kSummaryFormat = 2;
 
 // The run summary JSON of `rrlab run` (docs/cli.md, run); non-finite numbers are written as null.
 nlohmann::json summary_to_json(const Summary& summary);

@@ -6,9 +6,9 @@
 //
 // Adding a field: a member of Frame (sim/frame.hpp), one row of
 // RRLAB_FRAME_FIELDS below, the code that computes it (sim/simulator.cpp) and
-// its row in docs/api.md (a test compares the two). A new blob field goes
-// after the last blob field with `since` = kFrameBlobVersion + 1, and
-// kFrameBlobVersion is raised: older blobs are still read (storage/frame_codec.cpp).
+// its row in docs/api.md (a test compares the two). A new blob field takes
+// `since` = kFrameBlobVersion + 1, and kFrameBlobVersion is raised: older
+// blobs are still read (storage/frame_codec.cpp).
 #pragma once
 
 #include <array>
@@ -44,8 +44,10 @@ inline constexpr unsigned kAllFrameOutputs = kFrameBlob | kFrameCsv | kFrameJson
 inline constexpr unsigned kLiveOnly = kFrameCsv | kFrameJson;  // measured, not deterministic: never stored
 
 // The stored blob's format version (storage/frame_codec.hpp): 1 had no
-// version word, 2 has one and the same fields.
-inline constexpr int kFrameBlobVersion = 2;
+// version word, 2 has one and the same fields, 3 adds the self-collision
+// fields. A blob holds the fields whose `since` is at most its version, in
+// table order, so a new field may sit anywhere in the table.
+inline constexpr int kFrameBlobVersion = 3;
 
 // The table. X(id, member of Frame, kind, metric: inside JSON's "metrics",
 // outputs, blob version it appears from, unit, description), in the order
@@ -70,6 +72,11 @@ inline constexpr int kFrameBlobVersion = 2;
   X(min_distance_link, min_distance_link, link, true, kAllFrameOutputs, 1, "",                                      \
     "the link nearest an obstacle, 1-based (0: none)")                                                              \
   X(collided, collided, flag, true, kAllFrameOutputs, 1, "", "the arm touches an obstacle")                         \
+  X(min_self_distance, min_self_distance, number, true, kAllFrameOutputs, 3, "m",                                   \
+    "signed distance between the nearest two links checked for self-collision (null when none is)")                 \
+  X(self_link_a, self_link_a, link, true, kAllFrameOutputs, 3, "", "the lower link of that pair, 1-based (0: none)") \
+  X(self_link_b, self_link_b, link, true, kAllFrameOutputs, 3, "", "the higher link of that pair, 1-based (0: none)") \
+  X(self_collided, self_collided, flag, true, kAllFrameOutputs, 3, "", "two links checked for self-collision touch") \
   X(joint_limit_margin, joint_limit_margin, number, true, kAllFrameOutputs, 1, "rad|m",                             \
     "smallest distance of a bounded joint to its limit (null if none)")                                             \
   X(manipulability, manipulability, number, true, kAllFrameOutputs, 1, "",                                          \

@@ -42,6 +42,7 @@ Simulator::Simulator(const Scenario& scenario, const std::string& method_name, M
       jacobian_(task_rows(scenario.task.space), scenario.model.dof()),
       conditioning_(task_rows(scenario.task.space), scenario.model.dof()),
       collision_(scenario.model, scenario.scene),
+      self_collision_(scenario.model),
       ref_(scenario.task.space),
       total_steps_(scenario.steps()) {
   distances_.resize(scenario_.model.link_count(), int(scene_.obstacles.size()));
@@ -97,8 +98,8 @@ void Simulator::reset_state() {
   // accumulated into the summary and step() evaluates again from scratch.
   evaluate(0.0);
   frame_metrics();
-  collided_ = limit_violated_ = false;
-  min_distance_ = kInf;
+  collided_ = self_collided_ = limit_violated_ = false;
+  min_distance_ = min_self_distance_ = kInf;
   min_margin_ = kInf;
   max_error_ = max_condition_ = max_qdot_ratio_ = max_qddot_ratio_ = 0;
   nonfinite_steps_ = 0;
@@ -137,6 +138,7 @@ void Simulator::evaluate(double t) {
   forward_kinematics(scenario_.model, state_.q, kin_);
   rrlab::task_jacobian(scenario_.model, kin_, scenario_.task.space, jacobian_);
   collision_.compute(kin_, distances_);
+  self_collision_.compute(kin_, self_distances_);
   task_->reference(t, kin_.end_effector(), ref_);
 }
 
@@ -190,6 +192,11 @@ void Simulator::frame_metrics() {
   frame_.min_distance = distances_.min_distance;
   frame_.min_distance_link = distances_.min_link;
   frame_.collided = distances_.min_distance <= 0;
+  const SelfPairDistance* self = self_distances_.nearest();
+  frame_.min_self_distance = self_distances_.min_distance;
+  frame_.self_link_a = self ? self->pair.a : -1;
+  frame_.self_link_b = self ? self->pair.b : -1;
+  frame_.self_collided = self_distances_.min_distance <= 0;
   frame_.joint_limit_margin = joint_limit_margin(model.limits, state_.q);
   conditioning_.compute(jacobian_);
   frame_.manipulability = conditioning_.manipulability();
@@ -201,6 +208,8 @@ void Simulator::accumulate_metrics() {
   frame_metrics();
   qddot_ = (frame_.qdot - qdot_prev_) / scenario_.dt;  // the arm starts at rest
   collided_ = collided_ || frame_.collided;
+  self_collided_ = self_collided_ || frame_.self_collided;
+  min_self_distance_ = std::min(min_self_distance_, frame_.min_self_distance);
   limit_violated_ = limit_violated_ || frame_.joint_limit_margin < 0;
   min_distance_ = std::min(min_distance_, frame_.min_distance);
   min_margin_ = std::min(min_margin_, frame_.joint_limit_margin);
@@ -220,8 +229,11 @@ Summary Simulator::summary() const {
   s.scenario = scenario_.name;
   s.method = method_name_;
   s.steps = state_.step;
-  s.collided = collided_;
+  s.obstacle_collided = collided_;
+  s.self_collided = self_collided_;
+  s.collided = collided_ || self_collided_;
   s.min_distance = min_distance_;
+  if (!scenario_.model.self_pairs.empty()) s.min_self_distance = min_self_distance_;
   s.max_tracking_error = max_error_;
   s.joint_limit_violated = limit_violated_;
   s.min_joint_limit_margin = min_margin_;

@@ -1,5 +1,6 @@
 // Fixed-step, deterministic simulation of one method on one scenario.
-// A step: obstacles to time t → kinematics → distances → task reference →
+// A step: obstacles to time t → kinematics → distances (to obstacles, and
+// between links for self-collision) → task reference →
 // method → metrics → integration (Euler, unless the method integrated itself).
 #pragma once
 
@@ -10,6 +11,7 @@
 #include <string>
 
 #include <rrlab/collision/collision_world.hpp>
+#include <rrlab/collision/self_collision.hpp>
 #include <rrlab/kinematics/kinematics.hpp>
 #include <rrlab/methods/method.hpp>
 #include <rrlab/scenario/scenario.hpp>
@@ -60,6 +62,7 @@ class Simulator {
   const std::string& method_name() const { return method_name_; }
   const KinematicsData& kinematics() const { return kin_; }
   const DistanceTable& distances() const { return distances_; }
+  const SelfDistanceTable& self_distances() const { return self_distances_; }
   const TaskRef& reference() const { return ref_; }
   const Eigen::MatrixXd& task_jacobian() const { return jacobian_; }
   const std::vector<std::string>& diagnostic_names() const { return method_->diagnostic_names(); }
@@ -87,6 +90,8 @@ class Simulator {
   JacobianConditioning conditioning_;
   CollisionWorld collision_;
   DistanceTable distances_;
+  SelfCollisionWorld self_collision_;
+  SelfDistanceTable self_distances_;
   TaskRef ref_;
   State state_;
   StepOutput out_;
@@ -95,7 +100,8 @@ class Simulator {
   long total_steps_;
 
   // running summary
-  bool collided_ = false, limit_violated_ = false;
+  bool collided_ = false, self_collided_ = false, limit_violated_ = false;
+  double min_self_distance_ = 0;
   double min_distance_, max_error_ = 0, min_margin_, max_condition_ = 0;
   double max_qdot_ratio_ = 0, max_qddot_ratio_ = 0;
   long nonfinite_steps_ = 0;

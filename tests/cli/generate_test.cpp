@@ -2,6 +2,7 @@
 // back through `rrlab run --method witness` without collision or limit.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -65,6 +66,38 @@ TEST(CliGenerate, WritesAPerturbationFamilysCasesAsTheSweepMakesThem) {
       "generate --perturb 22_kapoor_square_circle --option obstacles.shift=-1 --out " + dir.string());
   EXPECT_EQ(bad.code, 2);
   EXPECT_NE(bad.err.find("obstacles.shift"), std::string::npos) << bad.err;
+  std::filesystem::remove_all(dir);
+}
+
+// --cases: exactly the given indices (a report's unsolved cases), as the
+// sweep entry makes them; clear errors for what it cannot take.
+TEST(CliGenerate, WritesExactlyTheGivenCases) {
+  const auto dir = std::filesystem::temp_directory_path() / "rrlab_cli_generate_cases_test";
+  std::filesystem::remove_all(dir);
+  const rrlab::testing::CliRun made =
+      rrlab::testing::run_cli("generate planar_limits --seed 4 --cases 7,2 --option dof=[4,5] --out " + dir.string());
+  ASSERT_EQ(made.code, 0) << made.err;
+  std::vector<std::string> files;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) files.push_back(entry.path().filename().string());
+  std::sort(files.begin(), files.end());
+  EXPECT_EQ(files, (std::vector<std::string>{"planar_limits-2.json", "planar_limits-7.json"}));
+  for (int index : {2, 7})
+    EXPECT_EQ(json::parse(std::ifstream(dir / ("planar_limits-" + std::to_string(index) + ".json"))),
+              rrlab::generate_scenario("planar_limits", {{"dof", {4, 5}}}, 4, index));
+  struct Bad {
+    std::string args, message;
+  };
+  for (const Bad& bad : {Bad{"--cases 3,3", "--cases: index 3 is given twice"},
+                         Bad{"--cases 3,x", "--cases: must be a whole number"},
+                         Bad{"--cases 3,-1", "--cases: must be a whole number"},
+                         Bad{"--cases 3 --count 2", "excludes"},
+                         Bad{"--cases 3 --first 2", "excludes"}}) {
+    const rrlab::testing::CliRun run =
+        rrlab::testing::run_cli("generate planar_limits " + bad.args + " --out " + (dir / "bad").string());
+    EXPECT_EQ(run.code, 2) << bad.args;
+    EXPECT_NE(run.err.find(bad.message), std::string::npos) << bad.args << ": " << run.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "bad")) << bad.args;
+  }
   std::filesystem::remove_all(dir);
 }
 

@@ -175,7 +175,7 @@ class ClientTest(unittest.TestCase):
         done = subprocess.run([sys.executable, "-c", code], cwd=SOURCE_DIR, capture_output=True, text=True,
                               timeout=300)
         self.assertEqual(done.returncode, 0, done.stdout + done.stderr)
-        self.assertIn("3 ['comparisons', 'groups', 'pairs', 'ranking', 'sweeps', 'verdicts']", done.stdout)
+        self.assertIn("3 ['comparisons', 'fallbacks', 'groups', 'pairs', 'ranking', 'rules', 'sweeps', 'verdicts']", done.stdout)
 
     def test_readme_lines_are_the_docs_snippets_first_lines(self):
         # the README's Python lines are not run on their own: they are lines of the docs/api.md block

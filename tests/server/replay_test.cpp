@@ -85,7 +85,7 @@ TEST_F(Replay, StreamsStoredFramesWithSeek) {
 }
 
 TEST_F(Replay, BatchRunsTakeNoInputs) {
-  json scenario = small_scenario("joystick", 10000);
+  json scenario = small_scenario("joystick", 8000);  // 800,000 frames: within --max-run-bytes
   const HttpResult started = send("POST", "/api/runs", {{"scenario", scenario}, {"mode", "batch"}, {"wait", false}});
   ASSERT_EQ(started.status, 201);
   const std::string base = "/api/runs/" + std::to_string(started.json()["id"].get<long>());

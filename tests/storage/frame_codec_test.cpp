@@ -22,6 +22,10 @@ Frame sample_frame() {
   f.min_distance = std::numeric_limits<double>::infinity();
   f.min_distance_link = -1;
   f.collided = true;
+  f.min_self_distance = -0.015;
+  f.self_link_a = 1;
+  f.self_link_b = 4;
+  f.self_collided = true;
   f.joint_limit_margin = -0.0;
   f.manipulability = 0.5;
   f.condition_number = std::numeric_limits<double>::quiet_NaN();
@@ -32,7 +36,7 @@ Frame sample_frame() {
 TEST(FrameCodec, RoundTripIsBitExact) {
   const Frame f = sample_frame();
   const std::string packed = pack_frame(f);
-  EXPECT_EQ(packed.size(), 4u + 16u + 8u * (19u + 14u + 3u));  // version word, n, k, the fields
+  EXPECT_EQ(packed.size(), 4u + 16u + 8u * (23u + 14u + 3u));  // version word, n, k, the fields
   const Frame back = unpack_frame(packed);
   EXPECT_EQ(back.step, 42);
   EXPECT_EQ(std::memcmp(back.q.data(), f.q.data(), 7 * sizeof(double)), 0);
@@ -41,6 +45,10 @@ TEST(FrameCodec, RoundTripIsBitExact) {
   EXPECT_TRUE(std::signbit(back.joint_limit_margin));  // -0.0 kept
   EXPECT_EQ(back.min_distance_link, -1);
   EXPECT_TRUE(back.collided);
+  EXPECT_EQ(back.min_self_distance, -0.015);
+  EXPECT_EQ(back.self_link_a, 1);
+  EXPECT_EQ(back.self_link_b, 4);
+  EXPECT_TRUE(back.self_collided);
   EXPECT_EQ(pack_frame(back), packed);  // packing the unpacked frame gives the same bytes
 }
 
@@ -87,8 +95,12 @@ TEST(FrameCodec, RejectsALinkIndexThatIsNotOne) {
 // stored runs no longer decode and re-simulations no longer match.
 TEST(FrameCodec, BlobLayoutIsTheStoredOne) {
   const Frame f = sample_frame();
-  std::string expected;
-  const auto put = [&](auto value) { expected.append(reinterpret_cast<const char*>(&value), sizeof value); };
+  std::string expected, expected_v3;  // versions 1 and 2, version 3
+  const auto put = [&](auto value) {
+    expected.append(reinterpret_cast<const char*>(&value), sizeof value);
+    expected_v3.append(reinterpret_cast<const char*>(&value), sizeof value);
+  };
+  const auto put_v3 = [&](auto value) { expected_v3.append(reinterpret_cast<const char*>(&value), sizeof value); };
   put(std::uint32_t(7));
   put(std::uint32_t(3));
   put(std::int64_t(42));
@@ -99,17 +111,21 @@ TEST(FrameCodec, BlobLayoutIsTheStoredOne) {
   for (const double c : {f.ee_orientation.w(), f.ee_orientation.x(), f.ee_orientation.y(), f.ee_orientation.z()})
     put(c);
   for (int i = 0; i < 3; ++i) put(f.target[i]);
-  for (const double m : {f.task_error, f.orientation_error, f.min_distance, -1.0, 1.0, f.joint_limit_margin,
-                         f.manipulability, f.condition_number})
-    put(m);
+  for (const double m : {f.task_error, f.orientation_error, f.min_distance, -1.0, 1.0}) put(m);
+  for (const double m : {-0.015, 1.0, 4.0, 1.0}) put_v3(m);  // self distance, its links (0-based), self_collided
+  for (const double m : {f.joint_limit_margin, f.manipulability, f.condition_number}) put(m);
   for (int i = 0; i < 3; ++i) put(f.diagnostics[i]);
   std::string v1;
   pack_frame(f, v1, 1);
   EXPECT_EQ(v1, expected);  // version 1: no version word
+  const auto word = [](std::uint32_t version) {
+    const std::uint32_t w = 0x52460000u | version;  // "RF", version
+    return std::string(reinterpret_cast<const char*>(&w), sizeof w);
+  };
   std::string v2;
-  const std::uint32_t word = 0x52460002u;  // "RF", version 2
-  v2.append(reinterpret_cast<const char*>(&word), sizeof word);
-  EXPECT_EQ(pack_frame(f), v2 + expected);  // version 2: the word, then the same fields
+  pack_frame(f, v2, 2);
+  EXPECT_EQ(v2, word(2) + expected);  // version 2: the word, then the same fields
+  EXPECT_EQ(pack_frame(f), word(3) + expected_v3);  // version 3: and the self-collision fields
 }
 
 // Runs stored before the blob had a version still read, as what they are;
@@ -120,7 +136,16 @@ TEST(FrameCodec, ReadsEveryVersionItKnowsAndNamesOneItDoesNot) {
   pack_frame(f, v1, 1);
   EXPECT_EQ(frame_blob_version(v1), 1);
   EXPECT_EQ(frame_blob_version(pack_frame(f)), kFrameBlobVersion);
-  EXPECT_EQ(pack_frame(unpack_frame(v1)), pack_frame(f));  // read as version 1, written as the current one
+  for (int version = 1; version < kFrameBlobVersion; ++version) {
+    std::string old, again;
+    pack_frame(f, old, version);
+    EXPECT_EQ(frame_blob_version(old), version);
+    const Frame back = unpack_frame(old);
+    EXPECT_TRUE(std::isnan(back.min_self_distance)) << "version " << version << " knows no self distance";
+    EXPECT_FALSE(back.self_collided);
+    pack_frame(back, again, version);
+    EXPECT_EQ(again, old);  // read as what it is, written back the same
+  }
   std::string future = pack_frame(f);
   future[0] = char(kFrameBlobVersion + 1);
   try {

@@ -71,21 +71,78 @@ TEST_F(Resimulation, ARunStoredInAnOlderBlobFormatMatchesInThatFormat) {
   text << in.rdbuf();
   const Scenario scenario = parse_scenario_text(text.str());
   Simulator sim(scenario, "dls");
+  for (int version = 1; version < kFrameBlobVersion; ++version) {
+    Simulator sim(scenario, "dls");
+    const std::int64_t id = store.create_run(new_run_of(scenario, sim, "batch"));
+    {
+      FrameWriter writer(store);
+      std::string old;
+      for (std::int64_t seq = 0; seq < 50; ++seq) {
+        sim.step();
+        pack_frame(sim.frame(), old, version);
+        writer.push(id, stored_frame(seq, sim.frame(), old));
+      }
+      writer.flush();
+    }
+    store.finish_run(id, "completed", summary_to_json(sim.summary()).dump());
+    const ResimulationResult result = resimulate(store, *store.run(id), {});
+    EXPECT_EQ(result.frames_compared, 50) << "version " << version;
+    EXPECT_FALSE(result.first_mismatch) << "version " << version << ": " << result.mismatch;
+  }
+}
+
+// A run whose arm folds across itself, stored before self-collision (blob
+// version 2, summary format 1 with `collided` false): it still verifies.
+TEST_F(Resimulation, ASelfCollidingRunStoredBeforeSelfCollisionStillVerifies) {
+  RunStore store(path_);
+  const Scenario scenario = parse_scenario_text(R"({
+    "name": "folded", "dt": 0.01, "duration": 0.3, "angle_unit": "deg",
+    "robot": {"kind": "planar", "links": [{"length": 1, "radius": 0.05}, {"length": 1, "radius": 0.05},
+                                          {"length": 1, "radius": 0.05}],
+              "q0": [0, 150, 150]},
+    "task": {"space": "xy", "trajectory": {"type": "polyline", "points": [[0.6, -0.4], [0.7, -0.4]]}},
+    "method": {"name": "dls"}})");
+  Simulator sim(scenario);
   const std::int64_t id = store.create_run(new_run_of(scenario, sim, "batch"));
   {
     FrameWriter writer(store);
-    std::string v1;
-    for (std::int64_t seq = 0; seq < 50; ++seq) {
+    std::string v2;
+    for (std::int64_t seq = 0; seq < 30; ++seq) {
       sim.step();
-      pack_frame(sim.frame(), v1, 1);
-      writer.push(id, stored_frame(seq, sim.frame(), v1));
+      pack_frame(sim.frame(), v2, 2);
+      writer.push(id, stored_frame(seq, sim.frame(), v2));
     }
     writer.flush();
   }
-  store.finish_run(id, "completed", summary_to_json(sim.summary()).dump());
+  const Summary summary = sim.summary();
+  ASSERT_TRUE(summary.self_collided);
+  json old = summary_to_json(summary);
+  for (const char* field : {"format", "obstacle_collided", "self_collided", "min_self_distance"}) old.erase(field);
+  old["collided"] = summary.obstacle_collided;  // what the first format said
+  store.finish_run(id, "completed", old.dump());
   const ResimulationResult result = resimulate(store, *store.run(id), {});
-  EXPECT_EQ(result.frames_compared, 50);
-  EXPECT_FALSE(result.first_mismatch) << result.mismatch;
+  EXPECT_EQ(result.frames_compared, 30);
+  EXPECT_TRUE(result.identical()) << result.mismatch << result.summary_mismatch;
+}
+
+// A summary stored before self-collision (no "format"): `collided` meant an
+// obstacle contact and is compared as such, and the newer fields are not
+// compared. A format-2 summary compares them.
+TEST_F(Resimulation, ASummaryOfTheFirstFormatIsComparedUnderItsOwnRules) {
+  RunStore store(path_);
+  const std::int64_t old = store_frameless(store, 40, [](json& s) {
+    s.erase("format");
+    s.erase("obstacle_collided");
+    s.erase("self_collided");
+    s.erase("min_self_distance");
+  });
+  const ResimulationResult result = resimulate(store, *store.run(old), {});
+  EXPECT_TRUE(result.identical()) << result.summary_mismatch;
+
+  const std::int64_t changed = store_frameless(store, 40, [](json& s) { s["self_collided"] = true; });
+  const ResimulationResult fresh = resimulate(store, *store.run(changed), {});
+  EXPECT_FALSE(fresh.identical());
+  EXPECT_EQ(fresh.summary_mismatch.rfind("self_collided ", 0), 0u) << fresh.summary_mismatch;
 }
 
 TEST_F(Resimulation, ARunWithNeitherFramesNorStepsHasNothingToCompare) {

@@ -1,6 +1,10 @@
 // rrlab sweep, merge and report on the command line: exit codes and messages.
 #include <gtest/gtest.h>
 
+#include <set>
+
+#include <rrlab/generators/generators.hpp>
+
 #include "sweep_test_support.hpp"
 
 namespace rrlab::sweep {
@@ -40,6 +44,45 @@ TEST(SweepCli, SweepMergeReport) {
   const auto html = rrlab("report " + dir.file("all.db") + " --format html --out " + dir.file("r.html"));
   ASSERT_EQ(html.code, 0) << html.err;
   EXPECT_TRUE(std::filesystem::file_size(dir.file("r.html")) > 1000);
+}
+
+// The report's unsolved cases and the command it prints for them: the
+// command writes exactly the listed cases, as the sweep generated them.
+TEST(SweepCli, TheUnsolvedCasesCommandWritesExactlyTheListedCases) {
+  testing::TempDir dir;
+  const nlohmann::json spec = nlohmann::json::parse(R"({
+    "name": "frontier", "scenarios": [{"generator": "planar_clutter", "count": 5, "seed": 11}],
+    "methods": ["pinv", "dls", "witness"],
+    "success": {"max_tracking_error": 0.01, "collision": false, "joint_limits": true}})");
+  const auto swept = rrlab("sweep " + dir.write("spec.json", spec.dump()) + " --db " + dir.file("f.db"));
+  ASSERT_EQ(swept.code, 0) << swept.err;
+  const auto md = rrlab("report " + dir.file("f.db") + " --format md");
+  ASSERT_EQ(md.code, 0) << md.err;
+  // "- **planar_clutter**, unsolved: N of 5 (the witness solves M): KEY, KEY" and the command below it
+  const size_t line = md.out.find("- **planar_clutter**, unsolved: ");
+  ASSERT_NE(line, std::string::npos) << md.out;  // pinv fails every case by construction, dls nearly every one
+  const std::string listing = md.out.substr(line, md.out.find('\n', line) - line);
+  std::set<std::string> listed;
+  const std::string prefix = "gen:planar_clutter:11:";
+  for (size_t at = listing.find(prefix); at != std::string::npos; at = listing.find(prefix, at + 1))
+    listed.insert("planar_clutter-" + listing.substr(at + prefix.size(), listing.find_first_not_of("0123456789", at + prefix.size()) - at - prefix.size()) + ".json");
+  ASSERT_FALSE(listed.empty()) << listing;
+  const size_t command_at = md.out.find("`rrlab generate ", line);
+  ASSERT_NE(command_at, std::string::npos) << md.out;
+  std::string command = md.out.substr(command_at + 7, md.out.find('`', command_at + 1) - command_at - 7);
+  const std::string out_flag = " --out ";
+  ASSERT_NE(command.find(out_flag), std::string::npos) << command;
+  command = command.substr(0, command.find(out_flag)) + out_flag + dir.file("cases");
+  const auto made = rrlab(command);
+  ASSERT_EQ(made.code, 0) << command << "\n" << made.err;
+  std::set<std::string> written;
+  for (const auto& entry : std::filesystem::directory_iterator(dir.file("cases"))) {
+    written.insert(entry.path().filename().string());
+    const std::string name = entry.path().stem().string();
+    const int index = std::stoi(name.substr(name.rfind('-') + 1));
+    EXPECT_EQ(nlohmann::json::parse(std::ifstream(entry.path())), generate_scenario("planar_clutter", nlohmann::json::object(), 11, index));
+  }
+  EXPECT_EQ(written, listed) << command;
 }
 
 TEST(SweepCli, BadInputExitsTwoNamingTheProblem) {

@@ -10,6 +10,7 @@ import { sessionFor } from './session.js';
 import { resimulate } from './resimulate.js';
 import { eventMarkers } from './events.js';
 import { fmt } from './dom.js';
+import { contacts } from './compare_verdict.js';
 
 const report = (e) => app.error(e);
 
@@ -154,7 +155,7 @@ export const commands = {
     app.status('running to the end…');
     const result = await api.startRun(body);
     const s = result.summary;
-    app.info(`batch run #${result.id}: ${s.steps} steps, max tracking error ${fmt(s.max_tracking_error)} m, min distance ${fmt(s.min_distance)} m, ${s.collided ? 'collided' : 'no collision'}`);
+    app.info(`batch run #${result.id}: ${s.steps} steps, max tracking error ${fmt(s.max_tracking_error)} m, min distance ${fmt(s.min_distance)} m, ${contacts(s).join(', ') || 'no collision'}`);
     app.status('');
     await open([result.id]);
   },

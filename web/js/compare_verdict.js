@@ -14,8 +14,11 @@ export const DEFAULT_CRITERION = Object.freeze({
 // ('low', 'high', 'false': false is better, null: not ranked). `timing` rows
 // differ between any two runs and never make methods "differ".
 export const SUMMARY_ROWS = [
-  { key: 'collided', label: 'collided', get: (s) => s.collided, better: 'false' },
+  // an obstacle contact, as the metrics' row (summaries of format 2: collided is either contact)
+  { key: 'collided', label: 'collided', get: (s) => s.obstacle_collided ?? s.collided, better: 'false' },
   { key: 'min_distance', label: 'min distance (m)', get: (s) => s.min_distance, better: 'high' },
+  { key: 'self_collided', label: 'self-collided', get: (s) => s.self_collided, better: 'false' },
+  { key: 'min_self_distance', label: 'min self distance (m)', get: (s) => s.min_self_distance, better: 'high' },
   { key: 'max_tracking_error', label: 'max tracking error (m)', get: (s) => s.max_tracking_error, better: 'low' },
   { key: 'final_tracking_error', label: 'final tracking error (m)', get: (s) => s.final_tracking_error, better: 'low' },
   { key: 'joint_limit_violated', label: 'joint limit violated', get: (s) => s.joint_limit_violated, better: 'false' },
@@ -50,11 +53,18 @@ export function differs(values) {
   return values.some((v) => !same(v, values[0]));
 }
 
+// A summary's contacts as words: 'collided' (an obstacle), 'self-collision'.
+// `collided` is either since summaries of format 2; before, obstacles only.
+export function contacts(summary) {
+  const obstacle = summary.obstacle_collided ?? (summary.collided && !summary.self_collided);
+  return [obstacle ? 'collided' : '', summary.self_collided ? 'self-collision' : ''].filter(Boolean);
+}
+
 // {pass, reasons: [text]} of one summary against a criterion.
 export function judge(summary, criterion = DEFAULT_CRITERION) {
   const reasons = [];
   const c = { ...DEFAULT_CRITERION, ...criterion };
-  if (!c.collision && summary.collided) reasons.push('collided');
+  if (!c.collision) reasons.push(...contacts(summary));
   if (c.joint_limits && summary.joint_limit_violated) reasons.push('crossed a joint limit');
   if (summary.nonfinite_steps > 0) reasons.push('non-finite output');
   // a NaN error or distance never passes a bound

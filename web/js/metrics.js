@@ -13,6 +13,10 @@ const ROWS = [
   ['min distance (m)', (m) => m.min_distance],
   ['nearest link', (m) => m.min_distance_link],
   ['collided', (m) => m.collided],
+  // self-collision (frames from blob v3 on; older runs show —)
+  ['min self distance (m)', (m) => m.min_self_distance],
+  ['nearest self pair', (m) => (m.self_link_a > 0 ? `${m.self_link_a} · ${m.self_link_b}` : null)],
+  ['self-collided', (m) => m.self_collided],
   ['joint-limit margin', (m) => m.joint_limit_margin],
   ['manipulability', (m) => m.manipulability],
   ['condition number', (m) => m.condition_number],

@@ -5,6 +5,7 @@
 import { api } from './api.js';
 import { app } from './state.js';
 import { isLive } from './session.js';
+import { outcomeText } from './failure_modes.js';
 import { escapeHtml } from './dom.js';
 
 const $ = (id) => document.getElementById(id);
@@ -82,7 +83,7 @@ export class RunList {
     if (r.sweep) {
       // a sweep's run: named by its case and method configuration, with its verdict
       const w = r.sweep;
-      const verdict = w.success ? 'pass' : `fail${w.failure_mode ? `: ${w.failure_mode}${Number.isFinite(w.failure_t) ? ` at ${w.failure_t.toFixed(2)} s` : ''}` : ''}`;
+      const verdict = outcomeText(w);
       li.innerHTML = `<div class="title">#${r.id} <span class="mono">${escapeHtml(w.case)}</span></div>
         <div class="muted small">${escapeHtml(w.config)} · <span class="${w.success ? 'pass' : 'fail'}">${escapeHtml(verdict)}</span> · ${r.frames ? `<span class="frames">${r.frames}</span> frames` : 'no frames stored'}</div>
         <div class="actions"></div>`;

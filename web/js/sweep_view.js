@@ -8,7 +8,9 @@ import { api } from './api.js';
 import { app, LANE_COLOURS } from './state.js';
 import { escapeHtml } from './dom.js';
 import { fmt } from './dom.js';
-import { successTable, formatRate, formatFailureModes, difficultySvg, parseConfig } from './sweep_report.js';
+import { successTable, formatRate, formatFailureModes, difficultySvg, difficultyMeasures, verdictWords, parseConfig } from './sweep_report.js';
+import { fallbackHtml } from './sweep_fallback.js';
+import { outcomeText } from './failure_modes.js';
 
 const $ = (id) => document.getElementById(id);
 const POLL_MS = 1000;
@@ -96,8 +98,8 @@ export class SweepPage {
     const table = successTable(report);
     const { families, configs, cell, best } = table;
     const verdicts = (report.verdicts || []).map((v) => {
-      const cost = (config) => { const g = cell(v.family, config); return g && Number.isFinite(g.step_us_p50) ? ` (${fmt(g.step_us_p50)} µs/step)` : ''; };
-      return `<tr><td>${escapeHtml(v.family)}</td><td>${v.not_worse.map((c) => `${escapeHtml(c)}${cost(c)}`).join(', ')}</td></tr>`;
+      const { detects, listed } = verdictWords(v, cell);
+      return `<tr data-family="${escapeHtml(v.family)}" data-status="${escapeHtml(v.status)}"><td>${escapeHtml(v.family)}</td><td>${escapeHtml(detects)}</td><td>${escapeHtml(listed)}</td></tr>`;
     }).join('');
     const headRow = `<tr><th>method</th>${families.map((f) => `<th>${escapeHtml(f)}</th>`).join('')}</tr>`;
     const rows = configs.map((c) => `<tr><th scope="row">${escapeHtml(c)}</th>${families.map((f) => {
@@ -113,19 +115,29 @@ export class SweepPage {
       const g = cell(f, c);
       return g ? `<td>${fmt(g.step_us_p50)} / ${fmt(g.step_us_p99)}${Number.isFinite(g.step_ratio_to_pinv) ? ` <span class="muted">(${g.step_ratio_to_pinv.toFixed(2)}× pinv)</span>` : ''}</td>` : '<td class="muted">—</td>';
     }).join('')}</tr>`).join('');
+    // per family: its quartile chart, then one per obstacle count (sweep_report.js: difficultyMeasures)
     const charts = families.map((f) => {
-      const groups = configs.map((c) => cell(f, c)).filter(Boolean);
-      const svg = difficultySvg(groups, configs.map((c, i) => CHART_COLOURS[i % CHART_COLOURS.length]).filter((_, i) => cell(f, configs[i])));
-      return svg ? `<figure class="difficulty"><figcaption>${escapeHtml(f)}</figcaption>${svg}</figure>` : '';
+      const groups = configs.map((c) => cell(f, c));
+      const present = groups.filter(Boolean), colours = configs.map((c, i) => CHART_COLOURS[i % CHART_COLOURS.length]).filter((_, i) => groups[i]);
+      return difficultyMeasures(present).map((measure) => {
+        const svg = difficultySvg(present, colours, { measure });
+        return svg ? `<figure class="difficulty" data-family="${escapeHtml(f)}" data-measure="${escapeHtml(measure || 'quartiles')}"><figcaption>${escapeHtml(f)}${measure ? ` · ${escapeHtml(measure)}` : ''}</figcaption>${svg}</figure>` : '';
+      }).join('');
     }).join('');
     const legend = charts ? `<p class="small">${configs.map((c, i) => `<span class="legend-item" data-colour="${i}">${escapeHtml(c)}</span>`).join(' ')}</p>` : '';
     const ranking = (report.ranking || []).map((r, i) => `<tr><td>${i + 1}</td><td>${escapeHtml(r.config)}</td><td>${Math.round(100 * r.success_rate)} %</td><td>${r.n}</td></tr>`).join('');
     return `<h3>Which method when</h3>
-      <table class="sweep-verdicts"><tr><th>family</th><th>not significantly worse than the best (cost per step)</th></tr>${verdicts}</table>
+      <p class="small muted">Detects: the smallest difference in success these cases detect (80 % power, p &lt; 0.05); past 20 points none is listed.</p>
+      ${report.rules && report.rules.verdicts ? `<details class="rule small"><summary>the rule</summary><p>${escapeHtml(report.rules.verdicts)}</p></details>` : ''}
+      <table class="sweep-verdicts"><tr><th>family</th><th>detects</th><th>not significantly worse than the best (cost per step)</th></tr>${verdicts}</table>
+      ${fallbackHtml(report)}
       <h3>Success by method and family</h3>
       <p class="small muted">Success rate with its 95 % Wilson interval; bold: a family's best. Click a cell for its runs.</p>
       <table class="sweep-success">${headRow}${rows}</table>
-      ${charts ? `<h3>Success against difficulty</h3>${legend}<div class="difficulty-charts">${charts}</div>` : ''}
+      ${charts ? `<h3>Success against difficulty</h3>
+        <p class="small muted">Success per bin of each family's cases: the quartiles of the witness's clearance (or joint-limit margin), and the obstacle counts
+          blocking_obstacles (those the minimum-norm arm meets) and tight_obstacles (those within twice the family's clearance of the witness) in bins 0, 1, 2, 3, 4+.</p>
+        ${legend}<div class="difficulty-charts">${charts}</div>` : ''}
       <h3>Step cost</h3><p class="small muted">p50 / p99 µs per step, and the ratio to pinv (shifted geometric mean).</p>
       <table class="sweep-cost">${headRow}${cost}</table>
       <h3>Ranking</h3><table class="sweep-ranking"><tr><th>#</th><th>method</th><th>success</th><th>runs</th></tr>${ranking}</table>`;
@@ -140,7 +152,7 @@ export class SweepPage {
     const box = $('sweep-cell');
     const rows = page.runs.map((r) => `<tr data-run="${r.run}">
       <td class="mono">${escapeHtml(r.case)}</td>
-      <td class="${r.success ? 'pass' : 'fail'}">${r.success ? 'pass' : `fail${r.failure_mode ? `: ${escapeHtml(r.failure_mode)}${Number.isFinite(r.failure_t) ? ` at ${r.failure_t.toFixed(2)} s` : ''}` : ''}`}</td>
+      <td class="${r.success ? 'pass' : 'fail'}">${escapeHtml(outcomeText(r))}</td>
       <td>${fmt(r.min_distance)}</td><td>${fmt(r.max_tracking_error)}</td>
       <td class="actions"><button type="button" class="run-open" title="${r.frames ? 'replay its stored frames' : 'the sweep stored no frames: re-simulate the run from its recorded inputs, then replay it'}">${r.frames ? 'Replay' : 'Re-simulate'}</button>
         <button type="button" class="run-compare" title="run every method of this sweep on this case, side by side">Compare methods</button></td></tr>`).join('');

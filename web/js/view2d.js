@@ -39,6 +39,7 @@ export class View2D {
     this.traceStart = 0;
     this.lastStep = -1;
     this.ellipseScale = null;
+    this.marks = [];
     this.resizeObserver = new ResizeObserver(() => this.resize());
     this.resizeObserver.observe(container);
     this.listen();
@@ -296,7 +297,7 @@ export class View2D {
     if (!this.frame) return;
     drawOverlays2D(this, this.snapshot, this.frame, this.colour);
     for (const lane of this.lanes) if (lane.frame && lane.snapshot) drawArm2D(this, lane.snapshot, lane.frame, lane.colour, 0.75);
-    drawArm2D(this, this.snapshot, this.frame, this.colour, 1);
+    this.marks = drawArm2D(this, this.snapshot, this.frame, this.colour, 1);  // the links' marks as drawn (link_marks.js)
     this.cross(this.frame.target, '#2e7d32');
     this.scaleBar();
     if (this.label) this.caption(this.label, this.colour);

@@ -3,6 +3,9 @@
 // manipulability ellipse and the method's own overlays. Each overlay has its
 // own toggle in view.overlays.
 import { NEAREST_LINK_COLOUR, COLLIDED_COLOUR } from './state.js';
+import { linkMarks } from './link_marks.js';
+
+const MARK_COLOURS = { nearest: NEAREST_LINK_COLOUR, collided: COLLIDED_COLOUR };
 
 // The ellipse is drawn at a fixed scale for the whole run, chosen at the first
 // frame so that its largest semi-axis is 15% of the reach: changes stay visible.
@@ -11,14 +14,15 @@ export function ellipseScale(ellipsoid, reach) {
   return largest > 0 ? (0.15 * reach) / largest : 1;
 }
 
+// Returns the links' marks as drawn (link_marks.js).
 export function drawArm2D(view, snapshot, frame, colour, alpha) {
   const c = view.context;
-  const nearest = frame.metrics.min_distance_link - 1;
+  const marks = linkMarks(frame.metrics, frame.links.length);
   c.globalAlpha = alpha;
   c.lineCap = 'round';
   frame.links.forEach((l, i) => {
     const radius = snapshot.model.links[i] ? snapshot.model.links[i].radius : 0;
-    c.strokeStyle = i !== nearest ? colour : frame.metrics.collided ? COLLIDED_COLOUR : NEAREST_LINK_COLOUR;
+    c.strokeStyle = MARK_COLOURS[marks[i]] || colour;
     c.lineWidth = Math.max(3, 2 * radius * view.scale);
     view.line([l[0], l[1]], [l[3], l[4]]);
   });
@@ -38,6 +42,7 @@ export function drawArm2D(view, snapshot, frame, colour, alpha) {
   c.arc(ee.x, ee.y, 4, 0, 2 * Math.PI);
   c.fill();
   c.globalAlpha = 1;
+  return marks;
 }
 
 function ellipse(view, centre, axes, scale) {

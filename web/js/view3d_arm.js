@@ -3,6 +3,7 @@
 import * as THREE from 'three';
 import { NEAREST_LINK_COLOUR, COLLIDED_COLOUR } from './state.js';
 import { SegmentBuffer } from './view3d_lines.js';
+import { linkMarks } from './link_marks.js';
 
 const unitCylinder = new THREE.CylinderGeometry(1, 1, 1, 20, 1, true);  // along y, centred
 const unitSphere = new THREE.SphereGeometry(1, 20, 14);
@@ -48,7 +49,8 @@ export class Arm {
       for (const m of [link, cap, joint]) { m.matrixAutoUpdate = false; m.visible = false; this.object.add(m); }
       this.links.push(link); this.caps.push(cap); this.joints.push(joint);
     }
-    this.lastHighlight = -2;
+    this.marks = [];  // the links' marks as drawn (link_marks.js)
+    this.lastHighlight = '';
   }
 
   setColour(colour) {
@@ -56,7 +58,8 @@ export class Arm {
     this.materials.tip.color.set(colour);
   }
 
-  // frame.links: [[sx,sy,sz,ex,ey,ez], ..]; the nearest link in orange, red on collision.
+  // frame.links: [[sx,sy,sz,ex,ey,ez], ..]; the nearest link in yellow, red on
+  // collision, both links of a self-colliding pair red.
   update(frame) {
     const segments = frame.links;
     const count = Math.min(segments.length, this.links.length);
@@ -85,12 +88,13 @@ export class Arm {
   }
 
   highlightLink(metrics) {
-    const nearest = metrics && metrics.min_distance_link > 0 ? metrics.min_distance_link - 1 : -1;
-    const key = nearest + (metrics && metrics.collided ? 1000 : 0);
-    if (key === this.lastHighlight) return;
+    const marks = linkMarks(metrics, this.links.length);
+    const key = marks.join();
+    if (key === this.lastHighlight) return;  // materials change only when a mark does
     this.lastHighlight = key;
+    this.marks = marks;
     this.links.forEach((link, i) => {
-      const m = i !== nearest ? this.materials.link : metrics.collided ? this.materials.collided : this.materials.nearest;
+      const m = this.materials[marks[i] || 'link'];
       link.material = m;
       this.caps[i].material = m;
     });

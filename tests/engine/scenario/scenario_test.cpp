@@ -41,6 +41,16 @@ TEST(ScenarioLoader, ReadsTheContractExample) {
     else EXPECT_DOUBLE_EQ(value, 0.02);
 }
 
+TEST(ScenarioLoader, SelfCollisionPairsFollowTheMatrixTheOverridesAndTheSwitch) {
+  json doc = valid();
+  EXPECT_EQ(parse_scenario(doc).model.self_pairs, (std::vector<SelfPair>{{0, 2}}));  // three planar links
+  doc["robot"]["allowed_collisions"] = {{3, 1}};  // either order
+  EXPECT_TRUE(parse_scenario(doc).model.self_pairs.empty());
+  doc = valid();
+  doc["robot"]["self_collision"] = false;
+  EXPECT_TRUE(parse_scenario(doc).model.self_pairs.empty());
+}
+
 TEST(ScenarioLoader, EveryShippedScenarioLoads) {
   int count = 0;
   for (const auto& entry : std::filesystem::directory_iterator(test::source_path("scenarios"))) {
@@ -136,6 +146,16 @@ INSTANTIATE_TEST_SUITE_P(
                     d["witness"] = {{"dt", 1.0}, {"q", {d["robot"]["q0"], d["robot"]["q0"]}}, {"difficulty", {{"gap", "wide"}}}};
                   },
                   "witness.difficulty.gap", "must be a number"},
+        Malformed{"self_collision not a bool", [](json& d) { d["robot"]["self_collision"] = "yes"; },
+                  "robot.self_collision", "must be true or false"},
+        Malformed{"allowed pair past the links", [](json& d) { d["robot"]["allowed_collisions"] = {{1, 4}}; },
+                  "robot.allowed_collisions[0][1]", "a link number from 1 to 3"},
+        Malformed{"allowed pair of one link", [](json& d) { d["robot"]["allowed_collisions"] = {{2, 2}}; },
+                  "robot.allowed_collisions[0]", "one link twice"},
+        Malformed{"allowed pair not a pair", [](json& d) { d["robot"]["allowed_collisions"] = {{1}}; },
+                  "robot.allowed_collisions[0]", "2"},
+        Malformed{"allowed pair not whole", [](json& d) { d["robot"]["allowed_collisions"] = {{1, 2.5}}; },
+                  "robot.allowed_collisions[0][1]", "a link number"},
         Malformed{"witness key", [](json& d) { d["witness"] = {{"dt", 1.0}, {"q", {d["robot"]["q0"]}}, {"t", 1}}; },
                   "witness.t", "unknown key"}),
     [](const ::testing::TestParamInfo<Malformed>& info) {

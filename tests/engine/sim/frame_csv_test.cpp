@@ -15,7 +15,8 @@ TEST(FrameCsv, HeaderNamesEveryNumber) {
   const std::string live = frame_csv_header(2, {"lambda"}, FrameOrigin::live);
   EXPECT_EQ(live,
             "step,t,q1,q2,qdot1,qdot2,ee_x,ee_y,ee_z,ee_quat_w,ee_quat_x,ee_quat_y,ee_quat_z,target_x,target_y,"
-            "target_z,task_error,orientation_error,min_distance,min_distance_link,collided,joint_limit_margin,"
+            "target_z,task_error,orientation_error,min_distance,min_distance_link,collided,min_self_distance,"
+            "self_link_a,self_link_b,self_collided,joint_limit_margin,"
             "manipulability,condition_number,step_us,lambda\n");
   const std::string stored = frame_csv_header(2, {"lambda"}, FrameOrigin::stored);
   EXPECT_EQ(stored.find("step_us"), std::string::npos);

@@ -46,7 +46,7 @@ TEST(FrameJson, LiveFramesCarryEveryField) {
   EXPECT_EQ(j["diagnostics"][0], 0.25);
   EXPECT_TRUE(j["diagnostics"][1].is_null());
   EXPECT_EQ(j.size(), 10u);  // step t q qdot ee ee_quat target target_quat metrics diagnostics
-  EXPECT_EQ(j["metrics"].size(), 9u);
+  EXPECT_EQ(j["metrics"].size(), 13u);
 }
 
 TEST(FrameJson, StoredFramesLeaveOutWhatIsNotStored) {
@@ -55,7 +55,7 @@ TEST(FrameJson, StoredFramesLeaveOutWhatIsNotStored) {
   const nlohmann::json j = members(f, FrameOrigin::stored, 0);
   EXPECT_FALSE(j.contains("target_quat"));
   EXPECT_FALSE(j["metrics"].contains("step_us"));
-  EXPECT_EQ(j["metrics"].size(), 8u);
+  EXPECT_EQ(j["metrics"].size(), 12u);
 }
 
 TEST(FrameJson, DigitsRoundForDrawing) {

@@ -3,7 +3,7 @@
 // criterion, and the headline sentence.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { bestOf, differs, judge, compareVerdict, DEFAULT_CRITERION } from '../../../web/js/compare_verdict.js';
+import { bestOf, differs, judge, contacts, compareVerdict, DEFAULT_CRITERION } from '../../../web/js/compare_verdict.js';
 
 const summary = (over = {}) => ({
   collided: false, min_distance: 0.2, max_tracking_error: 0.003, final_tracking_error: 0.001, joint_limit_violated: false,
@@ -35,6 +35,19 @@ test('the default criterion is the benchmark suite\'s; each failure is named', (
   assert.deepEqual(judge(summary({ joint_limit_violated: true, nonfinite_steps: 3 })).reasons, ['crossed a joint limit', 'non-finite output']);
   assert.equal(judge(summary({ collided: true }), { collision: true }).pass, true);
   assert.equal(judge(summary({ min_distance: 0.04 }), { min_distance: 0.05 }).pass, false);
+});
+
+test('a self-collision is named as such, beside or without an obstacle contact', () => {
+  // format 2: collided is either contact
+  assert.deepEqual(judge(summary({ collided: true, obstacle_collided: false, self_collided: true })).reasons, ['self-collision']);
+  assert.deepEqual(judge(summary({ collided: true, obstacle_collided: true, self_collided: true })).reasons, ['collided', 'self-collision']);
+  assert.deepEqual(judge(summary({ collided: true, obstacle_collided: false, self_collided: true }), { collision: true }).reasons, []);
+  assert.deepEqual(contacts(summary({ collided: true })), ['collided']);  // format 1: obstacles only
+  const rows = compareVerdict([summary({ self_collided: true, min_self_distance: -0.02 }), summary({ self_collided: false, min_self_distance: 0.3 })], ['a', 'b']).rows;
+  assert.deepEqual(rows.find((r) => r.key === 'self_collided').best, [1]);
+  assert.deepEqual(rows.find((r) => r.key === 'min_self_distance').best, [1]);
+  const both = compareVerdict([summary({ collided: true, obstacle_collided: false, self_collided: true })], ['a']).rows;
+  assert.deepEqual(both.find((r) => r.key === 'collided').values, [false]);  // the collided row is the obstacle contact
 });
 
 test('the headline says no difference, who passes and who fails', () => {
