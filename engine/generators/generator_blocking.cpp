@@ -69,21 +69,33 @@ std::vector<size_t> straying_capsules(const ArmSweep& pinv, const ArmSweep& witn
 PinvBlockers::PinvBlockers(const ArmSweep& pinv, const ArmSweep& witness, double clearance)
     : pinv_(pinv), witness_room_(witness), clearance_(clearance), free_(straying_capsules(pinv, witness)) {}
 
-double PinvBlockers::room(const Eigen::Vector3d& point, double t, const Eigen::Vector3d& velocity, double enough,
-                          Eigen::Vector3d* nearest) const {
-  return witness_room_.at(point, t, velocity, enough + clearance_, nearest) - clearance_;
+double PinvBlockers::room(const Eigen::Vector3d& point, double t, const Eigen::Vector3d& velocity, double enough) const {
+  return witness_room_.at(point, t, velocity, enough + clearance_) - clearance_;
 }
 
-std::optional<double> PinvBlockers::fitting_size(const BlockAnchor& anchor, const Eigen::Vector3d& velocity,
-                                                 const std::string& shape, bool spatial, Range size, Rng& rng) const {
+std::optional<Eigen::Vector3d> PinvBlockers::centre(const BlockAnchor& anchor, const Eigen::Vector3d& velocity,
+                                                    double inner) const {
+  Eigen::Vector3d away;
+  witness_room_.at(anchor.point, anchor.t, velocity, std::numeric_limits<double>::infinity(), &away);
+  if (!(away.norm() > 1e-9)) return std::nullopt;
+  const double push = inner + 0.5 * pinv_.capsules[anchor.capsule].radius;
+  Eigen::Vector3d c = anchor.point + push * away.normalized();
+  for (int j = 0; j < 3; ++j) c[j] = rounded(c[j], kDrawStep);
+  return c;
+}
+
+std::optional<PinvBlockers::Fit> PinvBlockers::fit(const BlockAnchor& anchor, const Eigen::Vector3d& velocity,
+                                                   const std::string& shape, bool spatial, Range size, Rng& rng) const {
+  const std::optional<Eigen::Vector3d> c = centre(anchor, velocity, shape_inner(shape) * size.min);
+  if (!c) return std::nullopt;
   const double reach = shape_reach(shape, spatial);
   if (reach == 0) {  // a point: any size, its position clear (by a drawn step, for rounding)
-    if (room(anchor.point, anchor.t, velocity, 2 * kDrawStep) < kDrawStep) return std::nullopt;
-    return size.draw(rng);
+    if (room(*c, anchor.t, velocity, 2 * kDrawStep) < kDrawStep) return std::nullopt;
+    return Fit{*c, size.draw(rng)};
   }
-  const double most = std::min(size.max, room(anchor.point, anchor.t, velocity, size.max * reach) / reach);
+  const double most = std::min(size.max, room(*c, anchor.t, velocity, size.max * reach) / reach);
   if (most < size.min) return std::nullopt;
-  return Range{size.min, most}.draw(rng);
+  return Fit{*c, Range{size.min, most}.draw(rng)};
 }
 
 std::optional<BlockAnchor> PinvBlockers::draw_anchor(Rng& rng) const {
@@ -148,17 +160,10 @@ std::optional<nlohmann::json> balls_on_pinv(int count, PinvBlockers& blockers, R
     for (int i = 0; i < candidates; ++i) {
       const std::optional<BlockAnchor> anchor = blockers.draw_anchor(rng);
       if (!anchor) return std::nullopt;
-      // away from the witness arm's nearest point: a ball of radius.min there
-      // still reaches half the link's radius into pinv's capsule
-      Eigen::Vector3d nearest;
-      blockers.room(anchor->point, 0, Eigen::Vector3d::Zero(), std::numeric_limits<double>::infinity(), &nearest);
-      const Eigen::Vector3d away = anchor->point - nearest;
-      if (away.norm() < 1e-9) continue;
-      const double push = radius.min + 0.5 * pinv.capsules[anchor->capsule].radius;
-      Eigen::Vector3d centre = anchor->point + push * away.normalized();
-      for (int j = 0; j < 3; ++j) centre[j] = rounded(centre[j], 1e-4);
-      const double room = room_for_ball(centre);
-      if (room > best) best = room, best_anchor = anchor, best_centre = centre;
+      const std::optional<Eigen::Vector3d> centre = blockers.centre(*anchor, Eigen::Vector3d::Zero(), radius.min);
+      if (!centre) continue;
+      const double room = room_for_ball(*centre);
+      if (room > best) best = room, best_anchor = anchor, best_centre = *centre;
     }
     if (!best_anchor || best < radius.min) return std::nullopt;
     // drawn below the room, not as large as it allows: a smaller ball leaves

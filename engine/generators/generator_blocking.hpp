@@ -63,12 +63,22 @@ class PinvBlockers {
   // distance from the witness arm's surface less the clearance: negative,
   // none fits). Exact below `enough`.
   double room(const Eigen::Vector3d& point, double t, const Eigen::Vector3d& velocity,
-              double enough = std::numeric_limits<double>::infinity(), Eigen::Vector3d* nearest = nullptr) const;
-  // A size (m) in `size` for a `shape` through the anchor at its time,
-  // moving at `velocity`, below what keeps the clearance (shape_reach);
-  // nullopt when size.min does not fit.
-  std::optional<double> fitting_size(const BlockAnchor& anchor, const Eigen::Vector3d& velocity,
-                                     const std::string& shape, bool spatial, Range size, Rng& rng) const;
+              double enough = std::numeric_limits<double>::infinity()) const;
+  // Where a blocker whose shape always holds a ball of `inner` (m) about its
+  // centre is centred: the anchor moved away from the witness arm's nearest
+  // point by `inner` and half the anchor link's radius, so it still reaches
+  // that far into pinv's link. Nullopt when the anchor is on the witness arm.
+  std::optional<Eigen::Vector3d> centre(const BlockAnchor& anchor, const Eigen::Vector3d& velocity, double inner) const;
+  // A blocker of `shape` at the anchor (moving at `velocity`): its centre
+  // (centre(), for the shape at size.min) and a size (m) drawn in `size`
+  // below what keeps the clearance there (shape_reach); nullopt when
+  // size.min does not fit.
+  struct Fit {
+    Eigen::Vector3d centre;
+    double size = 0;
+  };
+  std::optional<Fit> fit(const BlockAnchor& anchor, const Eigen::Vector3d& velocity, const std::string& shape,
+                         bool spatial, Range size, Rng& rng) const;
   // A point on one of the straying capsules that no admitted obstacle meets;
   // nullopt when every one is met.
   std::optional<BlockAnchor> draw_anchor(Rng& rng) const;
@@ -96,12 +106,11 @@ std::optional<nlohmann::json> place_blockers(int count, PinvBlockers& blockers, 
                                              const BlockerDraw& draw, Rng& rng, int draws = 100);
 
 // `count` balls, each reaching at least half a link radius into one of
-// pinv's straying capsules: centred on a point of its axis moved away from
-// the witness arm by radius.min and half the link's radius, of a radius
-// drawn in `radius` below what keeps the clearance from the witness arm at
-// every step and stays off the other balls' anchors (the roomiest of
-// `candidates` anchors), ids "ball1", "ball2", ... Nullopt when one finds no
-// place of radius.min.
+// pinv's straying capsules (PinvBlockers::centre), of a radius drawn in
+// `radius` below what keeps the clearance from the witness arm at every step
+// and stays off the other balls' anchors (the roomiest of `candidates`
+// anchors), ids "ball1", "ball2", ... Nullopt when one finds no place of
+// radius.min.
 std::optional<nlohmann::json> balls_on_pinv(int count, PinvBlockers& blockers, Range radius, Rng& rng,
                                             int candidates = 24);
 

@@ -159,7 +159,7 @@ SweepRoom::SweepRoom(const ArmSweep& sweep) : sweep_(sweep) {
 }
 
 double SweepRoom::at(const Eigen::Vector3d& point, double t, const Eigen::Vector3d& velocity, double enough,
-                     Eigen::Vector3d* nearest) const {
+                     Eigen::Vector3d* away) const {
   const size_t links = size_t(std::max(sweep_.links, 1));
   const double speed = velocity.norm();
   // each chunk's lower bound: the point at the chunk's middle time, which the
@@ -183,7 +183,7 @@ double SweepRoom::at(const Eigen::Vector3d& point, double t, const Eigen::Vector
       const double d = (on_axis - p).norm() - s.radius;
       if (d < least) {
         least = d;
-        if (nearest) *nearest = on_axis;
+        if (away) *away = p - on_axis;
       }
     }
   }

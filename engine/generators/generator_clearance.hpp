@@ -48,10 +48,10 @@ class SweepRoom {
   explicit SweepRoom(const ArmSweep& sweep);
   // The point is at `point` at time `t` (s) and moves at `velocity`. Exact
   // below `enough`; a result at or above it says only "at least enough".
-  // `nearest`, when given and the result is below enough: the arm's axis
-  // point nearest to the point (at the step the point was there).
+  // `away`, when given and the result is below enough: from the arm's
+  // nearest axis point to the point, at the step where they are nearest.
   double at(const Eigen::Vector3d& point, double t, const Eigen::Vector3d& velocity,
-            double enough = std::numeric_limits<double>::infinity(), Eigen::Vector3d* nearest = nullptr) const;
+            double enough = std::numeric_limits<double>::infinity(), Eigen::Vector3d* away = nullptr) const;
 
  private:
   struct Chunk {

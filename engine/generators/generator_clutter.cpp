@@ -31,10 +31,10 @@ std::optional<nlohmann::json> place_clutter(const ClutterOptions& clutter, const
         blocking, *blockers, keep_out,
         [&](const BlockAnchor& anchor, int k, Rng& r) -> std::optional<nlohmann::json> {
           const std::string& shape = clutter.shapes[r.below(clutter.shapes.size())];
-          const std::optional<double> size =
-              blockers->fitting_size(anchor, Eigen::Vector3d::Zero(), shape, spatial, scaled(clutter.size, arm.reach), r);
-          if (!size) return std::nullopt;
-          return draw_obstacle(shape, anchor.point, *size, spatial, k + 1, r);
+          const std::optional<PinvBlockers::Fit> fit =
+              blockers->fit(anchor, Eigen::Vector3d::Zero(), shape, spatial, scaled(clutter.size, arm.reach), r);
+          if (!fit) return std::nullopt;
+          return draw_obstacle(shape, fit->centre, fit->size, spatial, k + 1, r);
         },
         rng);
     if (!on_pinv) return std::nullopt;

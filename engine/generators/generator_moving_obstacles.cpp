@@ -92,10 +92,10 @@ nlohmann::json generate_moving_obstacles(GeneratorCase& c) {
           [&](const BlockAnchor& anchor, int k, Rng& r) -> std::optional<nlohmann::json> {
             const std::string& shape = clutter.shapes[r.below(clutter.shapes.size())];
             const Eigen::Vector3d velocity = velocity_of(r);
-            const std::optional<double> size =
-                blockers.fitting_size(anchor, velocity, shape, false, scaled(clutter.size, arm.reach), r);
-            if (!size) return std::nullopt;
-            return moving(shape, anchor.point - velocity * anchor.t, velocity, *size, k, r);
+            const std::optional<PinvBlockers::Fit> fit =
+                blockers.fit(anchor, velocity, shape, false, scaled(clutter.size, arm.reach), r);
+            if (!fit) return std::nullopt;
+            return moving(shape, fit->centre - velocity * anchor.t, velocity, fit->size, k, r);
           },
           rng);
       if (!on_pinv) continue;

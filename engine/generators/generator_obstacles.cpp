@@ -81,6 +81,12 @@ double shape_reach(const std::string& shape, bool spatial) {
   return 1;
 }
 
+double shape_inner(const std::string& shape) {
+  if (shape == "sphere") return 1;
+  if (shape == "box") return 0.5;
+  return 0;
+}
+
 bool keeps_out(const nlohmann::json& obstacle, const KeepOut& keep_out) {
   Obstacle o;
   try {

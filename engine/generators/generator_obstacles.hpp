@@ -43,6 +43,10 @@ nlohmann::json draw_obstacle(const std::string& shape, const Eigen::Vector3d& ce
 // size: 1 for spheres and polygons, the half-diagonal for boxes (√2 planar,
 // √3 spatial), 0 for points.
 double shape_reach(const std::string& shape, bool spatial);
+// The radius of a ball about the centre that a drawn `shape` always holds,
+// per unit of its size: 1 for spheres, 1/2 for boxes (each edge at least
+// the size), 0 for polygons (star-shaped, possibly thin) and points.
+double shape_inner(const std::string& shape);
 
 // Where obstacles must not come: closer than `clearance` to the witness arm
 // at any step.

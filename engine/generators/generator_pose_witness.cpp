@@ -123,7 +123,7 @@ std::optional<WitnessedArm> pose_witnessed_arm(GeneratedArm arm, const Eigen::Ve
                                                const std::vector<Eigen::Vector3d>& points, const PathOptions& options,
                                                Rng& rng) {
   std::optional<GeneratedWitness> witness = build_pose_witness(arm, q0, points, options, rng);
-  if (!witness) return std::nullopt;
+  if (!witness || !keeps_self_clearance(arm.model, *witness)) return std::nullopt;
   GeneratedPath path;
   path.configurations = {q0};
   path.points = witness->hand;

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <rrlab/collision/allowed_collisions.hpp>
+#include <rrlab/collision/self_collision.hpp>
 #include <rrlab/generators/generator_blocking.hpp>
 #include <rrlab/generators/generator_case.hpp>
 #include <rrlab/kinematics/kinematics.hpp>
@@ -163,6 +165,33 @@ bool finish_witness(const Model& model, const SmoothWitness& smooth, long steps,
   return true;
 }
 
+double witness_self_clearance(const Model& model, const std::vector<Eigen::VectorXd>& steps) {
+  Model checked = model;
+  assign_self_pairs(checked);
+  if (checked.self_pairs.empty()) return std::numeric_limits<double>::infinity();
+  const SelfCollisionWorld world(checked);
+  KinematicsData kin(checked);
+  SelfDistanceTable table;
+  double least = std::numeric_limits<double>::infinity();
+  for (const Eigen::VectorXd& q : steps) {
+    forward_kinematics(checked, q, kin);
+    world.compute(kin, table);
+    least = std::min(least, table.min_distance);
+  }
+  return least;
+}
+
+double self_margin(const Model& model) {
+  double thinnest = std::numeric_limits<double>::infinity();
+  for (const Link& link : model.links) thinnest = std::min(thinnest, link.radius);
+  return std::min(kSelfClearance, 0.5 * thinnest);
+}
+
+bool keeps_self_clearance(const Model& model, GeneratedWitness& w) {
+  w.self_clearance = witness_self_clearance(model, w.steps);
+  return w.self_clearance > self_margin(model);
+}
+
 nlohmann::json witness_task(const GeneratedWitness& w, TaskSpace space) {
   nlohmann::json points = nlohmann::json::array(), durations = nlohmann::json::array();
   for (const Eigen::Vector3d& p : w.hand) {
@@ -200,6 +229,7 @@ nlohmann::json witness_json(const GeneratedWitness& w, const std::optional<Obsta
   }
   if (std::isfinite(w.limit_margin)) difficulty["limit_margin"] = rounded(w.limit_margin, 1e-6);
   if (w.orientation_rpy) difficulty["orientation_error"] = rounded(w.orientation_error, 1e-9);
+  if (std::isfinite(w.self_clearance)) difficulty["self_clearance"] = rounded(w.self_clearance, 1e-6);
   return {{"dt", w.dt}, {"q", q}, {"difficulty", difficulty}};
 }
 

@@ -34,6 +34,11 @@ constexpr double kOrientationTolerance = 1e-3;
 constexpr double kSampleStep = 1e-6;
 // Where joint velocity limits exist, the witness peaks at this share of them.
 constexpr double kVelocityLimitShare = 0.9;
+// The witness arm's checked link pairs (the allowed-collision matrix a case's
+// robot gets, collision/allowed_collisions.hpp) keep more than this distance
+// at every step (m), or half the thinnest link's radius when that is less
+// (self_margin); a witness that comes closer is redrawn.
+constexpr double kSelfClearance = 0.005;
 
 struct GeneratedWitness {
   double dt = 0;                           // sample spacing, a whole number of steps
@@ -49,6 +54,7 @@ struct GeneratedWitness {
   double limit_margin = std::numeric_limits<double>::infinity();  // least distance to a limit (rad)
   double min_manipulability = 0;           // least sqrt(det(J Jᵀ)) of the task rows, over the samples
   double peak_joint_speed = 0;             // largest |q̇| of any joint over the steps (rad/s)
+  double self_clearance = std::numeric_limits<double>::infinity();  // least self distance over the steps (m)
   std::string time_law;
 };
 
@@ -94,6 +100,19 @@ struct ObstacleDifficulty {
 nlohmann::json witness_task(const GeneratedWitness& witness, TaskSpace space);
 nlohmann::json witness_json(const GeneratedWitness& witness, const std::optional<ObstacleDifficulty>& obstacles);
 
+// The least distance between the checked link pairs of `model` (its own
+// allowed-collision matrix, as a case's robot gets it) over the steps, by
+// the engine's self-collision code; +inf when no pair is checked.
+double witness_self_clearance(const Model& model, const std::vector<Eigen::VectorXd>& steps);
+
+// min(kSelfClearance, half the thinnest link's radius): tiny arms (links of
+// a centimetre) fold closer than a fixed margin allows.
+double self_margin(const Model& model);
+
+// Sets w.self_clearance; false when it is not above self_margin (the witness
+// self-collides or nearly: redraw).
+bool keeps_self_clearance(const Model& model, GeneratedWitness& w);
+
 // Draws an arm, waypoint configurations (draw_path) and the witness through
 // them; `path` then holds the configurations and, as its points and length,
 // the witness's hand trace (where obstacles are aimed). Nullopt when no path
@@ -111,7 +130,7 @@ std::optional<WitnessedArm> draw_witnessed_arm(DrawArm&& draw_arm, const PathOpt
   std::optional<GeneratedPath> path = draw_path(arm, options.waypoints.draw(rng), rng);
   if (!path) return std::nullopt;
   std::optional<GeneratedWitness> witness = build_witness(arm.model, path->configurations, options, arm.reach, space, rng);
-  if (!witness) return std::nullopt;
+  if (!witness || !keeps_self_clearance(arm.model, *witness)) return std::nullopt;
   path->points = witness->hand;
   path->length = witness->length;
   path->duration = witness->duration;

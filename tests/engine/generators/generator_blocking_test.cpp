@@ -209,9 +209,9 @@ TEST(GeneratorBlocking, TightObstaclesAreThoseNearTheWitnessArm) {
 }
 
 // blocking_obstacles is what `rrlab run CASE --method pinv` finds: the case
-// read back from its JSON text, run with each obstacle alone, collides (the
-// run's summary) with exactly that many; with all of them, it collides when
-// any blocks. pinv ignores obstacles, so each run is the same motion.
+// read back from its JSON text, run with each obstacle alone, collides with
+// an obstacle (the run's summary: obstacle_collided) for exactly that many;
+// with all of them, it does when any blocks. pinv ignores obstacles, so each run is the same motion.
 TEST(GeneratorBlocking, BlockingObstaclesAgreeWithPinvRuns) {
   for (const std::string& family : generator_families())
     for (int index = 0; index < 2; ++index) {
@@ -221,7 +221,7 @@ TEST(GeneratorBlocking, BlockingObstaclesAgreeWithPinvRuns) {
         json one = doc;
         one["obstacles"] = obstacles;
         Simulator sim(parse_scenario(one), "pinv");
-        return run_to_end(sim, nullptr).collided;
+        return run_to_end(sim, nullptr).obstacle_collided;
       };
       int met = 0;
       for (const json& o : doc["obstacles"]) met += collides(json::array({o})) ? 1 : 0;
