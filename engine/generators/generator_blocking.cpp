@@ -13,6 +13,7 @@ namespace rrlab {
 namespace {
 
 constexpr IntRange kBlockingAllowed{0, 16};
+constexpr size_t kStrayingTenths = 3;  // of pinv's capsules: where blockers may be anchored
 
 // Whether `obstacle` meets capsule `index` of `sweep` at that capsule's step.
 bool meets_capsule(const ArmSweep& sweep, size_t index, const Obstacle& obstacle) {
@@ -58,7 +59,7 @@ std::vector<size_t> straying_capsules(const ArmSweep& pinv, const ArmSweep& witn
     const CapsuleSegment &p = pinv.capsules[i], &w = witness.capsules[i];
     by_distance.emplace_back(-((p.a + p.b) - (w.a + w.b)).norm(), i);
   }
-  const size_t keep = std::min(by_distance.size(), std::max<size_t>(1, by_distance.size() * 3 / 10));
+  const size_t keep = std::min(by_distance.size(), std::max<size_t>(1, by_distance.size() * kStrayingTenths / 10));
   std::partial_sort(by_distance.begin(), by_distance.begin() + long(keep), by_distance.end());
   std::vector<size_t> out;
   for (size_t i = 0; i < keep; ++i) out.push_back(by_distance[i].second);

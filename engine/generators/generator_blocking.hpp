@@ -39,8 +39,8 @@ IntRange read_blocking(const GeneratorOptions& options, const GeneratorCase& c);
 std::optional<ArmSweep> minimum_norm_sweep(const GeneratorCase& c, const WitnessedArm& drawn, TaskSpace space);
 
 // The capsules of `pinv` (indices, ascending) where its arm strays farthest
-// from the witness arm at the same step (link midpoints): the tenth of them
-// where an obstacle on pinv's arm can stand clear of the witness.
+// from the witness arm at the same step (link midpoints): the 30 % of them
+// where an obstacle on pinv's arm may stand clear of the witness.
 std::vector<size_t> straying_capsules(const ArmSweep& pinv, const ArmSweep& witness);
 
 // Where a blocking obstacle is placed: one of pinv's capsules (its step and

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -99,37 +100,40 @@ double segment_obstacle(const P& a, const P& b, const json& o, double t) {
   return segment_polygon(a, b, polygon);
 }
 
-// Each obstacle's least distance from the arm's capsules over the
-// configurations (the k-th at time k × dt).
-std::vector<double> least_distances(const json& doc, const std::vector<Eigen::VectorXd>& qs, double dt) {
+// Each (configuration, link) of the arm with every obstacle's distance from
+// that link's capsule (the k-th configuration at time k × dt).
+void each_link(const json& doc, const std::vector<Eigen::VectorXd>& qs, double dt,
+               const std::function<void(const std::vector<double>& distances)>& visit) {
   const json& obstacles = doc["obstacles"];
-  std::vector<double> least(obstacles.size(), INFINITY);
+  std::vector<double> distances(obstacles.size());
   for (size_t k = 0; k < qs.size(); ++k) {
     const std::vector<std::pair<P, P>> links = links_at(doc["robot"], qs[k]);
     for (size_t i = 0; i < links.size(); ++i) {
       const double radius = doc["robot"]["links"][i]["radius"].get<double>();
       for (size_t o = 0; o < obstacles.size(); ++o)
-        least[o] = std::min(least[o], segment_obstacle(links[i].first, links[i].second, obstacles[o], double(k) * dt) - radius);
+        distances[o] = segment_obstacle(links[i].first, links[i].second, obstacles[o], double(k) * dt) - radius;
+      visit(distances);
     }
   }
+}
+
+// Each obstacle's least distance from the arm over the configurations.
+std::vector<double> least_distances(const json& doc, const std::vector<Eigen::VectorXd>& qs, double dt) {
+  std::vector<double> least(doc["obstacles"].size(), INFINITY);
+  each_link(doc, qs, dt, [&](const std::vector<double>& d) {
+    for (size_t o = 0; o < d.size(); ++o) least[o] = std::min(least[o], d[o]);
+  });
   return least;
 }
 
 // Which obstacles the arm meets somewhere (a configuration and a link) that
 // no other obstacle meets: each such one is an encounter of its own.
 std::vector<bool> met_alone(const json& doc, const std::vector<Eigen::VectorXd>& qs, double dt) {
-  const json& obstacles = doc["obstacles"];
-  std::vector<bool> alone(obstacles.size(), false);
-  for (size_t k = 0; k < qs.size(); ++k) {
-    const std::vector<std::pair<P, P>> links = links_at(doc["robot"], qs[k]);
-    for (size_t i = 0; i < links.size(); ++i) {
-      const double radius = doc["robot"]["links"][i]["radius"].get<double>();
-      std::vector<size_t> met;
-      for (size_t o = 0; o < obstacles.size(); ++o)
-        if (segment_obstacle(links[i].first, links[i].second, obstacles[o], double(k) * dt) <= radius) met.push_back(o);
-      if (met.size() == 1) alone[met[0]] = true;
-    }
-  }
+  std::vector<bool> alone(doc["obstacles"].size(), false);
+  each_link(doc, qs, dt, [&](const std::vector<double>& d) {
+    if (std::count_if(d.begin(), d.end(), [](double x) { return x <= 0; }) != 1) return;
+    alone[size_t(std::find_if(d.begin(), d.end(), [](double x) { return x <= 0; }) - d.begin())] = true;
+  });
   return alone;
 }
 
