@@ -12,7 +12,8 @@ Interval wilson_interval(size_t successes, size_t n, double z) {
   const double denominator = 1 + z2 / nn;
   const double centre = (p + z2 / (2 * nn)) / denominator;
   const double half = z * std::sqrt(p * (1 - p) / nn + z2 / (4 * nn * nn)) / denominator;
-  return {std::max(0.0, centre - half), std::min(1.0, centre + half)};
+  // exact at the ends: centre - half is 0 for no success only up to rounding (5.6e-17 for 0 of 3)
+  return {successes == 0 ? 0.0 : std::max(0.0, centre - half), successes == n ? 1.0 : std::min(1.0, centre + half)};
 }
 
 double quantile(std::vector<double> values, double q) {
