@@ -28,7 +28,7 @@ nlohmann::json summary_to_json(const Summary& s) {
   j["obstacle_collided"] = s.obstacle_collided;
   j["self_collided"] = s.self_collided;
   j["min_distance"] = finite_or_null(s.min_distance);
-  j["min_self_distance"] = s.min_self_distance ? finite_or_null(*s.min_self_distance) : nullptr;
+  j["min_self_distance"] = finite_or_null(s.min_self_distance);
   j["max_tracking_error"] = finite_or_null(s.max_tracking_error);
   j["final_tracking_error"] = finite_or_null(s.final_tracking_error);
   j["joint_limit_violated"] = s.joint_limit_violated;
