@@ -68,8 +68,9 @@ struct Summary {
 };
 
 // The summary's format: absent (1) before self-collision, when `collided`
-// meant an obstacle contact only; 2 adds obstacle_collided, self_collided and
-// min_self_distance, and `collided` is any collision. A stored summary is
+// meant an obstacle contact only; 2 adds obstacle_collided, self_collided,
+// min_self_distance and the smoothness fields (rms_qddot, max_qddot,
+// rms_jerk, max_jerk), and `collided` is any collision. A stored summary is
 // re-simulated and compared under the rules of its format.
 inline constexpr int kSummaryFormat = 2;
 
