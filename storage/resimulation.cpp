@@ -70,7 +70,9 @@ constexpr const char* kSummaryResultFields[] = {"steps", "collided", "min_distan
                                                 "final_tracking_error", "joint_limit_violated", "min_joint_limit_margin",
                                                 "max_condition_number", "nonfinite_steps", "max_qdot_ratio",
                                                 "max_qddot_ratio", "final_q"};
-constexpr const char* kSummaryFormat2Fields[] = {"obstacle_collided", "self_collided", "min_self_distance"};
+constexpr const char* kSummaryFormat2Fields[] = {"obstacle_collided", "self_collided", "min_self_distance",
+                                                 "rms_qddot",         "max_qddot",     "rms_jerk",
+                                                 "max_jerk"};
 
 // A run without frames whose summary says it completed steps: as many steps, the summary compared after.
 void resimulate_from_summary(Simulator& sim, const RunRecord& run, EventReplayer& replayer,

@@ -1,6 +1,7 @@
 // `rrlab sweep --out FILE`: one CSV row per stored run of the given cases, in
 // expansion order: key, scenario_key, config, family, seed, success, the
-// first failure's mode and time, run id, the summary's numbers, the case's
+// first failure's mode and time, run id, the summary's numbers (smoothness
+// included: empty where the run was too short for it), the case's
 // difficulty (generated cases) and step_us last (wall clock, not deterministic).
 #pragma once
 

@@ -28,6 +28,7 @@ struct RunFacts {
   double max_tracking_error = std::numeric_limits<double>::quiet_NaN();
   bool joint_limit_violated = false;
   long nonfinite_steps = 0;
+  double rms_jerk = std::numeric_limits<double>::quiet_NaN();  // null (too short, or older summaries): NaN
   double step_p50 = 0, step_p99 = 0;
   double clearance = std::numeric_limits<double>::quiet_NaN();     // the witness's, generated cases
   double limit_margin = std::numeric_limits<double>::quiet_NaN();  // the witness's, generated cases
@@ -68,6 +69,7 @@ RunFacts facts_of(const storage::SweepRunEntry& e) {
   f.max_tracking_error = number_or(s, "max_tracking_error", std::numeric_limits<double>::quiet_NaN());
   f.joint_limit_violated = s.value("joint_limit_violated", false);
   f.nonfinite_steps = s.value("nonfinite_steps", 0L);
+  f.rms_jerk = number_or(s, "rms_jerk", f.rms_jerk);
   if (s.contains("step_us") && s["step_us"].is_object()) {
     f.step_p50 = number_or(s["step_us"], "p50", 0);
     f.step_p99 = number_or(s["step_us"], "p99", 0);
@@ -82,13 +84,14 @@ GroupStats group_stats(const std::vector<const RunFacts*>& runs) {
   g.config_key = row.config_key;
   g.family = report_family(row);
   g.n = runs.size();
-  std::vector<double> distances, errors, p50s, p99s;
+  std::vector<double> distances, errors, jerks, p50s, p99s;
   size_t limits = 0, nonfinite = 0;
   for (const RunFacts* f : runs) {
     g.successes += f->entry->row.success ? 1 : 0;
     if (!f->entry->row.success) ++g.failure_modes[f->entry->row.failure_mode.value_or("unrecorded")];
     if (std::isfinite(f->min_distance)) distances.push_back(f->min_distance);
     if (!std::isnan(f->max_tracking_error)) errors.push_back(f->max_tracking_error);
+    if (!std::isnan(f->rms_jerk)) jerks.push_back(f->rms_jerk);
     limits += f->joint_limit_violated ? 1 : 0;
     nonfinite += f->nonfinite_steps > 0 ? 1 : 0;
     p50s.push_back(f->step_p50);
@@ -99,6 +102,7 @@ GroupStats group_stats(const std::vector<const RunFacts*>& runs) {
   g.median_min_distance = quantile(distances, 0.5);
   g.p10_min_distance = quantile(distances, 0.1);
   g.median_max_tracking_error = quantile(errors, 0.5);
+  g.median_rms_jerk = quantile(jerks, 0.5);
   g.joint_limit_share = double(limits) / double(g.n);
   g.nonfinite_share = double(nonfinite) / double(g.n);
   g.step_us_p50 = quantile(p50s, 0.5);

@@ -6,6 +6,7 @@
 //    obstacles have none), median of max tracking error, share of runs with a
 //    joint-limit violation, share with non-finite steps, and step time: the
 //    median over runs of each run's step_us.p50, and of each run's step_us.p99;
+//    smoothness: the median over runs of each run's RMS joint jerk (rms_jerk);
 //  - paired comparisons of every two configurations of a sweep on the same
 //    cases (same scenario key and seed): wins/losses/ties on success, and on
 //    min distance (larger wins; within 1e-9 is a tie); only for a sweep of at
@@ -80,6 +81,7 @@ struct GroupStats {
   double median_max_tracking_error = 0;
   double joint_limit_share = 0, nonfinite_share = 0;
   double step_us_p50 = 0, step_us_p99 = 0;  // medians over runs of each run's p50 / p99
+  double median_rms_jerk = 0;  // over runs with one (rad/s³); NaN: none had
   std::map<std::string, size_t> failure_modes;  // failed runs by first failure mode
   double step_ratio_to_pinv = std::numeric_limits<double>::quiet_NaN();  // NaN: no pinv group to compare with
   // Success against the case's difficulty (generated cases): `difficulty_measure` is the

@@ -119,6 +119,7 @@ nlohmann::json report_json(const SweepReport& report, size_t max_rows) {
                       {"median_max_tracking_error", number(g.median_max_tracking_error)},
                       {"joint_limit_share", number(g.joint_limit_share)},
                       {"nonfinite_share", number(g.nonfinite_share)},
+                      {"median_rms_jerk", number(g.median_rms_jerk)},
                       {"step_us_p50", number(g.step_us_p50)},
                       {"step_us_p99", number(g.step_us_p99)},
                       {"step_ratio_to_pinv", number(g.step_ratio_to_pinv)},

@@ -40,6 +40,15 @@ struct StepTimeStats {
   double mean = 0, p50 = 0, p99 = 0;
 };
 
+// Joint acceleration (rad/s², m/s² for prismatic joints) and jerk (/s³) of
+// the motion a run made: RMS and largest over its steps of the Euclidean norm
+// over joints (joint_smoothness.hpp). Empty when the run is too short: the
+// acceleration needs 2 steps, the jerk 3.
+struct JointSmoothness {
+  std::optional<double> rms_qddot, max_qddot;
+  std::optional<double> rms_jerk, max_jerk;
+};
+
 struct Summary {
   std::string scenario, method;
   long steps = 0;
@@ -53,19 +62,22 @@ struct Summary {
   std::optional<double> max_qdot_ratio, max_qddot_ratio;  // absent without such limits
   double max_condition_number = 0;
   long nonfinite_steps = 0;  // steps whose method output was not finite (zeroed)
+  JointSmoothness smoothness;
   Eigen::VectorXd final_q;
   StepTimeStats step_us;
 };
 
 // The summary's format: absent (1) before self-collision, when `collided`
-// meant an obstacle contact only; 2 adds obstacle_collided, self_collided and
-// min_self_distance, and `collided` is any collision. A stored summary is
+// meant an obstacle contact only; 2 adds obstacle_collided, self_collided,
+// min_self_distance and the smoothness fields (rms_qddot, max_qddot,
+// rms_jerk, max_jerk), and `collided` is any collision. A stored summary is
 // re-simulated and compared under the rules of its format.
 inline constexpr int kSummaryFormat = 2;
 
 // The run summary JSON of `rrlab run` (docs/cli.md, run); non-finite numbers are written as null.
 nlohmann::json summary_to_json(const Summary& summary);
 nlohmann::json finite_or_null(double value);
+nlohmann::json finite_or_null(const std::optional<double>& value);  // empty: null
 nlohmann::json finite_or_null(const Eigen::VectorXd& values);  // an array
 
 }  // namespace rrlab

@@ -103,6 +103,7 @@ void Simulator::reset_state() {
   min_margin_ = kInf;
   max_error_ = max_condition_ = max_qdot_ratio_ = max_qddot_ratio_ = 0;
   nonfinite_steps_ = 0;
+  smoothness_.restart(state_.q, scenario_.dt);
   step_times_.clear();
 }
 
@@ -173,6 +174,7 @@ void Simulator::step() {
     state_.q = out_.q_next;
   else
     state_.q.noalias() += dt * out_.qdot;
+  smoothness_.add(state_.q);  // the state reached, however the method got there
   qdot_prev_ = frame_.qdot;
   state_.qdot = frame_.qdot;
   ++state_.step;
@@ -241,6 +243,7 @@ Summary Simulator::summary() const {
   if (scenario_.model.limits.has_acceleration()) s.max_qddot_ratio = max_qddot_ratio_;
   s.max_condition_number = max_condition_;
   s.nonfinite_steps = nonfinite_steps_;
+  s.smoothness = smoothness_.stats();
   s.final_q = state_.q;
   s.step_us = step_times_.stats();
   // final state: error against the reference at the final time

@@ -16,6 +16,7 @@
 #include <rrlab/methods/method.hpp>
 #include <rrlab/scenario/scenario.hpp>
 #include <rrlab/sim/frame.hpp>
+#include <rrlab/sim/joint_smoothness.hpp>
 #include <rrlab/sim/recorder.hpp>
 #include <rrlab/sim/step_time_histogram.hpp>
 #include <rrlab/task/task.hpp>
@@ -105,6 +106,7 @@ class Simulator {
   double min_distance_, max_error_ = 0, min_margin_, max_condition_ = 0;
   double max_qdot_ratio_ = 0, max_qddot_ratio_ = 0;
   long nonfinite_steps_ = 0;
+  JointSmoothnessMeter smoothness_;  // of the states reached since the start or the last reset
   StepTimeHistogram step_times_;
 };
 

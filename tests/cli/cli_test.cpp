@@ -33,9 +33,11 @@ TEST(Cli, RunPrintsTheSummaryJson) {
   const json s = json::parse(r.out);
   for (const char* key : {"scenario", "method", "steps", "collided", "min_distance", "max_tracking_error",
                           "final_tracking_error", "joint_limit_violated", "min_joint_limit_margin",
-                          "max_qdot_ratio", "max_qddot_ratio", "max_condition_number", "final_q", "step_us"})
+                          "max_qdot_ratio", "max_qddot_ratio", "max_condition_number", "rms_qddot", "max_qddot",
+                          "rms_jerk", "max_jerk", "final_q", "step_us"})
     EXPECT_TRUE(s.contains(key)) << key;
   EXPECT_EQ(s["steps"], 50);
+  EXPECT_TRUE(s["rms_jerk"].is_number());
   EXPECT_EQ(s["final_q"].size(), 7u);
   EXPECT_TRUE(s["step_us"].contains("p99"));
 }

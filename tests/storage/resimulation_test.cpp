@@ -117,7 +117,9 @@ TEST_F(Resimulation, ASelfCollidingRunStoredBeforeSelfCollisionStillVerifies) {
   const Summary summary = sim.summary();
   ASSERT_TRUE(summary.self_collided);
   json old = summary_to_json(summary);
-  for (const char* field : {"format", "obstacle_collided", "self_collided", "min_self_distance"}) old.erase(field);
+  for (const char* field : {"format", "obstacle_collided", "self_collided", "min_self_distance", "rms_qddot",
+                            "max_qddot", "rms_jerk", "max_jerk"})
+    old.erase(field);
   old["collided"] = summary.obstacle_collided;  // what the first format said
   store.finish_run(id, "completed", old.dump());
   const ResimulationResult result = resimulate(store, *store.run(id), {});
@@ -135,14 +137,17 @@ TEST_F(Resimulation, ASummaryOfTheFirstFormatIsComparedUnderItsOwnRules) {
     s.erase("obstacle_collided");
     s.erase("self_collided");
     s.erase("min_self_distance");
+    for (const char* field : {"rms_qddot", "max_qddot", "rms_jerk", "max_jerk"}) s.erase(field);
   });
   const ResimulationResult result = resimulate(store, *store.run(old), {});
   EXPECT_TRUE(result.identical()) << result.summary_mismatch;
 
-  const std::int64_t changed = store_frameless(store, 40, [](json& s) { s["self_collided"] = true; });
-  const ResimulationResult fresh = resimulate(store, *store.run(changed), {});
-  EXPECT_FALSE(fresh.identical());
-  EXPECT_EQ(fresh.summary_mismatch.rfind("self_collided ", 0), 0u) << fresh.summary_mismatch;
+  for (const char* field : {"self_collided", "rms_jerk"}) {
+    const std::int64_t changed = store_frameless(store, 40, [&](json& s) { s[field] = 1; });
+    const ResimulationResult fresh = resimulate(store, *store.run(changed), {});
+    EXPECT_FALSE(fresh.identical());
+    EXPECT_EQ(fresh.summary_mismatch.rfind(std::string(field) + " ", 0), 0u) << fresh.summary_mismatch;
+  }
 }
 
 TEST_F(Resimulation, ARunWithNeitherFramesNorStepsHasNothingToCompare) {
