@@ -180,12 +180,14 @@ TEST(Defaults, GpmHoldsLimitsOnUntunedPlanarLimitsCases) {
 }
 
 // The obstacle-aware baselines with their defaults on untuned planar_clutter
-// cases (seed 2001, 10 cases; the first obstacle of each stands where pinv's
+// cases (seed 2001, 10 cases; two obstacles of each stand where pinv's
 // arm passes, so pinv collides on every one). Before the secondary inverse was
 // damped (secondary_lambda = 0) task_priority and closest_point lost the path
-// by metres on most such cases (q̇ ~ 1e12 at J₂N₁ → 0). Measured: avoided with
-// the path tracked within 1 cm on 10 (task_priority), 10 (closest_point) and 8
-// (sr_task_priority: one collision, one 1.1 cm error) of 10.
+// by metres on most such cases (q̇ ~ 1e12 at J₂N₁ → 0). Measured, since two
+// obstacles block pinv in every case: avoided with the path tracked within
+// 1 cm on 10 (task_priority), 10 (closest_point) and 6 (sr_task_priority: two
+// collisions, two errors past 1 cm; 61 % of the default suite's
+// planar_clutter) of 10; with one blocking obstacle sr_task_priority had 8.
 TEST(Defaults, ObstacleBaselinesAvoidWherePinvCollidesOnUntunedCases) {
   std::map<std::string, int> avoided;
   int pinv_collided = 0;
@@ -202,7 +204,7 @@ TEST(Defaults, ObstacleBaselinesAvoidWherePinvCollidesOnUntunedCases) {
   EXPECT_EQ(pinv_collided, 10);
   EXPECT_GE(avoided["task_priority"], 9);
   EXPECT_GE(avoided["closest_point"], 9);
-  EXPECT_GE(avoided["sr_task_priority"], 7);
+  EXPECT_GE(avoided["sr_task_priority"], 6);
 }
 
 TEST(SrTaskPriority, JointCentringLeavesTheTaskAlone) {
