@@ -125,15 +125,12 @@ AllowedCollisionMatrix sampled_matrix(const Model& model) {
   SelfCollisionWorld world(all);
   KinematicsData kin(all);
   SelfDistanceTable table;
-  Eigen::VectorXd q(model.dof());
+  Eigen::VectorXd q(model.dof()), lo(model.dof()), hi(model.dof());
+  for (int j = 0; j < model.dof(); ++j) sampling_range(model, j, lo[j], hi[j]);  // once, not per sample
   std::vector<int> contacts(all.self_pairs.size(), 0);
   Rng rng(SelfCollisionLimits::seed);
   for (int s = 0; s < m.samples; ++s) {
-    for (int j = 0; j < model.dof(); ++j) {
-      double lo = 0, hi = 0;
-      sampling_range(model, j, lo, hi);
-      q[j] = rng.uniform(lo, hi);
-    }
+    for (int j = 0; j < model.dof(); ++j) q[j] = rng.uniform(lo[j], hi[j]);
     forward_kinematics(all, q, kin);
     world.compute(kin, table);
     for (size_t i = 0; i < table.pairs.size(); ++i)
