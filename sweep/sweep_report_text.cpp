@@ -186,6 +186,7 @@ std::string fallback_rule_text() {
 
 std::string fallback_choice_text(const FamilyFallback& f) {
   if (f.first.empty()) return "—";
+  if (f.solved_by_some == 0) return "none: no configuration solves any of the " + std::to_string(f.cases) + " cases";
   const std::string first = f.first + " " + std::to_string(f.first_solved) + "/" + std::to_string(f.pair_cases);
   if (f.second.empty()) return first + ", alone: no configuration solves a case it fails";
   return first + ", then " + f.second + ": " + std::to_string(f.pair_solved) + "/" + std::to_string(f.pair_cases) +

@@ -68,6 +68,12 @@ TEST(SweepFallback, OneConfigurationWhenNoSecondAddsACase) {
   EXPECT_NEAR(f.cost_us, 3, 1e-12);
 }
 
+TEST(SweepFallback, AFamilyNothingSolvesNamesNoFirstChoiceInText) {
+  const FamilyFallback f = family_fallback(outcomes({{"dls", "000"}, {"pinv", "000"}}, {2, 1}));
+  EXPECT_EQ(f.solved_by_some, 0u);
+  EXPECT_EQ(fallback_choice_text(f), "none: no configuration solves any of the 3 cases");
+}
+
 TEST(SweepFallback, TheWitnessIsNoMethodItMarksTheFrontier) {
   // the witness is no configuration here: the caller leaves it out of `configs`
   const FamilyFallback f = family_fallback(outcomes({{"a", "1100"}, {"b", "1000"}}, {1, 1}, "1110"));

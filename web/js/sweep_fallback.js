@@ -11,12 +11,14 @@ const short = (x) => (Number.isFinite(x) ? String(Number(x.toPrecision(3))) : '�
 // "task_priority, then qp_constraints", or the first choice alone and why.
 export function fallbackPair(f) {
   if (!f.first) return '—';
+  if (f.solved_by_some === 0) return 'none: no configuration solves any case';
   return f.second ? `${f.first}, then ${f.second}` : `${f.first} alone (no configuration solves a case it fails)`;
 }
 
 // "79 → 89 of 100": the first choice alone, then with its fallback.
 export function fallbackSolved(f) {
   if (!f.first) return '—';
+  if (f.solved_by_some === 0) return `0 of ${f.pair_cases}`;
   return f.second ? `${f.first_solved} → ${f.pair_solved} of ${f.pair_cases}` : `${f.first_solved} of ${f.pair_cases}`;
 }
 

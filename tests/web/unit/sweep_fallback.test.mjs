@@ -20,6 +20,12 @@ test('a pair, a first choice alone, and no choice', () => {
   assert.equal(fallbackPair(row({ first: null, second: null })), '—');
 });
 
+test('a family nothing solves names no method as its first choice', () => {
+  const none = row({ solved_by_some: 0, second: null, first_solved: 0, pair_solved: 0, pair_cases: 3 });
+  assert.equal(fallbackPair(none), 'none: no configuration solves any case');
+  assert.equal(fallbackSolved(none), '0 of 3');
+});
+
 test('unsolved cases with the witness\'s count, and a listing cut short', () => {
   assert.equal(unsolvedText(row()), '3 of 100 (the witness solves 3): gen:urdf_shelf:1:12, gen:urdf_shelf:1:66, gen:urdf_shelf:1:93');
   const cut = row({ unsolved: { total: 60, witness_solves: null, listed: [{ case: 'a', seed: 1 }], generate: [] } });
