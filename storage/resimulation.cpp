@@ -73,6 +73,7 @@ constexpr const char* kSummaryResultFields[] = {"steps", "collided", "min_distan
 constexpr const char* kSummaryFormat2Fields[] = {"obstacle_collided", "self_collided", "min_self_distance",
                                                  "rms_qddot",         "max_qddot",     "rms_jerk",
                                                  "max_jerk"};
+constexpr const char* kSummaryFormat3Fields[] = {"position_limit_steps", "velocity_limit_steps"};
 
 // A run without frames whose summary says it completed steps: as many steps, the summary compared after.
 void resimulate_from_summary(Simulator& sim, const RunRecord& run, EventReplayer& replayer,
@@ -108,6 +109,9 @@ std::string summary_difference(const RunRecord& run, const Summary& fresh_summar
     if (std::string d = differs(field); !d.empty()) return d;
   if (format >= 2)
     for (const char* field : kSummaryFormat2Fields)
+      if (std::string d = differs(field); !d.empty()) return d;
+  if (format >= 3)
+    for (const char* field : kSummaryFormat3Fields)
       if (std::string d = differs(field); !d.empty()) return d;
   return "";
 }

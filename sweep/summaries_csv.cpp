@@ -33,7 +33,8 @@ constexpr const char* kSummaryColumns[] = {"steps", "collided", "min_distance", 
                                            "max_tracking_error",
                                            "final_tracking_error", "joint_limit_violated", "min_joint_limit_margin",
                                            "max_qdot_ratio", "max_qddot_ratio", "max_condition_number",
-                                           "nonfinite_steps", "rms_qddot", "max_qddot", "rms_jerk", "max_jerk"};
+                                           "nonfinite_steps", "rms_qddot", "max_qddot", "rms_jerk", "max_jerk",
+                                           "position_limit_steps", "velocity_limit_steps"};
 
 // The generated cases' difficulty (witness.difficulty), empty for other runs.
 constexpr const char* kDifficultyColumns[] = {"clearance",  "limit_margin",       "gap_width",

@@ -9,6 +9,7 @@
 #include <set>
 #include <stdexcept>
 #include <tuple>
+#include <utility>
 
 #include <rrlab/methods/witness_playback.hpp>
 #include <rrlab/sweep/sweep_power.hpp>
@@ -28,6 +29,8 @@ struct RunFacts {
   double max_tracking_error = std::numeric_limits<double>::quiet_NaN();
   bool joint_limit_violated = false;
   long nonfinite_steps = 0;
+  long steps = 0;
+  long position_limit_steps = -1, velocity_limit_steps = -1;  // -1: not in the summary (older, or no velocity limits)
   double rms_jerk = std::numeric_limits<double>::quiet_NaN();  // null (too short, or older summaries): NaN
   double step_p50 = 0, step_p99 = 0;
   double clearance = std::numeric_limits<double>::quiet_NaN();     // the witness's, generated cases
@@ -69,6 +72,10 @@ RunFacts facts_of(const storage::SweepRunEntry& e) {
   f.max_tracking_error = number_or(s, "max_tracking_error", std::numeric_limits<double>::quiet_NaN());
   f.joint_limit_violated = s.value("joint_limit_violated", false);
   f.nonfinite_steps = s.value("nonfinite_steps", 0L);
+  f.steps = s.contains("steps") && s["steps"].is_number_integer() ? s["steps"].get<long>() : 0;
+  for (auto [key, out] : {std::pair{"position_limit_steps", &f.position_limit_steps},
+                          std::pair{"velocity_limit_steps", &f.velocity_limit_steps}})
+    if (s.contains(key) && s[key].is_number_integer() && s[key].get<long>() >= 0) *out = s[key].get<long>();
   f.rms_jerk = number_or(s, "rms_jerk", f.rms_jerk);
   if (s.contains("step_us") && s["step_us"].is_object()) {
     f.step_p50 = number_or(s["step_us"], "p50", 0);
@@ -94,6 +101,14 @@ GroupStats group_stats(const std::vector<const RunFacts*>& runs) {
     if (!std::isnan(f->rms_jerk)) jerks.push_back(f->rms_jerk);
     limits += f->joint_limit_violated ? 1 : 0;
     nonfinite += f->nonfinite_steps > 0 ? 1 : 0;
+    if (f->position_limit_steps >= 0) {
+      g.limit_steps.counted_steps += f->steps;
+      g.limit_steps.position += f->position_limit_steps;
+    }
+    if (f->velocity_limit_steps >= 0) {
+      g.limit_steps.velocity_counted_steps += f->steps;
+      g.limit_steps.velocity += f->velocity_limit_steps;
+    }
     p50s.push_back(f->step_p50);
     p99s.push_back(f->step_p99);
   }

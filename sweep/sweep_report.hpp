@@ -72,6 +72,15 @@ struct CountDifficulty {
   std::array<DifficultyBin, kCountBins> bins;
 };
 
+// Steps that ended past a joint limit after integration, summed over the
+// group's runs whose summaries count them (format 3 on): position limits over
+// `counted_steps`, velocity limits over `velocity_counted_steps` (runs with
+// velocity limits). Zero counted steps: no run says.
+struct LimitSteps {
+  long counted_steps = 0, position = 0;
+  long velocity_counted_steps = 0, velocity = 0;
+};
+
 struct GroupStats {
   std::string sweep, config_key, family;
   size_t n = 0, successes = 0;
@@ -80,6 +89,7 @@ struct GroupStats {
   double median_min_distance = 0, p10_min_distance = 0;  // NaN: no run with a finite one
   double median_max_tracking_error = 0;
   double joint_limit_share = 0, nonfinite_share = 0;
+  LimitSteps limit_steps;
   double step_us_p50 = 0, step_us_p99 = 0;  // medians over runs of each run's p50 / p99
   double median_rms_jerk = 0;  // over runs with one (rad/s³); NaN: none had
   std::map<std::string, size_t> failure_modes;  // failed runs by first failure mode

@@ -202,7 +202,9 @@ void write_report_html(std::ostream& out, const SweepReport& report) {
          "rate, whiskers its 95 % Wilson score interval. Min distance over runs with obstacles (p10: 10th "
          "percentile). Step time: median over runs of each run's step_us.p50 and of each run's step_us.p99 (wall "
          "clock, µs). Jerk: median over runs of each run's RMS joint jerk (rad/s³; the Euclidean norm over "
-         "joints of q's third difference / dt³). Paired comparisons count A's wins/losses/ties against B on the "
+         "joints of q's third difference / dt³). Steps past limits: steps whose integrated q ended past a joint "
+         "position limit / whose applied velocity exceeded a velocity limit, summed over the runs (— where the runs' "
+         "summaries predate the count, or have no velocity limits). Paired comparisons count A's wins/losses/ties against B on the "
          "same cases (scenario and seed): on success, and on min distance (larger wins, ties within 1e-9).</p>\n";
   if (report.sweeps.empty()) out << "<p>No sweep runs stored.</p>\n";
   for (const std::string& sweep : report.sweeps) {
@@ -210,7 +212,7 @@ void write_report_html(std::ostream& out, const SweepReport& report) {
     success_chart(out, report, sweep);
     out << "<table><tr><th>method config</th><th>family</th><th>n</th><th>success</th><th>95% CI</th>"
            "<th>min dist median</th><th>min dist p10</th><th>max track err median</th><th>joint-limit viol.</th>"
-           "<th>non-finite</th><th>jerk RMS median</th><th>step µs p50</th><th>step µs p99</th><th>step × pinv</th>"
+           "<th>steps past limits q / q̇</th><th>non-finite</th><th>jerk RMS median</th><th>step µs p50</th><th>step µs p99</th><th>step × pinv</th>"
            "<th>first failures</th></tr>\n";
     for (const GroupStats& g : report.groups) {
       if (g.sweep != sweep) continue;
@@ -219,7 +221,7 @@ void write_report_html(std::ostream& out, const SweepReport& report) {
           << "–" << percent(g.success_interval.high) << "</td><td class=\"n\">" << short_number(g.median_min_distance)
           << "</td><td class=\"n\">" << short_number(g.p10_min_distance) << "</td><td class=\"n\">"
           << short_number(g.median_max_tracking_error) << "</td><td class=\"n\">" << percent(g.joint_limit_share)
-          << "</td><td class=\"n\">" << percent(g.nonfinite_share) << "</td><td class=\"n\">"
+          << "</td><td class=\"n\">" << limit_steps_text(g) << "</td><td class=\"n\">" << percent(g.nonfinite_share) << "</td><td class=\"n\">"
           << short_number(g.median_rms_jerk) << "</td><td class=\"n\">"
           << short_number(g.step_us_p50) << "</td><td class=\"n\">" << short_number(g.step_us_p99)
           << "</td><td class=\"n\">" << short_number(g.step_ratio_to_pinv) << "</td><td>"

@@ -47,6 +47,15 @@ const char* status_name(VerdictStatus status) {
   return "contenders";
 }
 
+// Steps past limits after integration and the steps counted; null where no run counts.
+nlohmann::json limit_steps_json(const LimitSteps& l) {
+  if (l.counted_steps == 0) return nullptr;
+  return {{"position", l.position},
+          {"velocity", l.velocity_counted_steps ? nlohmann::json(l.velocity) : nlohmann::json(nullptr)},
+          {"counted_steps", l.counted_steps},
+          {"velocity_counted_steps", l.velocity_counted_steps}};
+}
+
 // Success by difficulty bin; an open last bin's high (+inf) is null.
 template <typename Bins>
 nlohmann::json bins_json(const Bins& bins) {
@@ -119,6 +128,7 @@ nlohmann::json report_json(const SweepReport& report, size_t max_rows) {
                       {"median_max_tracking_error", number(g.median_max_tracking_error)},
                       {"joint_limit_share", number(g.joint_limit_share)},
                       {"nonfinite_share", number(g.nonfinite_share)},
+                      {"limit_steps", limit_steps_json(g.limit_steps)},
                       {"median_rms_jerk", number(g.median_rms_jerk)},
                       {"step_us_p50", number(g.step_us_p50)},
                       {"step_us_p99", number(g.step_us_p99)},

@@ -125,6 +125,12 @@ std::string failure_modes_text(const GroupStats& g) {
   return text.empty() ? "—" : text;
 }
 
+std::string limit_steps_text(const GroupStats& g) {
+  const LimitSteps& l = g.limit_steps;
+  if (l.counted_steps == 0) return "—";
+  return std::to_string(l.position) + " / " + (l.velocity_counted_steps ? std::to_string(l.velocity) : std::string("—"));
+}
+
 std::string contenders_text(const SweepReport& report, const FamilyVerdict& verdict) {
   std::string list;
   for (size_t i : verdict.contenders) {
@@ -244,21 +250,23 @@ void write_report_markdown(std::ostream& out, const SweepReport& report) {
       << "Success as judged by each sweep's criteria when the run was stored; interval: 95 % Wilson score. "
          "Min distance over runs with obstacles (p10: 10th percentile). Step time: median over runs of each "
          "run's step_us.p50 and of each run's step_us.p99 (wall clock, µs). Jerk: median over runs of each run's "
-         "RMS joint jerk (rad/s³; the Euclidean norm over joints of q's third difference / dt³).\n";
+         "RMS joint jerk (rad/s³; the Euclidean norm over joints of q's third difference / dt³). Steps past limits: "
+         "steps whose integrated q ended past a joint position limit / whose applied velocity exceeded a velocity "
+         "limit, summed over the runs (— where the runs' summaries predate the count, or have no velocity limits).\n";
   if (report.sweeps.empty()) out << "\nNo sweep runs stored.\n";
   for (const std::string& sweep : report.sweeps) {
     out << "\n## " << sweep << "\n\n"
         << "| method config | family | n | success | 95% CI | min dist median | min dist p10 | max track err median "
-           "| joint-limit viol. | non-finite | jerk RMS median | step µs p50 | step µs p99 | step × pinv "
-           "| first failures |\n"
-        << "|---|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n";
+           "| joint-limit viol. | steps past limits q / q̇ | non-finite | jerk RMS median | step µs p50 | step µs p99 "
+           "| step × pinv | first failures |\n"
+        << "|---|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n";
     for (const GroupStats& g : report.groups) {
       if (g.sweep != sweep) continue;
       out << "| " << cell(g.config_key) << " | " << cell(g.family) << " | " << g.n << " | " << percent(g.success_rate)
           << " | " << percent(g.success_interval.low) << "–" << percent(g.success_interval.high) << " | "
           << short_number(g.median_min_distance) << " | " << short_number(g.p10_min_distance) << " | "
           << short_number(g.median_max_tracking_error) << " | " << percent(g.joint_limit_share) << " | "
-          << percent(g.nonfinite_share) << " | " << short_number(g.median_rms_jerk) << " | "
+          << limit_steps_text(g) << " | " << percent(g.nonfinite_share) << " | " << short_number(g.median_rms_jerk) << " | "
           << short_number(g.step_us_p50) << " | " << short_number(g.step_us_p99)
           << " | " << short_number(g.step_ratio_to_pinv) << " | " << cell(failure_modes_text(g)) << " |\n";
     }
@@ -303,9 +311,19 @@ void write_report_markdown(std::ostream& out, const SweepReport& report) {
   }
 }
 
+namespace {
+// "position,velocity,counted": empty where no run counts
+std::string limit_steps_csv(const LimitSteps& l) {
+  if (l.counted_steps == 0) return ",,";
+  return std::to_string(l.position) + ',' + (l.velocity_counted_steps ? std::to_string(l.velocity) : std::string()) +
+         ',' + std::to_string(l.counted_steps);
+}
+}  // namespace
+
 void write_report_csv(std::ostream& out, const SweepReport& report) {
   out << "sweep,config,family,n,successes,success_rate,ci_low,ci_high,min_distance_median,min_distance_p10,"
-         "max_tracking_error_median,joint_limit_share,nonfinite_share,rms_jerk_median,step_us_p50_median,"
+         "max_tracking_error_median,joint_limit_share,position_limit_steps,velocity_limit_steps,counted_steps,"
+         "nonfinite_share,rms_jerk_median,step_us_p50_median,"
          "step_us_p99_median,"
          "step_ratio_to_pinv,first_failures\n";
   for (const GroupStats& g : report.groups) {
@@ -313,7 +331,8 @@ void write_report_csv(std::ostream& out, const SweepReport& report) {
         << g.successes << ',' << csv_number(g.success_rate) << ',' << csv_number(g.success_interval.low) << ','
         << csv_number(g.success_interval.high) << ',' << csv_number(g.median_min_distance) << ','
         << csv_number(g.p10_min_distance) << ',' << csv_number(g.median_max_tracking_error) << ','
-        << csv_number(g.joint_limit_share) << ',' << csv_number(g.nonfinite_share) << ','
+        << csv_number(g.joint_limit_share) << ',' << limit_steps_csv(g.limit_steps) << ','
+        << csv_number(g.nonfinite_share) << ','
         << csv_number(g.median_rms_jerk) << ','
         << csv_number(g.step_us_p50) << ',' << csv_number(g.step_us_p99) << ',' << csv_number(g.step_ratio_to_pinv)
         << ',' << csv_field(failure_modes_text(g) == "—" ? "" : failure_modes_text(g)) << '\n';

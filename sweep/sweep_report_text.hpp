@@ -18,6 +18,9 @@ std::string short_number(double value);
 std::string percent(double share);
 // "collision 6, stalled 2" (most frequent first), "—" when no run failed.
 std::string failure_modes_text(const GroupStats& g);
+// "3 / 0": steps past a position / velocity limit after integration, summed
+// over the runs; "—" for a part no run counts (older summaries; no velocity limits).
+std::string limit_steps_text(const GroupStats& g);
 // "a (95.0%, 8 µs, 4×); b (...)": a verdict's contenders with success and step time.
 std::string contenders_text(const SweepReport& report, const FamilyVerdict& verdict);
 // The verdict as a row reads it: its contenders, or why none are listed.

@@ -60,6 +60,11 @@ struct Summary {
   bool joint_limit_violated = false;
   double min_joint_limit_margin = 0;
   std::optional<double> max_qdot_ratio, max_qddot_ratio;  // absent without such limits
+  // Steps that ended past a joint position limit (the integrated q), and
+  // steps whose applied velocity exceeded a velocity limit (absent without
+  // velocity limits): what the arm did, not what the method commanded.
+  long position_limit_steps = 0;
+  std::optional<long> velocity_limit_steps;
   double max_condition_number = 0;
   long nonfinite_steps = 0;  // steps whose method output was not finite (zeroed)
   JointSmoothness smoothness;
@@ -70,9 +75,10 @@ struct Summary {
 // The summary's format: absent (1) before self-collision, when `collided`
 // meant an obstacle contact only; 2 adds obstacle_collided, self_collided,
 // min_self_distance and the smoothness fields (rms_qddot, max_qddot,
-// rms_jerk, max_jerk), and `collided` is any collision. A stored summary is
+// rms_jerk, max_jerk), and `collided` is any collision; 3 adds
+// position_limit_steps and velocity_limit_steps. A stored summary is
 // re-simulated and compared under the rules of its format.
-inline constexpr int kSummaryFormat = 2;
+inline constexpr int kSummaryFormat = 3;
 
 // The run summary JSON of `rrlab run` (docs/cli.md, run); non-finite numbers are written as null.
 nlohmann::json summary_to_json(const Summary& summary);

@@ -102,7 +102,7 @@ void Simulator::reset_state() {
   min_distance_ = min_self_distance_ = kInf;
   min_margin_ = kInf;
   max_error_ = max_condition_ = max_qdot_ratio_ = max_qddot_ratio_ = 0;
-  nonfinite_steps_ = 0;
+  nonfinite_steps_ = position_limit_steps_ = velocity_limit_steps_ = 0;
   smoothness_.restart(state_.q, scenario_.dt);
   step_times_.clear();
 }
@@ -175,6 +175,10 @@ void Simulator::step() {
   else
     state_.q.noalias() += dt * out_.qdot;
   smoothness_.add(state_.q);  // the state reached, however the method got there
+  // limits after integration: where the step ended and how fast it got there
+  // (a method may command within its bounds and still land past them)
+  if (joint_limit_margin(scenario_.model.limits, state_.q) < 0) ++position_limit_steps_;
+  if (qdot_ratio_ > 1) ++velocity_limit_steps_;
   qdot_prev_ = frame_.qdot;
   state_.qdot = frame_.qdot;
   ++state_.step;
@@ -217,7 +221,8 @@ void Simulator::accumulate_metrics() {
   min_margin_ = std::min(min_margin_, frame_.joint_limit_margin);
   max_error_ = std::max(max_error_, frame_.task_error);
   max_condition_ = std::max(max_condition_, frame_.condition_number);
-  max_qdot_ratio_ = std::max(max_qdot_ratio_, max_ratio(frame_.qdot, model.limits.velocity));
+  qdot_ratio_ = max_ratio(frame_.qdot, model.limits.velocity);  // frame_.qdot: the velocity the step applies
+  max_qdot_ratio_ = std::max(max_qdot_ratio_, qdot_ratio_);
   max_qddot_ratio_ = std::max(max_qddot_ratio_, max_ratio(qddot_, model.limits.acceleration));
 }
 
@@ -240,6 +245,8 @@ Summary Simulator::summary() const {
   s.joint_limit_violated = limit_violated_;
   s.min_joint_limit_margin = min_margin_;
   if (scenario_.model.limits.has_velocity()) s.max_qdot_ratio = max_qdot_ratio_;
+  s.position_limit_steps = position_limit_steps_;
+  if (scenario_.model.limits.has_velocity()) s.velocity_limit_steps = velocity_limit_steps_;
   if (scenario_.model.limits.has_acceleration()) s.max_qddot_ratio = max_qddot_ratio_;
   s.max_condition_number = max_condition_;
   s.nonfinite_steps = nonfinite_steps_;

@@ -104,8 +104,9 @@ class Simulator {
   bool collided_ = false, self_collided_ = false, limit_violated_ = false;
   double min_self_distance_ = 0;
   double min_distance_, max_error_ = 0, min_margin_, max_condition_ = 0;
-  double max_qdot_ratio_ = 0, max_qddot_ratio_ = 0;
+  double max_qdot_ratio_ = 0, max_qddot_ratio_ = 0, qdot_ratio_ = 0;
   long nonfinite_steps_ = 0;
+  long position_limit_steps_ = 0, velocity_limit_steps_ = 0;
   JointSmoothnessMeter smoothness_;  // of the states reached since the start or the last reset
   StepTimeHistogram step_times_;
 };

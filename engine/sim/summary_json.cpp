@@ -35,6 +35,8 @@ nlohmann::json summary_to_json(const Summary& s) {
   j["min_joint_limit_margin"] = finite_or_null(s.min_joint_limit_margin);
   j["max_qdot_ratio"] = finite_or_null(s.max_qdot_ratio);
   j["max_qddot_ratio"] = finite_or_null(s.max_qddot_ratio);
+  j["position_limit_steps"] = s.position_limit_steps;
+  j["velocity_limit_steps"] = s.velocity_limit_steps ? nlohmann::json(*s.velocity_limit_steps) : nlohmann::json(nullptr);
   j["max_condition_number"] = finite_or_null(s.max_condition_number);
   j["nonfinite_steps"] = s.nonfinite_steps;
   j["rms_qddot"] = finite_or_null(s.smoothness.rms_qddot);

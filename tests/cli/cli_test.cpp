@@ -34,7 +34,8 @@ TEST(Cli, RunPrintsTheSummaryJson) {
   for (const char* key : {"scenario", "method", "steps", "collided", "min_distance", "max_tracking_error",
                           "final_tracking_error", "joint_limit_violated", "min_joint_limit_margin",
                           "max_qdot_ratio", "max_qddot_ratio", "max_condition_number", "rms_qddot", "max_qddot",
-                          "rms_jerk", "max_jerk", "final_q", "step_us"})
+                          "rms_jerk", "max_jerk", "position_limit_steps", "velocity_limit_steps", "final_q",
+                          "step_us"})
     EXPECT_TRUE(s.contains(key)) << key;
   EXPECT_EQ(s["steps"], 50);
   EXPECT_TRUE(s["rms_jerk"].is_number());

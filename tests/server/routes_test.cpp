@@ -146,7 +146,7 @@ TEST_F(Routes, BatchRunReturnsItsSummaryAndStoresFrames) {
   for (const char* key : {"scenario", "method", "steps", "collided", "min_distance", "max_tracking_error",
                           "final_tracking_error", "joint_limit_violated", "min_joint_limit_margin", "max_qdot_ratio",
                           "max_qddot_ratio", "max_condition_number", "rms_qddot", "max_qddot", "rms_jerk", "max_jerk",
-                          "final_q", "step_us"})
+                          "position_limit_steps", "velocity_limit_steps", "final_q", "step_us"})
     EXPECT_TRUE(summary.contains(key)) << key;
   const long steps = summary["steps"];
 

@@ -150,6 +150,27 @@ TEST_F(Resimulation, ASummaryOfTheFirstFormatIsComparedUnderItsOwnRules) {
   }
 }
 
+TEST_F(Resimulation, ASummaryOfTheSecondFormatSkipsOnlyTheLimitStepCounts) {
+  RunStore store(path_);
+  const std::int64_t old = store_frameless(store, 40, [](json& s) {
+    s["format"] = 2;
+    s.erase("position_limit_steps");
+    s.erase("velocity_limit_steps");
+  });
+  const ResimulationResult result = resimulate(store, *store.run(old), {});
+  EXPECT_TRUE(result.identical()) << result.summary_mismatch;
+
+  // format 3 compares them, format 2 still compares what it had
+  const std::int64_t changed = store_frameless(store, 40, [](json& s) { s["position_limit_steps"] = 7; });
+  EXPECT_EQ(resimulate(store, *store.run(changed), {}).summary_mismatch.rfind("position_limit_steps ", 0), 0u);
+  const std::int64_t jerk = store_frameless(store, 40, [](json& s) {
+    s["format"] = 2;
+    s.erase("position_limit_steps");
+    s["rms_jerk"] = 1;
+  });
+  EXPECT_EQ(resimulate(store, *store.run(jerk), {}).summary_mismatch.rfind("rms_jerk ", 0), 0u);
+}
+
 TEST_F(Resimulation, ARunWithNeitherFramesNorStepsHasNothingToCompare) {
   RunStore store(path_);
   const std::int64_t id = store.create_run(new_run());

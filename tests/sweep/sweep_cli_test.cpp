@@ -26,7 +26,8 @@ TEST(SweepCli, SweepMergeReport) {
   std::getline(csv, first);
   EXPECT_EQ(header.substr(0, 71), "key,scenario_key,config,family,seed,success,failure_mode,failure_t,run,");
   for (const char* column : {"difficulty_clearance", "difficulty_limit_margin", "difficulty_min_manipulability",
-                             "rms_qddot", "max_qddot", "rms_jerk", "max_jerk", "step_us_p50", "step_us_p99"})
+                             "rms_qddot", "max_qddot", "rms_jerk", "max_jerk", "position_limit_steps",
+                             "velocity_limit_steps", "step_us_p50", "step_us_p99"})
     EXPECT_NE(header.find(column), std::string::npos) << column;
   EXPECT_EQ(first.substr(0, 40), "cli/file:01_planar7_obstacles/pinv/1,fil");
 

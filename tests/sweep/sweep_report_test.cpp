@@ -35,9 +35,11 @@ TEST(SweepStats, QuantilesInterpolateBetweenOrderStatistics) {
 
 // Configuration a: 10 cases, successes on cases 0..6, min distance
 // (i + 1) / 10 shuffled, max tracking error (i + 1) / 100, joint limits
-// violated on 2 runs, non-finite steps on 1, RMS jerk 2 (i + 1), step_us.p50 = i + 1.
+// violated on 2 runs, non-finite steps on 1, RMS jerk 2 (i + 1), step_us.p50 = i + 1,
+// 100 steps of which i past a position limit and (i even) 1 past a velocity limit.
 // Configuration b on the same cases: successes on 3..7, min distance a's
-// + 0.1 on 0..3, a's + 1e-12 on 4..6, a's − 0.1 on 7..9, no RMS jerk (runs too short).
+// + 0.1 on 0..3, a's + 1e-12 on 4..6, a's − 0.1 on 7..9, no RMS jerk (runs too
+// short), no limit-step counts (summaries older than them).
 std::vector<storage::SweepRunEntry> hand_case() {
   const double distance[10] = {0.5, 0.1, 0.9, 0.3, 0.7, 0.2, 0.8, 0.4, 1.0, 0.6};
   std::vector<storage::SweepRunEntry> runs;
@@ -48,12 +50,17 @@ std::vector<storage::SweepRunEntry> hand_case() {
                         {"joint_limit_violated", i < 2},
                         {"nonfinite_steps", i == 9 ? 3 : 0},
                         {"rms_jerk", 2.0 * (i + 1)},
+                        {"steps", 100},
+                        {"position_limit_steps", i},
+                        {"velocity_limit_steps", i % 2 == 0 ? 1 : 0},
                         {"step_us", {{"mean", 1}, {"p50", i + 1}, {"p99", 10 * (i + 1)}}}};
     const double db = i <= 3 ? distance[i] + 0.1 : i <= 6 ? distance[i] + 1e-12 : distance[i] - 0.1;
     nlohmann::json b = a;
     b["min_distance"] = db;
     b["max_tracking_error"] = 0.5;
     b["rms_jerk"] = nullptr;
+    b.erase("position_limit_steps");
+    b.erase("velocity_limit_steps");
     runs.push_back({{"w", "w/" + scenario + "/a/own", scenario, "a", "hand", i <= 6}, 2 * i + 1, 1, a.dump()});
     runs.push_back({{"w", "w/" + scenario + "/b/own", scenario, "b", "hand", i >= 3 && i <= 7}, 2 * i + 2, 1, b.dump()});
   }
@@ -79,6 +86,11 @@ TEST(SweepReport, GroupNumbers) {
   EXPECT_DOUBLE_EQ(a.step_us_p50, 5.5);
   EXPECT_DOUBLE_EQ(a.step_us_p99, 55);
   EXPECT_DOUBLE_EQ(a.median_rms_jerk, 11);
+  EXPECT_EQ(a.limit_steps.counted_steps, 1000);
+  EXPECT_EQ(a.limit_steps.position, 45);
+  EXPECT_EQ(a.limit_steps.velocity_counted_steps, 1000);
+  EXPECT_EQ(a.limit_steps.velocity, 5);
+  EXPECT_EQ(report.groups[1].limit_steps.counted_steps, 0);
   EXPECT_EQ(report.groups[1].successes, 5u);
   EXPECT_TRUE(std::isnan(report.groups[1].median_rms_jerk));
 }
@@ -131,17 +143,22 @@ TEST(SweepReport, FormatsCarryTheNumbers) {
   write_report_markdown(md, report);
   write_report_csv(csv, report);
   write_report_html(html, report);
-  EXPECT_NE(md.str().find("| a | hand | 10 | 70.0% | 39.7%–89.2% | 0.55 | 0.19 | 0.055 | 20.0% | 10.0% | 11 | 5.5 | 55 |"),
+  EXPECT_NE(md.str().find("| a | hand | 10 | 70.0% | 39.7%–89.2% | 0.55 | 0.19 | 0.055 | 20.0% | 45 / 5 | 10.0% | 11 | 5.5 | 55 |"),
             std::string::npos)
       << md.str();
   EXPECT_NE(md.str().find("| a | b | 10 | 3/1/6 | 3/4/3 |"), std::string::npos) << md.str();
   EXPECT_NE(csv.str().find("w,a,hand,10,7,0.7,0.396"), std::string::npos) << csv.str();
-  EXPECT_NE(csv.str().find(",0.2,0.1,11,5.5,55,"), std::string::npos) << csv.str();
-  EXPECT_NE(md.str().find("| 10.0% | — | 5.5 |"), std::string::npos) << md.str();  // b: no run with a jerk
+  EXPECT_NE(csv.str().find(",0.2,45,5,1000,0.1,11,5.5,55,"), std::string::npos) << csv.str();
+  EXPECT_NE(csv.str().find(",0.2,,,,0.1,"), std::string::npos) << csv.str();  // b: no counts
+  EXPECT_NE(md.str().find("| — | 10.0% | — | 5.5 |"), std::string::npos) << md.str();  // b: no counts, no jerk
   EXPECT_NE(html.str().find("<th>jerk RMS median</th>"), std::string::npos);
   const nlohmann::json json = report_json(report);
   EXPECT_EQ(json["groups"][0]["median_rms_jerk"], 11.0);
   EXPECT_TRUE(json["groups"][1]["median_rms_jerk"].is_null());
+  EXPECT_EQ(json["groups"][0]["limit_steps"]["position"], 45);
+  EXPECT_EQ(json["groups"][0]["limit_steps"]["velocity"], 5);
+  EXPECT_TRUE(json["groups"][1]["limit_steps"].is_null());
+  EXPECT_NE(html.str().find("<th>steps past limits q / q̇</th>"), std::string::npos);
   const std::string page = html.str();
   EXPECT_NE(page.find("<svg"), std::string::npos);
   EXPECT_EQ(page.find("<script"), std::string::npos);

@@ -197,5 +197,40 @@ TEST(Simulator, SummaryRatiosUseTheLimits) {
   EXPECT_TRUE(summary_to_json(unlimited.summary)["max_qdot_ratio"].is_null());
 }
 
+// Limits after integration: the summary counts the steps whose integrated q
+// ended past a position limit and those whose applied q̇ exceeded a velocity
+// limit, as the frames show them (frame k+1's q is step k's result).
+TEST(Simulator, SummaryCountsStepsPastLimitsAfterIntegration) {
+  json doc = moving_obstacle_scenario();
+  const json inf = nullptr;
+  doc["robot"]["limits"] = {{"lower", {inf, -0.5, -0.5, inf}}, {"upper", {inf, 0.45, 0.45, inf}},
+                            {"velocity", {0.5, 0.5, 0.5, 0.5}}};
+  const auto r = test::run_scenario(doc, "pinv");  // pinv knows no limits
+  ASSERT_GE(r.frames.size(), 2u);
+  long position = 0, velocity = 0;
+  for (size_t k = 0; k < r.frames.size(); ++k) {
+    const Eigen::VectorXd& q_after = k + 1 < r.frames.size() ? r.frames[k + 1].q : r.summary.final_q;
+    for (int i : {1, 2})
+      if (q_after[i] < -0.5 || q_after[i] > 0.45) {
+        ++position;
+        break;
+      }
+    if (r.frames[k].qdot.cwiseAbs().maxCoeff() > 0.5) ++velocity;
+  }
+  EXPECT_GT(position, 0);
+  EXPECT_GT(velocity, 0);
+  EXPECT_EQ(r.summary.position_limit_steps, position);
+  ASSERT_TRUE(r.summary.velocity_limit_steps.has_value());
+  EXPECT_EQ(*r.summary.velocity_limit_steps, velocity);
+  const json j = summary_to_json(r.summary);
+  EXPECT_EQ(j["position_limit_steps"], position);
+  EXPECT_EQ(j["velocity_limit_steps"], velocity);
+
+  const auto unlimited = test::run_scenario(moving_obstacle_scenario(), "pinv");
+  EXPECT_EQ(unlimited.summary.position_limit_steps, 0);
+  EXPECT_FALSE(unlimited.summary.velocity_limit_steps.has_value());
+  EXPECT_TRUE(summary_to_json(unlimited.summary)["velocity_limit_steps"].is_null());
+}
+
 }  // namespace
 }  // namespace rrlab
