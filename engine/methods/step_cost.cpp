@@ -37,6 +37,11 @@ double direct_search_step_cost(const StepCostQuery& query) {
   return 1 + options * (1 + query.param("newton_iterations") / 16);
 }
 
+// bench/method_cost_bench.cpp, scenarios 01 and 03 against pinv (see docs/methods.md, qp_ik)
+double qp_ik_step_cost(const StepCostQuery&) { return 3; }
+
+double hqp_step_cost(const StepCostQuery&) { return 4; }
+
 double obstacle_equivalents(const Scene& scene) {
   double count = 0;
   for (const Obstacle& o : scene.obstacles) count += 1 + (o.mesh ? double(o.mesh->triangles.size()) / 64 : 0.0);
