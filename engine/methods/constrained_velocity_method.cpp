@@ -37,19 +37,17 @@ std::vector<ParamSpec> velocity_constraint_params() {
       {"rest", "Rest configuration", "",
        "q_rest of the posture task: the configuration at the start, or the middle of each joint's range (the start "
        "where a joint has no range)",
-       0, 0, 1, 1, {"start", "mid_range"}},
+       1, 0, 1, 1, {"start", "mid_range"}},
   };
 }
 
-namespace {
-std::vector<ParamSpec> joined(std::vector<ParamSpec> own) {
+std::vector<ParamSpec> with_velocity_constraint_params(std::vector<ParamSpec> own) {
   for (ParamSpec& spec : velocity_constraint_params()) own.push_back(std::move(spec));
   return own;
 }
-}  // namespace
 
-ConstrainedVelocityMethod::ConstrainedVelocityMethod(std::vector<ParamSpec> own_specs, const MethodContext& ctx)
-    : Method(joined(std::move(own_specs))),
+ConstrainedVelocityMethod::ConstrainedVelocityMethod(std::vector<ParamSpec> specs, const MethodContext& ctx)
+    : Method(std::move(specs)),
       n_(ctx.model.dof()),
       builder_(ctx.model, ctx.obstacle_count),
       least_violation_(ctx.model.dof(), builder_.capacity()),

@@ -13,12 +13,15 @@
 
 namespace rrlab {
 
-// The shared parameters (limits, dampers, posture), appended to a method's own.
+// The shared parameters (limits, dampers, posture), and a method's own
+// parameters followed by them (what its registry row lists).
 std::vector<ParamSpec> velocity_constraint_params();
+std::vector<ParamSpec> with_velocity_constraint_params(std::vector<ParamSpec> own);
 
 class ConstrainedVelocityMethod : public Method {
  protected:
-  ConstrainedVelocityMethod(std::vector<ParamSpec> own_specs, const MethodContext& ctx);
+  // specs: with_velocity_constraint_params(the method's own)
+  ConstrainedVelocityMethod(std::vector<ParamSpec> specs, const MethodContext& ctx);
 
   // Builds this step's constraints; calls resize_problems() first when the
   // scene outgrew the row capacity (obstacles added: allocates once).

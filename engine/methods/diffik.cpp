@@ -131,9 +131,9 @@ class DiffIk final : public ConstrainedVelocityMethod {
 }  // namespace
 
 std::vector<ParamSpec> diffik_params() {
-  return {{"alpha_weight", "Scale weight c", "",
+  return with_velocity_constraint_params({{"alpha_weight", "Scale weight c", "",
            "c of −c α: how much more the task speed counts than the posture (Drake: 100)", 100.0, 1e-3, 1e6, 1.0,
-           {}}};
+           {}}});
 }
 
 std::unique_ptr<Method> make_diffik(const MethodContext& ctx) { return std::make_unique<DiffIk>(ctx); }

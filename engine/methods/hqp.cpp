@@ -127,9 +127,9 @@ class Hqp final : public ConstrainedVelocityMethod {
 }  // namespace
 
 std::vector<ParamSpec> hqp_params() {
-  return {{"task_damping", "Task damping ε_t", "",
+  return with_velocity_constraint_params({{"task_damping", "Task damping ε_t", "",
            "ε_t of level 2, ½‖J q̇ − v‖² + ½ε_t‖q̇‖²: bounds q̇ near singularities; 0 = undamped least squares",
-           1e-4, 0.0, 10.0, 1e-4, {}}};
+           1e-4, 0.0, 10.0, 1e-4, {}}});
 }
 
 std::unique_ptr<Method> make_hqp(const MethodContext& ctx) { return std::make_unique<Hqp>(ctx); }

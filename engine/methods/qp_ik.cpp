@@ -89,12 +89,12 @@ class QpIk final : public ConstrainedVelocityMethod {
 }  // namespace
 
 std::vector<ParamSpec> qp_ik_params() {
-  return {{"task_weight", "Task weight w_t", "", "weight of the task cost ‖J q̇ − v‖²", 1.0, 0.0, 1e6, 0.1, {}},
+  return with_velocity_constraint_params({{"task_weight", "Task weight w_t", "", "weight of the task cost ‖J q̇ − v‖²", 1.0, 0.0, 1e6, 0.1, {}},
           {"damping", "Damping λ_0", "", "fixed part of the Levenberg–Marquardt damping λ‖q̇‖²", 1e-4, 0.0, 10.0,
            1e-4, {}},
           {"lm_damping", "Error-scaled damping μ", "1/m²",
            "λ = λ_0 + μ‖e‖², e the task error: more damping while the target is out of reach", 1.0, 0.0, 1e4, 0.1,
-           {}}};
+           {}}});
 }
 
 std::unique_ptr<Method> make_qp_ik(const MethodContext& ctx) { return std::make_unique<QpIk>(ctx); }
