@@ -51,17 +51,17 @@ const std::vector<MethodInfo>& method_registry() {
        "Weighted QP differential IK with joint-limit bounds and velocity dampers on obstacle and self pairs (as in "
        "mink and pink; Faverjon & Tournassoud dampers)",
        qp_ik_params(), make_qp_ik,
-       qp_ik_step_cost, "docs/methods.md#qp_ik"},
+       constrained_step_cost, "docs/methods.md#qp_ik"},
       {"hqp",
        "Strict hierarchy as a cascade of QPs: limits and dampers, then the task, then posture (Kanoun, Lamiraux & "
        "Wieber; Escande, Mansard & Wieber)",
        hqp_params(), make_hqp,
-       hqp_step_cost, "docs/methods.md#hqp"},
+       constrained_step_cost, "docs/methods.md#hqp"},
       {"diffik",
        "Direction-preserving differential IK: the largest scale α ≤ 1 of the task velocity under limits and dampers "
        "(Drake's DifferentialInverseKinematics)",
        diffik_params(), make_diffik,
-       qp_ik_step_cost, "docs/methods.md#diffik"},
+       constrained_step_cost, "docs/methods.md#diffik"},
   };
   static const bool checked = [] {
     for (const MethodInfo& info : table)

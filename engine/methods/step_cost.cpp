@@ -13,6 +13,8 @@ double unit_step_cost(const StepCostQuery&) { return 1; }
 // measured 1.4-1.5 on scenarios 01 and 03
 double closest_point_step_cost(const StepCostQuery&) { return 1.5; }
 
+// qp_constraints 1.4-1.7, qp_ik 0.9-1.6, hqp 1.2-1.9 (two QPs; three when the dampers conflict), diffik
+// 1.3-2.0 (bench/method_cost_bench.cpp, scenarios 01 and 03)
 double constrained_step_cost(const StepCostQuery&) { return 3; }
 
 double ccp_voronoi_step_cost(const StepCostQuery& query) {
@@ -36,11 +38,6 @@ double direct_search_step_cost(const StepCostQuery& query) {
   const double options = std::pow(3.0, perturbed);
   return 1 + options * (1 + query.param("newton_iterations") / 16);
 }
-
-// bench/method_cost_bench.cpp, scenarios 01 and 03 against pinv (see docs/methods.md, qp_ik)
-double qp_ik_step_cost(const StepCostQuery&) { return 3; }
-
-double hqp_step_cost(const StepCostQuery&) { return 4; }
 
 double obstacle_equivalents(const Scene& scene) {
   double count = 0;
