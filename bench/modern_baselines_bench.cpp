@@ -22,6 +22,8 @@
 #include <rrlab/scenario/scenario.hpp>
 #include <rrlab/sim/simulator.hpp>
 
+#include "step_timing.hpp"
+
 namespace rrlab {
 namespace {
 
@@ -75,22 +77,9 @@ void modern_baseline_step(benchmark::State& state, const std::string& scenario, 
   Simulator reference(modern_baseline_scenario(scenario, "qp_constraints"));
   const double reference_p50 = step_percentiles(reference, 4000).first;
   Simulator sim(modern_baseline_scenario(scenario, method));
-  std::vector<double> us;
-  us.reserve(1 << 18);
-  for (auto _ : state) {
-    if (sim.done()) sim.reset();
-    const auto start = std::chrono::steady_clock::now();
-    sim.step();
-    const auto stop = std::chrono::steady_clock::now();
-    if (us.size() < us.capacity()) us.push_back(std::chrono::duration<double, std::micro>(stop - start).count());
-  }
-  if (us.empty()) return;
-  std::sort(us.begin(), us.end());
-  const double p50 = us[us.size() / 2];
-  state.counters["p50_us"] = p50;
-  state.counters["p99_us"] = us[std::min(us.size() - 1, us.size() * 99 / 100)];
-  state.counters["vs_qp_constraints"] = p50 / reference_p50;
-  if (sim.model().dof() == 7) state.counters["vs_kdl_wdls"] = p50 / kdl_wdls_us();
+  timed_steps(state, sim);  // p50_us, p99_us
+  state.counters["vs_qp_constraints"] = state.counters["p50_us"] / reference_p50;
+  if (sim.model().dof() == 7) state.counters["vs_kdl_wdls"] = state.counters["p50_us"] / kdl_wdls_us();
 }
 
 void register_modern_baselines() {

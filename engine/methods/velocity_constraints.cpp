@@ -97,22 +97,19 @@ void VelocityConstraintBuilder::build(const StepInput& in, const LimitSettings& 
   if (dampers.self_pairs) self_rows(in, dampers, out);
 }
 
-// R_i: the farthest capsule point moved by joint i from its axis (revolute);
-// 1 for a prismatic joint (every point moves by the joint's own displacement).
-void VelocityConstraintBuilder::joint_reach(const StepInput& in) {
-  const Model& model = in.model;
-  reach_.setZero();
-  for (int i = 0; i < n_; ++i) {
+void joint_reach(const Model& model, const KinematicsData& kin, Eigen::VectorXd& reach) {
+  reach.setZero();
+  for (int i = 0; i < model.dof(); ++i) {
     if (model.joints[i].type == JointType::prismatic) {
-      reach_[i] = 1.0;
+      reach[i] = 1.0;
       continue;
     }
-    const Eigen::Vector3d axis_point = in.kin.axis_points.col(i), axis = in.kin.axis_dirs.col(i);
+    const Eigen::Vector3d axis_point = kin.axis_points.col(i), axis = kin.axis_dirs.col(i);
     for (int l = 0; l < model.link_count(); ++l) {
       if (model.links[l].last_joint < i) continue;
-      const double r0 = axis.cross(Eigen::Vector3d(in.kin.link_start.col(l)) - axis_point).norm();
-      const double r1 = axis.cross(Eigen::Vector3d(in.kin.link_end.col(l)) - axis_point).norm();
-      reach_[i] = std::max(reach_[i], std::max(r0, r1) + model.links[l].radius);
+      const double r0 = axis.cross(Eigen::Vector3d(kin.link_start.col(l)) - axis_point).norm();
+      const double r1 = axis.cross(Eigen::Vector3d(kin.link_end.col(l)) - axis_point).norm();
+      reach[i] = std::max(reach[i], std::max(r0, r1) + model.links[l].radius);
     }
   }
 }
@@ -121,7 +118,7 @@ void VelocityConstraintBuilder::joint_bounds(const StepInput& in, const LimitSet
                                              VelocityConstraints& out) {
   const JointLimits& lim = in.model.limits;
   const double dt = in.dt, gamma = limits.position_gain;
-  if (limits.max_step > 0) joint_reach(in);
+  if (limits.max_step > 0) joint_reach(in.model, in.kin, reach_);
   for (int i = 0; i < n_; ++i) {
     const double q = in.state.q[i], acc = lim.acceleration[i];
     double range_lo = -kNoBound, range_hi = kNoBound;

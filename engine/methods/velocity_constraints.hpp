@@ -45,6 +45,11 @@ struct VelocityConstraints {
   std::vector<DamperPair> pairs;  // one per row
 };
 
+// R_i: the farthest capsule point moved by joint i from its axis (revolute),
+// 1 for a prismatic joint (every point moves by the joint's own displacement).
+// `reach` has one entry per joint. (qp_constraints' step cap uses it too.)
+void joint_reach(const Model& model, const KinematicsData& kin, Eigen::VectorXd& reach);
+
 class VelocityConstraintBuilder {
  public:
   VelocityConstraintBuilder(const Model& model, int obstacle_count);
@@ -63,7 +68,6 @@ class VelocityConstraintBuilder {
 
  private:
   void joint_bounds(const StepInput& in, const LimitSettings& limits, VelocityConstraints& out);
-  void joint_reach(const StepInput& in);
   void obstacle_rows(const StepInput& in, const DamperSettings& dampers, VelocityConstraints& out);
   void self_rows(const StepInput& in, const DamperSettings& dampers, VelocityConstraints& out);
   // one row n_rowᵀ (J_p q̇) − v_along ≥ −ξ (d − d_s)/(d_i − d_s), clamped to one step (see .cpp)
