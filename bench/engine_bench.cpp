@@ -84,6 +84,7 @@ void method_step(benchmark::State& state, const char* name) {
   Scene scene;
   DistanceTable distances;
   distances.resize(model.link_count(), 0);
+  const SelfDistanceTable self_distances;  // no self pairs checked here, as no obstacles
   TaskRef ref(TaskSpace::pose);
   ref.xdot = task_velocity();
   State s;
@@ -102,7 +103,7 @@ void method_step(benchmark::State& state, const char* name) {
     wiggle(s.q, i++);
     forward_kinematics(model, s.q, kin);
     task_jacobian(model, kin, TaskSpace::pose, jac);
-    const StepInput in{model, s, ref, scene, 0.001, kin, jac, distances, task};
+    const StepInput in{model, s, ref, scene, 0.001, kin, jac, distances, task, self_distances};
     method->step(in, out);
     benchmark::DoNotOptimize(out.qdot.data());
   }

@@ -52,7 +52,8 @@ void costed_method_step(benchmark::State& state, const std::string& file, const 
 void register_all() {
   for (const char* file : {"01_planar7_obstacles.json", "03_dh7_pose.json"}) {
     for (const char* method : {"pinv", "dls", "gpm", "task_priority", "sr_task_priority", "closest_point",
-                               "posture_generation", "qp_constraints", "ccp_voronoi", "direct_search", "multi_preview"})
+                               "posture_generation", "qp_constraints", "ccp_voronoi", "direct_search", "multi_preview",
+                               "qp_ik", "hqp", "diffik"})
       benchmark::RegisterBenchmark((std::string("BM_method_step/") + file + "/" + method).c_str(), costed_method_step, file,
                                    method, std::vector<std::pair<std::string, double>>{});
     const std::vector<std::pair<std::string, std::vector<std::pair<std::string, double>>>> variants = {

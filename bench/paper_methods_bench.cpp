@@ -30,7 +30,7 @@ void method_step(benchmark::State& state, const char* file, long warm_steps,
   out.diag.values = Eigen::VectorXd::Zero(Eigen::Index(out.diag.names.size()));
   const StepInput in{sim.model(),     sim.state(),         sim.reference(),
                      sim.scene(),     scenario.dt,         sim.kinematics(),
-                     sim.task_jacobian(), sim.distances(), sim.task()};
+                     sim.task_jacobian(), sim.distances(), sim.task(), sim.self_distances()};
   for (auto _ : state) {
     method->step(in, out);
     benchmark::DoNotOptimize(out.qdot.data());

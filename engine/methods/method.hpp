@@ -14,6 +14,7 @@
 
 #include <rrlab/collision/collision_world.hpp>
 #include <rrlab/collision/scene.hpp>
+#include <rrlab/collision/self_collision.hpp>
 #include <rrlab/kinematics/kinematics.hpp>
 #include <rrlab/model/model.hpp>
 #include <rrlab/task/task.hpp>
@@ -53,7 +54,8 @@ struct State {
 };
 
 // Everything a method sees in one step. The simulator has already computed the
-// kinematics at state.q, the task Jacobian and every link–obstacle distance.
+// kinematics at state.q, the task Jacobian, every link–obstacle distance and
+// every self pair's distance (Model::self_pairs).
 struct StepInput {
   const Model& model;
   const State& state;
@@ -64,6 +66,7 @@ struct StepInput {
   const Eigen::MatrixXd& task_jacobian;  // rows of ref.space
   const DistanceTable& distances;
   const Task& task;  // the reference at other times (previews, RK4 stages)
+  const SelfDistanceTable& self_distances;  // one row per Model::self_pairs entry
 };
 
 // Geometry a method wants drawn over the scene (dashboard overlays). Sized at

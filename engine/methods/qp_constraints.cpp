@@ -84,6 +84,7 @@
 #include <cmath>
 
 #include <rrlab/methods/factories.hpp>
+#include <rrlab/methods/velocity_constraints.hpp>
 #include <rrlab/util/qp_solver.hpp>
 
 namespace rrlab {
@@ -291,33 +292,13 @@ class QpConstraints final : public Method {
   // The step cap's c: no point of the arm moves more than this in one step.
   double step_cap() const { return std::min(p(kMaxStep), p(kBuffer)); }
 
-  // R_i: the farthest capsule point moved by joint i from its axis (revolute),
-  // 1 for a prismatic joint (a point moves by the joint's own displacement).
-  void joint_reach(const StepInput& in) {
-    const Model& model = in.model;
-    reach_.setZero();
-    for (int i = 0; i < n_; ++i) {
-      if (model.joints[i].type == JointType::prismatic) {
-        reach_[i] = 1.0;
-        continue;
-      }
-      const Eigen::Vector3d a = in.kin.axis_points.col(i), u = in.kin.axis_dirs.col(i);
-      for (int l = 0; l < model.link_count(); ++l) {
-        if (model.links[l].last_joint < i) continue;
-        const double r0 = u.cross(Eigen::Vector3d(in.kin.link_start.col(l)) - a).norm();
-        const double r1 = u.cross(Eigen::Vector3d(in.kin.link_end.col(l)) - a).norm();
-        reach_[i] = std::max(reach_[i], std::max(r0, r1) + model.links[l].radius);
-      }
-    }
-  }
-
   // Qiu eq 11–15, merged: lower = max(range, velocity, acceleration), upper = min(…);
   // then the step cap. lower_free_/upper_free_: the same without eq 13 (stage 3).
   void joint_bounds(const StepInput& in) {
     const JointLimits& lim = in.model.limits;
     const double dt = in.dt;
     const double cap = step_cap();
-    joint_reach(in);
+    joint_reach(in.model, in.kin, reach_);  // R_i (velocity_constraints.hpp)
     for (int i = 0; i < n_; ++i) {
       const double qd_prev = in.state.qdot[i];
       const double acc = lim.acceleration[i];

@@ -47,6 +47,21 @@ const std::vector<MethodInfo>& method_registry() {
        "Direct search over perturbed self-motion options, weighted JRA/JVM/DM/clearance criteria (Kapoor, Cetin & Tesar)",
        direct_search_params(), make_direct_search,
        direct_search_step_cost, "docs/methods.md#direct_search"},
+      {"qp_ik",
+       "Weighted QP differential IK with joint-limit bounds and velocity dampers on obstacle and self pairs (as in "
+       "mink and pink; Faverjon & Tournassoud dampers)",
+       qp_ik_params(), make_qp_ik,
+       constrained_step_cost, "docs/methods.md#qp_ik"},
+      {"hqp",
+       "Strict hierarchy as a cascade of QPs: limits and dampers, then the task, then posture (Kanoun, Lamiraux & "
+       "Wieber; Escande, Mansard & Wieber)",
+       hqp_params(), make_hqp,
+       constrained_step_cost, "docs/methods.md#hqp"},
+      {"diffik",
+       "Direction-preserving differential IK: the largest scale α ≤ 1 of the task velocity under limits and dampers "
+       "(Drake's DifferentialInverseKinematics)",
+       diffik_params(), make_diffik,
+       constrained_step_cost, "docs/methods.md#diffik"},
   };
   static const bool checked = [] {
     for (const MethodInfo& info : table)

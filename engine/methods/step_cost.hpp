@@ -30,7 +30,7 @@ using StepCostFactor = double (*)(const StepCostQuery&);
 // The fitted factors, one per method family.
 double unit_step_cost(const StepCostQuery&);                  // pinv, dls, gpm, the witness: 1
 double closest_point_step_cost(const StepCostQuery&);         // closest_point, task_priority, sr_task_priority
-double constrained_step_cost(const StepCostQuery&);           // posture_generation, qp_constraints
+double constrained_step_cost(const StepCostQuery&);           // posture_generation, qp_constraints, qp_ik, hqp, diffik
 double ccp_voronoi_step_cost(const StepCostQuery& query);     // four RK4 stages and their Newton iterations
 double multi_preview_step_cost(const StepCostQuery& query);   // GA evaluations a step
 double direct_search_step_cost(const StepCostQuery& query);   // 3^perturbed joints options

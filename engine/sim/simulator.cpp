@@ -148,7 +148,7 @@ void Simulator::step() {
   state_.t = double(state_.step) * dt;  // no accumulated rounding
   evaluate(state_.t);
 
-  const StepInput in{scenario_.model, state_, ref_, scene_, dt, kin_, jacobian_, distances_, *task_};
+  const StepInput in{scenario_.model, state_, ref_, scene_, dt, kin_, jacobian_, distances_, *task_, self_distances_};
   out_.integrated = false;
   method_->step(in, out_);
   if (!out_.qdot.allFinite() || (out_.integrated && !out_.q_next.allFinite())) {
@@ -166,6 +166,10 @@ void Simulator::step() {
   else
     frame_.qdot = out_.qdot;
   frame_.diagnostics = out_.diag.values;
+  // a method sizes its overlay lists once (their capacity): the frame's copy
+  // takes that capacity too, so a list that grows later does not allocate
+  frame_.overlays.segments.reserve(out_.overlays.segments.capacity());
+  frame_.overlays.points.reserve(out_.overlays.points.capacity());
   frame_.overlays = out_.overlays;
   accumulate_metrics();
 

@@ -116,7 +116,7 @@ class MethodsDoc(unittest.TestCase):
             cls.sections = sections(f.read())
 
     def test_every_method_has_a_section(self):
-        self.assertEqual(len(self.methods), 11)  # 11 when written
+        self.assertEqual(len(self.methods), 14)  # 11 when written; 14 with the modern baselines (issue 40)
         names = [m["name"] for m in self.methods]
         for name in names:
             with self.subTest(method=name):

@@ -73,7 +73,7 @@ inline double largest_null_space_motion(Simulator& sim, int steps, const std::st
     // same inputs as the step just taken: the Jacobian at q_k, the reference at t_k
     const StepInput in{sim.model(), State{sim.frame().t, sim.frame().step, sim.frame().q, sim.frame().qdot},
                        sim.reference(), sim.scene(), sim.scenario().dt, sim.kinematics(), sim.task_jacobian(),
-                       sim.distances(), sim.task()};
+                       sim.distances(), sim.task(), sim.self_distances()};
     pinv->step(in, minimum_norm);
     const Eigen::VectorXd null_motion = sim.frame().qdot - minimum_norm.qdot;
     largest_null = std::max(largest_null, null_motion.norm());

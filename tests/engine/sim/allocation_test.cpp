@@ -68,7 +68,8 @@ TEST_P(NoAllocation, SteadyStateStepAmongObstacles) {
 INSTANTIATE_TEST_SUITE_P(Baselines, NoAllocation,
                          ::testing::Values("pinv", "dls", "gpm", "task_priority", "sr_task_priority",
                                            "closest_point", "posture_generation", "ccp_voronoi",
-                                           "multi_preview", "qp_constraints", "direct_search"));
+                                           "multi_preview", "qp_constraints", "direct_search", "qp_ik", "hqp",
+                                           "diffik"));
 
 // A mesh obstacle (scenario 43's hoop: capsule links against its BVH, by
 // collision_world's own descent) costs no allocation either. (FCL's

@@ -38,6 +38,9 @@ const std::map<std::string, Expected> kExpected = {
     {"multi_preview", {5e-4, ""}},       // 2.75e-5 / 3.84e-5 / 1.39e-5
     {"qp_constraints", {5e-4, ""}},      // 2.75e-5 / 3.84e-5 / 1.39e-5
     {"direct_search", {5e-4, ""}},       // 2.75e-5 / 3.84e-5 / 1.39e-5
+    {"qp_ik", {1e-3, ""}},               // 1.08e-4 / 1.79e-4 / 1.71e-4 (its posture cost and damping lag slightly)
+    {"hqp", {5e-4, ""}},                 // 2.75e-5 / 3.84e-5 / 1.70e-5
+    {"diffik", {5e-4, ""}},              // 2.75e-5 / 3.84e-5 / 1.39e-5
 };
 
 // A scenario and the bound on the closest approach of any link to its
