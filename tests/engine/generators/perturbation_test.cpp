@@ -117,18 +117,7 @@ TEST(Perturbation, EachDrawStaysWithinItsOptionAndTheHandKeepsItsPlace) {
       if (arc > 0.01) {
         EXPECT_GT((sc.q0 - original.q0).norm(), 0.5 * arc);
       }
-      // the start is inside the limits and clear of every obstacle
-      for (int j = 0; j < sc.model.dof(); ++j) {
-        EXPECT_GE(sc.q0[j], sc.model.limits.lower[j]);
-        EXPECT_LE(sc.q0[j], sc.model.limits.upper[j]);
-      }
-      KinematicsData kin(sc.model);
-      forward_kinematics(sc.model, sc.q0, kin);
-      CollisionWorld world(sc.model, sc.scene);
-      DistanceTable table;
-      table.resize(sc.model.link_count(), int(sc.scene.obstacles.size()));
-      world.compute(kin, table);
-      EXPECT_GT(table.min_distance, 0);
+      expect_free_start(sc);
       // path: moved at most 2 cm
       double path_shift = 0;
       for (const auto& v : record["path_shift"]) path_shift += v.get<double>() * v.get<double>();
