@@ -101,7 +101,7 @@ int generate(const GenerateOptions& options) {
     for (const int index : indices) {
       const nlohmann::json doc =
           perturbed ? perturb_scenario(perturbed->scenario->json, perturbed->dir, perturbed->name, perturbed->perturbation,
-                                       options.seed, index)
+                                       perturbed->perturbation_scale, options.seed, index)
                     : generate_scenario(options.family, family_options, options.seed, index);
       parse_scenario(doc, perturbed ? perturbed->dir : std::string());  // what a run of the file will read
       const std::filesystem::path file =

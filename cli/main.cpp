@@ -167,8 +167,9 @@ int main(int argc, char** argv) {
   generate_cmd->add_flag("--list", generate.list, "print the families, one a line: name, a tab, what its cases are");
   generate_cmd->add_option("--perturb", generate.perturb,
                            "instead of a family: the perturbation family of this scenario (catalogue name or .json "
-                           "path); --option obstacles.shift=M, obstacles.rotate_deg=D, speed=[MIN,MAX], "
-                           "q0_self_motion=RAD, path.shift=M");
+                           "path); --option obstacles.shift=M (or obstacles.shift_reach=F of the reach, capped at "
+                           "obstacles.shift_gap=G of the free gap), obstacles.rotate_deg=D, speed=[MIN,MAX], "
+                           "q0_self_motion=RAD, path.shift=M (or path.shift_reach=F, path.shift_gap=G)");
   generate_cmd->add_option("--scenarios", generate.scenarios_dir, "directory of catalogue scenarios (NAME.json)");
   // the seeds a sweep spec's entries take (sweep/sweep_spec.cpp): a file is a sweep's case
   whole_number_in(generate_cmd->add_option("--seed", generate.seed, "the family's seed (as a sweep entry's \"seed\")"),

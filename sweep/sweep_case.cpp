@@ -50,7 +50,8 @@ std::shared_ptr<const Scenario> generated_case(const ScenarioEntry& entry, int i
   }
   auto made = std::make_shared<const Scenario>(
       entry.perturbs()
-          ? parse_scenario(perturb_scenario(entry.scenario->json, entry.dir, entry.name, entry.perturbation, entry.seed, index),
+          ? parse_scenario(perturb_scenario(entry.scenario->json, entry.dir, entry.name, entry.perturbation, entry.perturbation_scale,
+                                            entry.seed, index),
                            entry.dir)
           : parse_scenario(generate_scenario(entry.family, entry.options, entry.seed, index)));
   std::lock_guard lock(mutex);

@@ -110,6 +110,7 @@ ScenarioEntry perturb_entry(const nlohmann::json& value, const std::string& path
   for (auto it = value.begin(); it != value.end(); ++it)
     if (it.key() != "perturb" && it.key() != "count" && it.key() != "seed") entry.options[it.key()] = it.value();
   entry.perturbation = parse_perturbation_options(value, path);
+  if (entry.perturbation.sized_to_scene()) entry.perturbation_scale = perturbation_scale(*entry.scenario);
   return entry;
 }
 

@@ -36,6 +36,7 @@ struct ScenarioEntry {
   std::string dir;                   // file, perturb: the directory the file's URDF and meshes resolve in
   nlohmann::json options = nlohmann::json::object();  // generator options; perturb: the entry's perturbation keys
   PerturbationOptions perturbation;  // perturb
+  PerturbationScale perturbation_scale;  // perturb: the file's reach and free gap, measured once (when the options use them)
   std::uint64_t seed = 0;            // generator and perturb seed
   int count = 1;                     // cases
 

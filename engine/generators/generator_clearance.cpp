@@ -5,6 +5,8 @@
 #include <limits>
 
 #include <rrlab/collision/collision_world.hpp>
+#include <rrlab/collision/mesh_loader.hpp>
+#include <rrlab/collision/obstacle_geometry.hpp>
 #include <rrlab/collision/segment_geometry.hpp>
 #include <rrlab/kinematics/kinematics.hpp>
 
@@ -38,6 +40,41 @@ double capsules_clearance(const std::vector<CapsuleSegment>& capsules, const Obs
   DistanceTable table;
   stand_in_distances(capsules, obstacle, table);
   return table.min_distance;
+}
+
+namespace {
+
+// An obstacle as zero-radius capsules along its edges at t = 0, or one
+// capsule at its centre (a sphere, a point); none for a wall.
+std::vector<CapsuleSegment> obstacle_edges(const Obstacle& o) {
+  std::vector<CapsuleSegment> edges;
+  const auto world = [&](const Eigen::Vector3d& v) -> Eigen::Vector3d { return o.rotation * v + o.position0; };
+  switch (o.shape) {
+    case ShapeKind::sphere: edges.push_back({o.position0, o.position0, o.radius}); break;
+    case ShapeKind::point: edges.push_back({o.position0, o.position0, 0.0}); break;
+    case ShapeKind::wall: break;
+    case ShapeKind::mesh:
+      for (const Eigen::Vector3i& t : o.mesh->triangles)
+        for (int k = 0; k < 3; ++k) {
+          const Eigen::Vector3d& from = o.mesh->vertices[size_t(t[k])];
+          const Eigen::Vector3d& to = o.mesh->vertices[size_t(t[(k + 1) % 3])];
+          edges.push_back({world(from), world(to), 0.0});
+        }
+      break;
+    case ShapeKind::polygon:
+    case ShapeKind::box:
+      for (const collision::ConvexPolytope& part : collision::build_geometry(o).parts)
+        for (const collision::Edge& e : part.edges)
+          edges.push_back({world(part.vertices[size_t(e.from)]), world(part.vertices[size_t(e.to)]), 0.0});
+      break;
+  }
+  return edges;
+}
+
+}  // namespace
+
+double obstacles_distance(const Obstacle& a, const Obstacle& b) {
+  return std::min(capsules_clearance(obstacle_edges(a), b), capsules_clearance(obstacle_edges(b), a));
 }
 
 ArmSweep arm_sweep(const Model& model, const std::vector<Eigen::VectorXd>& steps, double dt) {

@@ -22,6 +22,14 @@ struct CapsuleSegment {
 // obstacle placed at its position0 (t = 0).
 double capsules_clearance(const std::vector<CapsuleSegment>& capsules, const Obstacle& obstacle);
 
+// The least signed distance (m, < 0 when they overlap) between two
+// obstacles placed at their position0 (t = 0), by the same measure: each
+// one's edges (a box's, a polygon part's, a mesh's triangles'), or its centre
+// grown by its radius (a sphere, a point), against the other, the smaller of
+// the two ways. Exact for convex parts apart (their nearest points lie on an
+// edge of one of them). A wall has no edges: two walls are +inf apart.
+double obstacles_distance(const Obstacle& a, const Obstacle& b);
+
 // The arm's link capsules at every step of a witness.
 struct ArmSweep {
   int links = 0;

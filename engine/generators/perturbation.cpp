@@ -2,8 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <optional>
 
 #include <rrlab/collision/collision_world.hpp>
+#include <rrlab/collision/self_collision.hpp>
+#include <rrlab/generators/generator_clearance.hpp>
 #include <rrlab/generators/generator_case.hpp>
 #include <rrlab/kinematics/kinematics.hpp>
 #include <rrlab/scenario/json_reader.hpp>
@@ -21,6 +25,7 @@ constexpr int kPerturbNewton = 30;              // Newton iterations back onto t
 constexpr double kPerturbHandTolerance = 1e-10; // m, rad: the hand "stays where it was"
 constexpr double kPerturbDamping = 1e-9;
 constexpr double kPerturbMaxShift = 10.0;       // m
+constexpr double kPerturbMaxShiftReach = 1.0;   // of the reach
 constexpr double kPerturbSpeedFrom = 0.05, kPerturbSpeedTo = 20.0;
 
 // A number in [lo, hi] at `path`.
@@ -177,19 +182,70 @@ bool perturb_self_motion(const Scenario& sc, Eigen::VectorXd& q, Eigen::VectorXd
   return q.allFinite();
 }
 
-// The start of `sc` is inside the joint limits and clear of every obstacle.
-bool perturb_start_is_free(const Scenario& sc) {
-  const JointLimits& limits = sc.model.limits;
-  for (int j = 0; j < sc.model.dof(); ++j)
-    if (sc.q0[j] < limits.lower[j] || sc.q0[j] > limits.upper[j]) return false;
-  if (sc.scene.obstacles.empty()) return true;
-  KinematicsData kin(sc.model);
-  forward_kinematics(sc.model, sc.q0, kin);
-  CollisionWorld world(sc.model, sc.scene);
+// Why a draw is drawn again, counted for the error when none passes.
+enum class PerturbRedraw { lost_hand, joint_limit, self_collision, obstacle, count };
+constexpr const char* kPerturbRedrawWhy[] = {"lost the hand along the self-motion", "left a joint limit",
+                                             "touched itself", "touched an obstacle"};
+
+// The least link-obstacle distance of the arm at `q` (+inf without obstacles).
+double perturb_clearance(const Model& model, const Scene& scene, const Eigen::VectorXd& q) {
+  if (scene.obstacles.empty()) return std::numeric_limits<double>::infinity();
+  KinematicsData kin(model);
+  forward_kinematics(model, q, kin);
+  CollisionWorld world(model, scene);
   DistanceTable table;
-  table.resize(sc.model.link_count(), int(sc.scene.obstacles.size()));
+  table.resize(model.link_count(), int(scene.obstacles.size()));
   world.compute(kin, table);
-  return table.min_distance > 0;
+  return table.min_distance;
+}
+
+// The start a case's document will give: each joint written in the file's
+// unit and read back as the parser reads it (the limits are read the same way).
+Eigen::VectorXd perturb_start_as_read(const Model& model, const Eigen::VectorXd& q, double scale, nlohmann::json& q0) {
+  Eigen::VectorXd read(q.size());
+  q0 = nlohmann::json::array();
+  for (int j = 0; j < model.dof(); ++j) {
+    const bool revolute = model.joints[size_t(j)].type == JointType::revolute;
+    const double written = revolute ? q[j] / scale : q[j];
+    q0.push_back(written);
+    read[j] = revolute ? written * scale : written;
+  }
+  return read;
+}
+
+// Whether the start `q` of the (unchanged) robot is inside its limits and clear of itself.
+std::optional<PerturbRedraw> perturb_start_problem(const Model& model, const Eigen::VectorXd& q) {
+  for (int j = 0; j < model.dof(); ++j)
+    if (q[j] < model.limits.lower[j] || q[j] > model.limits.upper[j]) return PerturbRedraw::joint_limit;
+  if (!(min_self_distance(model, q) > 0)) return PerturbRedraw::self_collision;
+  return std::nullopt;
+}
+
+// The radius a shift moves by: its metres, or its fraction of the reach
+// capped at its fraction of the free gap (to 1 µm).
+double perturb_radius(const PerturbationShift& shift, const PerturbationScale& scale) {
+  if (!shift.sized_to_scene()) return shift.metres;
+  double radius = shift.reach * scale.reach;
+  if (std::isfinite(scale.free_gap)) radius = std::min(radius, shift.gap * std::max(scale.free_gap, 0.0));
+  return rounded(radius, 1e-6);
+}
+
+// "shift" or "shift_reach" (with its "shift_gap") of an options object.
+PerturbationShift perturb_shift(JsonObject& object) {
+  PerturbationShift shift;
+  if (object.has("shift") && object.has("shift_reach"))
+    throw ScenarioError(object.child("shift_reach"), "give shift (m) or shift_reach (a fraction of the reach), not both");
+  if (object.has("shift_gap") && !object.has("shift_reach"))
+    throw ScenarioError(object.child("shift_gap"), "caps shift_reach: give shift_reach with it");
+  if (object.has("shift")) shift.metres = perturb_number(object, "shift", 0, kPerturbMaxShift);
+  if (object.has("shift_reach")) shift.reach = perturb_number(object, "shift_reach", 0, kPerturbMaxShiftReach);
+  if (object.has("shift_gap")) {
+    shift.gap = object.number("shift_gap");
+    if (!(shift.gap > 0 && shift.gap <= 1))
+      throw ScenarioError(object.child("shift_gap"),
+                          "must be in (0, 1] (a fraction of the free gap), got " + format_number(shift.gap));
+  }
+  return shift;
 }
 
 nlohmann::json perturb_vector_json(const Eigen::Vector3d& d, int dims) {
@@ -201,8 +257,22 @@ nlohmann::json perturb_vector_json(const Eigen::Vector3d& d, int dims) {
 }  // namespace
 
 bool PerturbationOptions::changes_anything() const {
-  return obstacle_shift > 0 || obstacle_rotate_deg > 0 || speed_min != 1 || speed_max != 1 || q0_self_motion > 0 ||
-         path_shift > 0;
+  const auto moves = [](const PerturbationShift& shift) { return shift.metres > 0 || shift.reach > 0; };
+  return moves(obstacle_shift) || obstacle_rotate_deg > 0 || speed_min != 1 || speed_max != 1 || q0_self_motion > 0 ||
+         moves(path_shift);
+}
+
+PerturbationScale perturbation_scale(const Scenario& sc) {
+  PerturbationScale scale;
+  scale.reach = sc.model.reach();
+  scale.free_gap = perturb_clearance(sc.model, sc.scene, sc.q0);
+  const std::vector<Obstacle>& obstacles = sc.scene.obstacles;
+  for (size_t a = 0; a < obstacles.size(); ++a)
+    for (size_t b = a + 1; b < obstacles.size(); ++b) {
+      const double apart = obstacles_distance(obstacles[a], obstacles[b]);
+      if (apart > 0) scale.free_gap = std::min(scale.free_gap, apart);
+    }
+  return scale;
 }
 
 PerturbationOptions parse_perturbation_options(const nlohmann::json& entry, const std::string& path) {
@@ -210,14 +280,14 @@ PerturbationOptions parse_perturbation_options(const nlohmann::json& entry, cons
   JsonObject root(entry, path);
   if (root.has("obstacles")) {
     JsonObject obstacles = root.object("obstacles");
-    obstacles.check_keys({"shift", "rotate_deg", "together"});
+    obstacles.check_keys({"shift", "shift_reach", "shift_gap", "rotate_deg", "together"});
     if (obstacles.has("together")) {
       const nlohmann::json& together = obstacles.raw("together");
       if (!together.is_boolean())
         throw ScenarioError(obstacles.child("together"), "must be true or false, got " + json_type_name(together));
       out.obstacles_together = together.get<bool>();
     }
-    if (obstacles.has("shift")) out.obstacle_shift = perturb_number(obstacles, "shift", 0, kPerturbMaxShift);
+    out.obstacle_shift = perturb_shift(obstacles);
     if (obstacles.has("rotate_deg")) out.obstacle_rotate_deg = perturb_number(obstacles, "rotate_deg", 0, 180);
   }
   if (root.has("speed")) {
@@ -239,24 +309,35 @@ PerturbationOptions parse_perturbation_options(const nlohmann::json& entry, cons
   if (root.has("q0_self_motion")) out.q0_self_motion = perturb_number(root, "q0_self_motion", 0, 2 * M_PI);
   if (root.has("path")) {
     JsonObject p = root.object("path");
-    p.check_keys({"shift"});
-    if (p.has("shift")) out.path_shift = perturb_number(p, "shift", 0, kPerturbMaxShift);
+    p.check_keys({"shift", "shift_reach", "shift_gap"});
+    out.path_shift = perturb_shift(p);
   }
   return out;
 }
 
 nlohmann::json perturb_scenario(const nlohmann::json& base, const std::string& dir, const std::string& name,
                                 const PerturbationOptions& options, std::uint64_t seed, int index) {
+  PerturbationScale scale;
+  if (options.sized_to_scene()) scale = perturbation_scale(parse_scenario(base, dir));
+  return perturb_scenario(base, dir, name, options, scale, seed, index);
+}
+
+nlohmann::json perturb_scenario(const nlohmann::json& base, const std::string& dir, const std::string& name,
+                                const PerturbationOptions& options, const PerturbationScale& scale, std::uint64_t seed,
+                                int index) {
   if (index < 0) throw ScenarioError("index", "must be >= 0");
   const Scenario sc = parse_scenario(base, dir);
   const bool deg = base.value("angle_unit", "rad") == "deg";
-  const double scale = deg ? M_PI / 180.0 : 1.0;
+  const double scale_unit = deg ? M_PI / 180.0 : 1.0;
   const bool planar_robot = sc.model.kind == ModelKind::planar;
   const int obstacle_dims = planar_robot ? 2 : 3;
   const int path_dims = sc.task.space == TaskSpace::xy ? 2 : 3;
+  const double obstacle_radius = perturb_radius(options.obstacle_shift, scale);
+  const double path_radius = perturb_radius(options.path_shift, scale);
   const std::string family = "perturb:" + name;
   GeneratorCase c(family, nlohmann::json::object(), seed, index);
   Rng& rng = c.rng;
+  int redrawn[int(PerturbRedraw::count)] = {};
   for (int attempt = 0; attempt < kCaseAttempts; ++attempt) {
     nlohmann::json doc = base;
     nlohmann::json record = {{"of", name}, {"seed", seed}, {"index", index}, {"attempt", attempt}};
@@ -273,12 +354,12 @@ nlohmann::json perturb_scenario(const nlohmann::json& base, const std::string& d
         nlohmann::json& o = doc["obstacles"][k];
         if (k == 0 || !options.obstacles_together) {
           const Eigen::Vector3d unit = perturb_in_ball(rng, obstacle_dims);
-          d = (options.obstacle_shift * unit).unaryExpr([](double v) { return rounded(v); });
+          d = (obstacle_radius * unit).unaryExpr([](double v) { return rounded(v); });
           const double u = rng.uniform(-1.0, 1.0);
           turn_deg = rounded(options.obstacle_rotate_deg * u, 0.01);
         }
         const Eigen::Vector2d pivot = options.obstacles_together ? centre : perturb_place(o);
-        perturb_obstacle(o, d, turn_deg * M_PI / 180.0, pivot, scale);
+        perturb_obstacle(o, d, turn_deg * M_PI / 180.0, pivot, scale_unit);
         moved.push_back({{"id", o.value("id", "")}, {"shift", perturb_vector_json(d, obstacle_dims)}, {"rotate_deg", turn_deg}});
       }
     }
@@ -288,7 +369,7 @@ nlohmann::json perturb_scenario(const nlohmann::json& base, const std::string& d
     if (s != 1) perturb_speed(doc, s);
     record["speed"] = s;
     const Eigen::Vector3d path_unit = perturb_in_ball(rng, path_dims);
-    const Eigen::Vector3d path_d = (options.path_shift * path_unit).unaryExpr([](double v) { return rounded(v); });
+    const Eigen::Vector3d path_d = (path_radius * path_unit).unaryExpr([](double v) { return rounded(v); });
     if (path_d.norm() > 0) perturb_path(doc["task"]["trajectory"], path_d);
     record["path_shift"] = perturb_vector_json(path_d, path_dims);
     const double a = rng.uniform();
@@ -299,28 +380,54 @@ nlohmann::json perturb_scenario(const nlohmann::json& base, const std::string& d
       z[j] = g;
     }
     record["q0_self_motion"] = arc;
+    if (options.sized_to_scene()) {  // what the fractions came to, so the case reads without the scenario
+      const nlohmann::json free_gap = std::isfinite(scale.free_gap) ? nlohmann::json(rounded(scale.free_gap, 1e-6)) : nlohmann::json();
+      record["sized_to_scene"] = {{"reach", rounded(scale.reach, 1e-6)},
+                                  {"free_gap", free_gap},
+                                  {"obstacle_shift", obstacle_radius},
+                                  {"path_shift", path_radius}};
+    }
+    // the start, checked before the document is read: the parser refuses a start outside the limits
+    Eigen::VectorXd start = sc.q0;
     if (arc > 0) {
       Eigen::VectorXd q = sc.q0;
-      if (!perturb_self_motion(sc, q, z, arc)) continue;
-      nlohmann::json q0 = nlohmann::json::array();
-      for (int j = 0; j < sc.model.dof(); ++j)
-        q0.push_back(sc.model.joints[j].type == JointType::revolute ? q[j] / scale : q[j]);
+      if (!perturb_self_motion(sc, q, z, arc)) {
+        ++redrawn[int(PerturbRedraw::lost_hand)];
+        continue;
+      }
+      nlohmann::json q0;
+      start = perturb_start_as_read(sc.model, q, scale_unit, q0);
       doc["robot"]["q0"] = q0;
+    }
+    if (const auto problem = perturb_start_problem(sc.model, start)) {
+      ++redrawn[int(*problem)];
+      continue;
     }
     if (options.changes_anything()) doc.erase("witness");  // it solved the scenario before the nudge
     doc["name"] = sc.name + "-p" + std::to_string(index);
     doc["description"] = "Perturbation " + std::to_string(index) + " (seed " + std::to_string(seed) + ") of " + name +
-                         " (obstacles moved up to " + fixed_digits(options.obstacle_shift, 3) + " m and turned up to " +
+                         " (obstacles moved up to " + fixed_digits(obstacle_radius, 3) + " m and turned up to " +
                          fixed_digits(options.obstacle_rotate_deg, 1) + " deg, path speed x" + fixed_digits(s, 3) +
                          ", start moved " + fixed_digits(arc, 4) + " rad along the self-motion manifold, path moved " +
                          fixed_digits(path_d.norm(), 4) + " m; \"perturbation\" has each draw). " +
                          base.value("description", "");
     doc["perturbation"] = record;
-    if (perturb_start_is_free(parse_scenario(doc, dir))) return doc;
+    const Scenario drawn = parse_scenario(doc, dir);
+    if (perturb_clearance(drawn.model, drawn.scene, drawn.q0) > 0) return doc;
+    ++redrawn[int(PerturbRedraw::obstacle)];
   }
-  throw ScenarioError("perturb", "no perturbation of " + name + " started clear of obstacles and inside the joint limits in " +
-                                     std::to_string(kCaseAttempts) +
-                                     " draws: reduce obstacles.shift, obstacles.rotate_deg or q0_self_motion");
+  std::string why;
+  for (int r = 0; r < int(PerturbRedraw::count); ++r)
+    if (redrawn[r] > 0) why += std::string(why.empty() ? "" : ", ") + std::to_string(redrawn[r]) + " " + kPerturbRedrawWhy[r];
+  const bool obstacles = redrawn[int(PerturbRedraw::obstacle)] > 0;
+  const std::string shift_key = options.obstacle_shift.sized_to_scene() ? "obstacles.shift_reach" : "obstacles.shift";
+  const std::string remedy = obstacles ? "reduce " + shift_key + ", obstacles.rotate_deg or q0_self_motion"
+                             : options.q0_self_motion > 0
+                                 ? "reduce q0_self_motion"
+                                 : "the scenario's own start touches itself (robot.q0, robot.allowed_collisions)";
+  throw ScenarioError("perturb", "no perturbation of " + name +
+                                     " started inside the joint limits, clear of obstacles and of itself in " +
+                                     std::to_string(kCaseAttempts) + " draws (" + why + "): " + remedy);
 }
 
 }  // namespace rrlab

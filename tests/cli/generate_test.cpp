@@ -69,6 +69,49 @@ TEST(CliGenerate, WritesAPerturbationFamilysCasesAsTheSweepMakesThem) {
   std::filesystem::remove_all(dir);
 }
 
+// issue 41: this case's first draw moves the start past joint 7's limit; the
+// command used to refuse it as a bad scenario (exit 2), it now draws again
+TEST(CliGenerate, APerturbedStartPastAJointLimitIsDrawnAgain) {
+  const auto dir = std::filesystem::temp_directory_path() / "rrlab_cli_perturb_redraw_test";
+  std::filesystem::remove_all(dir);
+  const rrlab::testing::CliRun made = rrlab::testing::run_cli(
+      "generate --perturb 16_chen_sim1_planar12 --seed 7 --first 38 --count 1 --option q0_self_motion=1.0 "
+      "--option speed=[0.5,3] --out " + dir.string());
+  ASSERT_EQ(made.code, 0) << made.err;
+  const std::string catalogue = std::string(RRLAB_SOURCE_DIR) + "/scenarios";
+  const json base = rrlab::read_json_file(catalogue + "/16_chen_sim1_planar12.json", "scenario");
+  const json expected = rrlab::perturb_scenario(
+      base, catalogue, "16_chen_sim1_planar12",
+      rrlab::parse_perturbation_options(json::parse(R"({"q0_self_motion": 1.0, "speed": [0.5, 3]})"), ""), 7, 38);
+  const auto file = dir / (expected["name"].get<std::string>() + ".json");
+  EXPECT_EQ(json::parse(std::ifstream(file)), expected);
+  EXPECT_GE(expected["perturbation"]["attempt"].get<int>(), 1);
+  const rrlab::testing::CliRun ran = rrlab::testing::run_cli("run " + file.string() + " --method pinv --steps 3");
+  EXPECT_EQ(ran.code, 0) << ran.err;
+  std::filesystem::remove_all(dir);
+}
+
+// shift_reach keys: the shifts sized by the scene, recorded in the case
+TEST(CliGenerate, PerturbationShiftsSizedToTheScene) {
+  const auto dir = std::filesystem::temp_directory_path() / "rrlab_cli_perturb_reach_test";
+  std::filesystem::remove_all(dir);
+  const rrlab::testing::CliRun made = rrlab::testing::run_cli(
+      "generate --perturb 13_sezgin_ex3_narrow_gap --seed 1 --count 1 --option obstacles.shift_reach=0.05 "
+      "--option path.shift_reach=0.01 --option path.shift_gap=0.9 --out " + dir.string());
+  ASSERT_EQ(made.code, 0) << made.err;
+  const json doc = json::parse(std::ifstream(dir / "sezgin_ex3_narrow_gap-p0.json"));
+  const json& sized = doc["perturbation"]["sized_to_scene"];
+  EXPECT_EQ(sized["reach"], 3.0);
+  EXPECT_NEAR(sized["obstacle_shift"].get<double>(), 0.5 * sized["free_gap"].get<double>(), 1e-6);
+  EXPECT_NEAR(sized["path_shift"].get<double>(), 0.03, 1e-9);
+  const rrlab::testing::CliRun both = rrlab::testing::run_cli(
+      "generate --perturb 13_sezgin_ex3_narrow_gap --option obstacles.shift=0.03 --option obstacles.shift_reach=0.05 --out " +
+      (dir / "bad").string());
+  EXPECT_EQ(both.code, 2);
+  EXPECT_NE(both.err.find("obstacles.shift_reach: give shift (m) or shift_reach"), std::string::npos) << both.err;
+  std::filesystem::remove_all(dir);
+}
+
 // --cases: exactly the given indices (a report's unsolved cases), as the
 // sweep entry makes them; clear errors for what it cannot take.
 TEST(CliGenerate, WritesExactlyTheGivenCases) {

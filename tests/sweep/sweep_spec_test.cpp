@@ -74,14 +74,34 @@ TEST(SweepSpec, APerturbEntryIsAFamilyOfItsScenario) {
   EXPECT_EQ(entry.family, "perturb:10_sezgin_ex1_lshape");
   EXPECT_EQ(entry.case_key(2), "perturb:10_sezgin_ex1_lshape:7:2");
   EXPECT_EQ(entry.count, 3);
-  EXPECT_EQ(entry.perturbation.obstacle_shift, 0.03);
+  EXPECT_EQ(entry.perturbation.obstacle_shift.metres, 0.03);
   EXPECT_EQ(entry.perturbation.speed_max, 2.0);
-  EXPECT_EQ(entry.perturbation.path_shift, 0.02);
+  EXPECT_EQ(entry.perturbation.path_shift.metres, 0.02);
+  EXPECT_EQ(entry.perturbation_scale.reach, 0);  // metres: nothing measured
   // the same base with another seed is another family of cases; with the same seed, a repeat
   doc["scenarios"].push_back(doc["scenarios"][0]);
   expect_error(doc, "scenarios[1]: gives the same case keys (perturb:10_sezgin_ex1_lshape:7)");
   doc["scenarios"][1]["seed"] = 8;
   EXPECT_EQ(parse_spec(doc).scenarios.size(), 2u);
+}
+
+// shift_reach keys: the scenario's reach and free gap are measured once, when
+// the spec is read, and every case is the one perturb_scenario() makes
+TEST(SweepSpec, APerturbEntrySizedToTheSceneMeasuresItOnce) {
+  json doc = small_spec();
+  doc["scenarios"] = json::parse(R"([{"perturb": "13_sezgin_ex3_narrow_gap", "count": 2, "seed": 3,
+                                      "obstacles": {"shift_reach": 0.05}, "path": {"shift_reach": 0.01, "shift_gap": 0.2}}])");
+  const SweepSpec spec = parse_spec(doc);
+  const ScenarioEntry& entry = spec.scenarios[0];
+  EXPECT_DOUBLE_EQ(entry.perturbation_scale.reach, 3.0);
+  EXPECT_DOUBLE_EQ(entry.perturbation_scale.free_gap, perturbation_scale(*entry.scenario).free_gap);
+  EXPECT_EQ(entry.perturbation.obstacle_shift.reach, 0.05);
+  EXPECT_EQ(entry.perturbation.path_shift.gap, 0.2);
+  for (int index : {0, 1})
+    EXPECT_EQ(perturb_scenario(entry.scenario->json, entry.dir, entry.name, entry.perturbation, entry.perturbation_scale, 3, index),
+              perturb_scenario(entry.scenario->json, entry.dir, entry.name, entry.perturbation, 3, index));
+  doc["scenarios"][0]["obstacles"]["shift"] = 0.03;
+  expect_error(doc, "scenarios[0].obstacles.shift_reach: give shift (m) or shift_reach (a fraction of the reach), not both");
 }
 
 TEST(SweepSpec, ErrorsNameTheJsonPath) {

@@ -1,16 +1,21 @@
 // Perturbation families of a scenario: each draw does what its option says
 // (obstacles moved within the radius and turned within the angle, path
 // times scaled, start moved along the self-motion manifold with the hand
-// where it was, path moved), every case starts free, and cases are the same
+// where it was, path moved), shifts sized to the scene by its reach and free
+// gap, every case starts free (a start past a limit, touching an obstacle or
+// itself is drawn again, a bounded number of times), and cases are the same
 // for the same (scenario, options, seed, index).
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include <rrlab/collision/collision_world.hpp>
+#include <rrlab/collision/self_collision.hpp>
 #include <rrlab/generators/perturbation.hpp>
 #include <rrlab/kinematics/kinematics.hpp>
 #include <rrlab/scenario/scenario.hpp>
@@ -28,6 +33,49 @@ PerturbationOptions all_options() {
   return parse_perturbation_options(json::parse(R"({"obstacles": {"shift": 0.03, "rotate_deg": 5}, "speed": [0.5, 2.0],
                                                    "q0_self_motion": 0.3, "path": {"shift": 0.02}})"),
                                     "");
+}
+
+const std::string kScenarios = std::string(RRLAB_SOURCE_DIR) + "/scenarios";
+
+double start_clearance(const Scenario& sc) {
+  KinematicsData kin(sc.model);
+  forward_kinematics(sc.model, sc.q0, kin);
+  CollisionWorld world(sc.model, sc.scene);
+  DistanceTable table;
+  table.resize(sc.model.link_count(), int(sc.scene.obstacles.size()));
+  world.compute(kin, table);
+  return table.min_distance;
+}
+
+// The start of a case is inside the limits, clear of every obstacle and of itself.
+void expect_free_start(const Scenario& sc) {
+  for (int j = 0; j < sc.model.dof(); ++j) {
+    EXPECT_GE(sc.q0[j], sc.model.limits.lower[j]) << j;
+    EXPECT_LE(sc.q0[j], sc.model.limits.upper[j]) << j;
+  }
+  if (!sc.scene.obstacles.empty()) EXPECT_GT(start_clearance(sc), 0);
+  EXPECT_GT(min_self_distance(sc.model, sc.q0), 0);
+}
+
+// A 4-link planar arm, links 1 m with 0.1 m radii, no limits, no obstacles,
+// folded at `q0`: moving along its self-motion often folds link 3 or 4 onto link 1.
+json folded_arm(const std::vector<double>& q0) {
+  json links = json::array();
+  for (int k = 0; k < 4; ++k) links.push_back({{"length", 1.0}, {"radius", 0.1}});
+  return {{"name", "folded"},
+          {"dt", 0.01},
+          {"duration", 1.0},
+          {"robot", {{"kind", "planar"}, {"base", {0, 0}}, {"links", links}, {"q0", q0}}},
+          {"task", {{"space", "xy"}, {"trajectory", {{"type", "polyline"}, {"points", {{0.5, 0.5}, {0.6, 0.5}}}}}}}};
+}
+
+std::string perturb_error(const json& base, const char* options) {
+  try {
+    perturb_scenario(base, kScenarios, "blocked", parse_perturbation_options(json::parse(options), ""), 1, 0);
+  } catch (const ScenarioError& e) {
+    return e.what();
+  }
+  return "no error";
 }
 
 Eigen::Vector3d hand_of(const Scenario& sc) {
@@ -69,18 +117,7 @@ TEST(Perturbation, EachDrawStaysWithinItsOptionAndTheHandKeepsItsPlace) {
       if (arc > 0.01) {
         EXPECT_GT((sc.q0 - original.q0).norm(), 0.5 * arc);
       }
-      // the start is inside the limits and clear of every obstacle
-      for (int j = 0; j < sc.model.dof(); ++j) {
-        EXPECT_GE(sc.q0[j], sc.model.limits.lower[j]);
-        EXPECT_LE(sc.q0[j], sc.model.limits.upper[j]);
-      }
-      KinematicsData kin(sc.model);
-      forward_kinematics(sc.model, sc.q0, kin);
-      CollisionWorld world(sc.model, sc.scene);
-      DistanceTable table;
-      table.resize(sc.model.link_count(), int(sc.scene.obstacles.size()));
-      world.compute(kin, table);
-      EXPECT_GT(table.min_distance, 0);
+      expect_free_start(sc);
       // path: moved at most 2 cm
       double path_shift = 0;
       for (const auto& v : record["path_shift"]) path_shift += v.get<double>() * v.get<double>();
@@ -163,6 +200,18 @@ TEST(Perturbation, BadOptionsAreNamed) {
   EXPECT_NE(message(R"({"speed": [0, 1]})").find("scenarios[2].speed[0]"), std::string::npos);
   EXPECT_NE(message(R"({"q0_self_motion": "a lot"})").find("scenarios[2].q0_self_motion"), std::string::npos);
   EXPECT_NE(message(R"({"path": {"shift": 1e9}})").find("scenarios[2].path.shift"), std::string::npos);
+  EXPECT_NE(message(R"({"obstacles": {"shift": 0.03, "shift_reach": 0.01}})")
+                .find("scenarios[2].obstacles.shift_reach: give shift (m) or shift_reach (a fraction of the reach), not both"),
+            std::string::npos);
+  EXPECT_NE(message(R"({"obstacles": {"shift_reach": 2}})").find("scenarios[2].obstacles.shift_reach: must be in [0, 1]"),
+            std::string::npos);
+  EXPECT_NE(message(R"({"obstacles": {"shift": 0.03, "shift_gap": 0.5}})")
+                .find("scenarios[2].obstacles.shift_gap: caps shift_reach: give shift_reach with it"),
+            std::string::npos);
+  EXPECT_NE(message(R"({"path": {"shift_reach": 0.01, "shift_gap": 0}})").find("scenarios[2].path.shift_gap: must be in (0, 1]"),
+            std::string::npos);
+  EXPECT_NE(message(R"({"path": {"shift_reach": 0.01, "shift_gap": 1.5}})").find("scenarios[2].path.shift_gap: must be in (0, 1]"),
+            std::string::npos);
 }
 
 TEST(Perturbation, AFamilyThatCannotStartFreeSaysWhatToReduce) {
@@ -175,7 +224,129 @@ TEST(Perturbation, AFamilyThatCannotStartFreeSaysWhatToReduce) {
     perturb_scenario(base, dir, "blocked", parse_perturbation_options(json::parse(R"({"obstacles": {"shift": 0.01}})"), ""), 1, 0);
     FAIL() << "no error";
   } catch (const ScenarioError& e) {
-    EXPECT_NE(std::string(e.what()).find("reduce obstacles.shift"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("in 200 draws (200 touched an obstacle): reduce obstacles.shift"), std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(Perturbation, AStartMovedPastAJointLimitIsDrawnAgain) {
+  // issue 41: this case's first draw moves joint 7 past its limit; the
+  // document is no longer read before the check (which refused it as a bad
+  // scenario), the draw is made again from the case's own stream
+  const std::string name = "16_chen_sim1_planar12";
+  const json base = base_doc(name);
+  const PerturbationOptions options = parse_perturbation_options(json::parse(R"({"q0_self_motion": 1.0, "speed": [0.5, 3]})"), "");
+  const json doc = perturb_scenario(base, kScenarios, name, options, 7, 38);
+  EXPECT_GE(doc["perturbation"]["attempt"].get<int>(), 1);
+  expect_free_start(parse_scenario(doc, kScenarios));
+  EXPECT_EQ(doc, perturb_scenario(base, kScenarios, name, options, 7, 38));
+}
+
+TEST(Perturbation, AStartThatTouchesItselfIsDrawnAgain) {
+  // the same draws with self-collision off: the refused first draw is the
+  // case, and its start touches itself by the arm's own pairs
+  const json base = folded_arm({0, 2.2, 1.6, 0});
+  json unchecked = base;
+  unchecked["robot"]["self_collision"] = false;
+  const Scenario original = parse_scenario(base, kScenarios);
+  ASSERT_GT(min_self_distance(original.model, original.q0), 0);
+  const PerturbationOptions options = parse_perturbation_options(json::parse(R"({"q0_self_motion": 1.5})"), "");
+  const json doc = perturb_scenario(base, kScenarios, "folded", options, 1, 0);
+  const json first = perturb_scenario(unchecked, kScenarios, "folded", options, 1, 0);
+  EXPECT_GE(doc["perturbation"]["attempt"].get<int>(), 1);
+  EXPECT_EQ(first["perturbation"]["attempt"], 0);
+  expect_free_start(parse_scenario(doc, kScenarios));
+  EXPECT_LE(min_self_distance(original.model, parse_scenario(first, kScenarios).q0), 0);
+  EXPECT_EQ(doc, perturb_scenario(base, kScenarios, "folded", options, 1, 0));
+}
+
+TEST(Perturbation, DrawsThatNeverStartFreeEndInAnErrorThatCountsThem) {
+  // folded onto itself at the start; tight limits on joint 1 refuse most moves
+  json base = folded_arm({0, 3.1, 3.1, 0});
+  base["robot"]["limits"] = {{"lower", {-1e-3, -4, -4, -4}}, {"upper", {1e-3, 4, 4, 4}}};
+  const std::string still = perturb_error(base, R"({"obstacles": {"shift": 0.01}})");
+  EXPECT_NE(still.find("in 200 draws (200 touched itself): the scenario's own start touches itself"), std::string::npos) << still;
+  const std::string moved = perturb_error(base, R"({"q0_self_motion": 0.5})");
+  EXPECT_NE(moved.find("in 200 draws ("), std::string::npos) << moved;
+  EXPECT_NE(moved.find(" left a joint limit"), std::string::npos) << moved;
+  EXPECT_NE(moved.find("): reduce q0_self_motion"), std::string::npos) << moved;
+}
+
+TEST(Perturbation, ReachAndFreeGapAreTheScenesOwn) {
+  // Sezgin's narrow gap: a 3 x 1 m arm; its free gap is the start arm's clearance
+  const Scenario gap = parse_scenario(base_doc("13_sezgin_ex3_narrow_gap"), kScenarios);
+  const PerturbationScale scale = perturbation_scale(gap);
+  EXPECT_DOUBLE_EQ(scale.reach, 3.0);
+  EXPECT_DOUBLE_EQ(scale.free_gap, start_clearance(gap));
+  // Kapoor's DH arm without obstacles: no gap
+  const PerturbationScale open = perturbation_scale(parse_scenario(base_doc("22_kapoor_square_circle"), kScenarios));
+  EXPECT_GT(open.reach, 2.0);
+  EXPECT_TRUE(std::isinf(open.free_gap));
+  // two boxes 0.1 m apart, far from the arm, and a third touching the second
+  // (one body with it, no gap): the gap between the first two is the scene's
+  json boxes = folded_arm({0, 0.5, 0.5, 0.5});
+  boxes["obstacles"] = json::parse(R"([{"id": "a", "shape": "box", "center": [0, -3], "size": [1, 1, 1]},
+                                        {"id": "b", "shape": "box", "center": [1.1, -3], "size": [1, 1, 1]},
+                                        {"id": "c", "shape": "box", "center": [2.0, -3], "size": [1, 1, 1]}])");
+  const Scenario sc = parse_scenario(boxes, kScenarios);
+  ASSERT_GT(start_clearance(sc), 1.0);
+  EXPECT_NEAR(perturbation_scale(sc).free_gap, 0.1, 1e-9);
+}
+
+TEST(Perturbation, ShiftsSizedToTheSceneTakeTheSmallerOfReachAndGap) {
+  const std::string name = "13_sezgin_ex3_narrow_gap";
+  const json base = base_doc(name);
+  const PerturbationScale scale = perturbation_scale(parse_scenario(base, kScenarios));
+  const PerturbationOptions options = parse_perturbation_options(
+      json::parse(R"({"obstacles": {"shift_reach": 0.05}, "path": {"shift_reach": 0.005, "shift_gap": 0.9}})"), "");
+  const double obstacle_radius = std::min(0.05 * 3.0, 0.5 * scale.free_gap);  // the gap caps it
+  const double path_radius = 0.005 * 3.0;                                     // the reach
+  ASSERT_LT(obstacle_radius, 0.15);
+  for (int index = 0; index < 6; ++index) {
+    const json doc = perturb_scenario(base, kScenarios, name, options, 5, index);
+    const json& sized = doc["perturbation"]["sized_to_scene"];
+    EXPECT_DOUBLE_EQ(sized["reach"].get<double>(), 3.0);
+    EXPECT_NEAR(sized["free_gap"].get<double>(), scale.free_gap, 1e-6);
+    EXPECT_NEAR(sized["obstacle_shift"].get<double>(), obstacle_radius, 1e-6);
+    EXPECT_NEAR(sized["path_shift"].get<double>(), path_radius, 1e-6);
+    for (const json& moved : doc["perturbation"]["obstacles"]) {
+      const Eigen::Vector2d d(moved["shift"][0].get<double>(), moved["shift"][1].get<double>());
+      EXPECT_LE(d.norm(), obstacle_radius + 1e-4);
+    }
+    const Eigen::Vector2d p(doc["perturbation"]["path_shift"][0].get<double>(), doc["perturbation"]["path_shift"][1].get<double>());
+    EXPECT_LE(p.norm(), path_radius + 1e-4);
+    // the scale given by the caller (a sweep entry's, measured once) makes the same case
+    EXPECT_EQ(doc, perturb_scenario(base, kScenarios, name, options, scale, 5, index));
+  }
+  // metre keys: no record of a scale, the cases as before
+  EXPECT_FALSE(perturb_scenario(base, kScenarios, name, all_options(), 5, 0)["perturbation"].contains("sized_to_scene"));
+  // no obstacles: the reach alone
+  const json kapoor = base_doc("22_kapoor_square_circle");
+  const json open = perturb_scenario(kapoor, kScenarios, "22_kapoor_square_circle", options, 5, 0);
+  EXPECT_TRUE(open["perturbation"]["sized_to_scene"]["free_gap"].is_null());
+  EXPECT_NEAR(open["perturbation"]["sized_to_scene"]["path_shift"].get<double>(),
+              0.005 * parse_scenario(kapoor, kScenarios).model.reach(), 1e-6);
+}
+
+TEST(Perturbation, TheHarshFamilyDrawsTogether) {
+  // issue 41's harsher family: a larger fraction of the reach up to the whole
+  // free gap, starts up to 1 rad along the self-motion, speed 0.5-3x
+  const PerturbationOptions harsh = parse_perturbation_options(json::parse(R"({
+      "obstacles": {"shift_reach": 0.1, "shift_gap": 1, "rotate_deg": 15}, "q0_self_motion": 1.0,
+      "speed": [0.5, 3], "path": {"shift_reach": 0.02}})"), "");
+  for (const std::string name : {"16_chen_sim1_planar12", "13_sezgin_ex3_narrow_gap", "20_qiu_circle"}) {
+    SCOPED_TRACE(name);
+    const json base = base_doc(name);
+    const PerturbationScale scale = perturbation_scale(parse_scenario(base, kScenarios));
+    for (int index = 0; index < 8; ++index) {
+      const json doc = perturb_scenario(base, kScenarios, name, harsh, 11, index);
+      const json& record = doc["perturbation"];
+      expect_free_start(parse_scenario(doc, kScenarios));
+      EXPECT_NEAR(record["sized_to_scene"]["obstacle_shift"].get<double>(), std::min(0.1 * scale.reach, scale.free_gap), 1e-6);
+      EXPECT_GE(record["speed"].get<double>(), 0.5);
+      EXPECT_LE(record["speed"].get<double>(), 3.0);
+      EXPECT_LE(record["q0_self_motion"].get<double>(), 1.0);
+    }
   }
 }
 
