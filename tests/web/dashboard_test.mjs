@@ -139,6 +139,29 @@ await suite('dashboard', [
     await t.page.check('input[data-overlay=ghosts]');
   }],
 
+  ['qp_ik draws its active velocity dampers as segments between link and obstacle', async (t) => {
+    // Sezgin's narrow gap: links come within the dampers' reach from step 51 on; a tenth of real time keeps it live
+    await openLive(t, '13_sezgin_ex3_narrow_gap', { method: 'qp_ik', rate: 0.1 });
+    const segments = await eventually(() => t.page.evaluate(() => {
+      const f = window.__rrlab.session.lanes[0].frame;
+      return f.overlays && f.overlays.segments && f.overlays.segments.length ? f.overlays.segments : null;
+    }), 'an active damper in the frames');
+    check(segments.every(([a, b]) => a.length >= 2 && b.length >= 2), 'each damper is a segment of two points');
+    check(await t.page.isChecked('input[data-overlay=method]'), 'the method overlay toggle is on');
+    await t.page.click('[data-action=pause]');
+    const drawn = () => t.page.evaluate(() => !window.__rrlab.session.lanes[0].view.dirty);
+    await eventually(async () => (await t.page.textContent('#connection')) === 'paused' && drawn(), 'the paused run\'s last frame drawn');
+    const paused = await t.page.evaluate(() => window.__rrlab.session.lanes[0].frame.overlays.segments.length);
+    await t.screenshot('qp-ik-dampers');
+    if (paused) {  // the paused frame has a damper: turning the overlay off changes the picture
+      const cell = t.page.locator('#views .view-cell').first();
+      const on = await cell.screenshot();
+      await t.page.uncheck('input[data-overlay=method]');
+      await eventually(async () => !(await cell.screenshot()).equals(on), 'turning the method overlay off to change the picture');
+      await t.page.check('input[data-overlay=method]');
+    }
+  }],
+
   ['a slider and the method switch change the run on the server', async (t) => {
     const id = await openLive(t, '01_planar7_obstacles', { paused: true });  // a paused run stays live and takes inputs
     const slider = t.page.locator('.param input[type=range]').first();
