@@ -52,6 +52,15 @@ await suite('papers', [
     await t.screenshot('qiu-compare');
     await t.post(`/api/runs/${await t.page.evaluate(() => window.__rrlab.session.runIds[0])}/control`, { action: 'stop' });
 
+    // the same row beside today's baselines: qp_ik, hqp and diffik with their defaults
+    await t.page.goto(`${t.base}/?paper=qiu`);
+    await t.page.waitForSelector('.paper-examples tr[data-example]');
+    await t.page.locator('.paper-examples tr[data-example]', { hasText: 'with rrlab\'s criterion term' }).locator('.run-modern').click();
+    const modern = await eventually(async () => { const l = await laneLabels(t.page); return l && l.length === 4 ? l : null; }, 'the four lanes');
+    check(modern.join() === 'qp_constraints,qp_ik,hqp,diffik', `qp_constraints beside today's baselines: ${modern}`);
+    await t.screenshot('qiu-todays-baselines');
+    await t.post(`/api/runs/${await t.page.evaluate(() => window.__rrlab.session.runIds[0])}/control`, { action: 'stop' });  // the group stops together
+
     // a Sezgin example live: its CCP configuration (choice parameters by label)
     await t.page.goto(`${t.base}/?paper=sezgin`);
     await t.page.waitForSelector('.paper-examples tr[data-example]');

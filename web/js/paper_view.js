@@ -81,7 +81,8 @@ export class Papers {
       <td>${escapeHtml(e.rate)}${e.paired && e.paired !== '—' ? `<div class="small muted">${escapeHtml(e.paired)}</div>` : ''}</td>
       <td class="mark">${escapeHtml(e.mark)}${e.why ? `<div class="small muted">${escapeHtml(e.why)}</div>` : ''}</td>
       <td class="actions">${e.scenario ? `<button type="button" class="run-live" title="run the shipped scenario live with this configuration">Run live</button>` : ''}
-        ${e.scenario && e.config && e.baselines.length ? `<button type="button" class="run-compare" title="${escapeHtml(`side by side with ${e.baselines.map((b) => parseConfigName(b)).join(', ')}`)}">Compare with baselines</button>` : ''}</td></tr>`).join('');
+        ${e.scenario && e.config && e.baselines.length ? `<button type="button" class="run-compare" title="${escapeHtml(`side by side with ${e.baselines.map((b) => parseConfigName(b)).join(', ')}`)}">Compare with baselines</button>` : ''}
+        ${e.scenario && e.config ? `<button type="button" class="run-modern" title="side by side with ${TODAYS_BASELINES.join(', ')}: the methods practitioners use today, with their defaults (not part of the paper's mark)">Compare with today's baselines</button>` : ''}</td></tr>`).join('');
     const described = scenarios.map((name) => `<details class="scenario-text"><summary>${escapeHtml(name)}</summary><p>${escapeHtml(descriptions[name])}</p></details>`).join('');
     page.innerHTML = `<h2 class="paper-title">${escapeHtml(paper.title)}</h2>
       <p class="paper-authors">${escapeHtml(paper.authors)}${paper.venue ? `, ${escapeHtml(paper.venue)}` : ''}${paper.year ? ` (${paper.year})` : ' (the year is not stated in the paper\'s text)'} · implemented as <code>${escapeHtml(paper.method)}</code></p>
@@ -95,15 +96,23 @@ export class Papers {
       if (live) live.onclick = () => this.run(example, 'live');
       const compare = tr.querySelector('.run-compare');
       if (compare) compare.onclick = () => this.run(example, 'compare');
+      const modern = tr.querySelector('.run-modern');
+      if (modern) modern.onclick = () => this.run(example, 'modern');
     });
   }
 
   // The example's configuration (the scenario's own method when the row has none).
   run(example, kind) {
     const own = example.config ? parseConfig(example.config) : null;
-    const methods = kind === 'live' ? (own ? [own] : []) : [own, ...example.baselines.map(parseConfig)].slice(0, 4);
-    return app.execute({ type: 'startExample', kind, scenario: example.scenario, methods });
+    const others = kind === 'modern' ? TODAYS_BASELINES : example.baselines.map(parseConfig);
+    const methods = kind === 'live' ? (own ? [own] : []) : [own, ...others].slice(0, 4);
+    return app.execute({ type: 'startExample', kind: kind === 'live' ? 'live' : 'compare', scenario: example.scenario, methods });
   }
 }
+
+// The baselines practitioners use today (a weighted QP with velocity dampers,
+// a strict hierarchical QP, direction-preserving scaling), with their defaults:
+// offered beside every example, outside the paper's own comparison.
+const TODAYS_BASELINES = ['qp_ik', 'hqp', 'diffik'];
 
 const parseConfigName = (key) => { const c = parseConfig(key); return typeof c === 'string' ? c : c.name; };
