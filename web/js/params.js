@@ -92,7 +92,7 @@ function buildParams(session) {
   $('params-section').hidden = !lane || !lane.snapshot;
   if (!lane || !lane.snapshot) return;
   const snapshot = lane.snapshot;
-  $('params-lane').textContent = `${snapshot.method}${session.compare ? ` · run #${lane.runId}` : ''}`;
+  $('params-lane').textContent = `${lane.label}${session.compare ? ` · run #${lane.runId}` : ''}`;
   const box = $('params');
   box.replaceChildren();
   if (!snapshot.param_specs.length) box.innerHTML = '<p class="muted">This method has no parameters.</p>';
