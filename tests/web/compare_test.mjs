@@ -38,8 +38,19 @@ await suite('compare', [
     await t.page.fill('#crit-error', '0.001');
     await t.page.locator('#crit-error').dispatchEvent('change');
     await eventually(async () => (await t.page.textContent('.verdict-headline')) === 'All fail the criterion.', 'the verdict under a 1 mm criterion');
+    // a decimal comma is a decimal point; text read two ways is refused beside the field
+    await t.page.fill('#crit-error', '0,001');
+    await t.page.press('#crit-error', 'Tab');
+    await eventually(async () => (await t.page.textContent('.verdict-headline')) === 'All fail the criterion.', 'the verdict under "0,001"');
+    await t.page.fill('#crit-error', '0,1.0');
+    await t.page.press('#crit-error', 'Tab');
+    await eventually(async () => (await t.page.getAttribute('#crit-error', 'aria-invalid')) === 'true', 'the criterion field marked');
+    check((await t.page.inputValue('#crit-error')) === '0.001', `the field back to the criterion in use: ${await t.page.inputValue('#crit-error')}`);
+    check((await t.page.textContent('.criterion + .field-error')).includes('two ways'), 'the message beside the field');
+    await t.screenshot('criterion-refused');
     await t.page.click('#crit-default');
     await eventually(async () => (await t.page.textContent('.verdict-headline')).startsWith('closest_point passes'), 'the default criterion back');
+    check(!(await t.page.getAttribute('#crit-error', 'aria-invalid')) && !(await t.page.isVisible('.criterion + .field-error')), 'the default clears the mark');
     await t.screenshot('criterion');
   }],
 

@@ -8,8 +8,9 @@ const NUMBER = /^[+-]?(\d+\.?\d*|\.\d+)(e[+-]?\d+)?$/i;
 // {value} or {error}: text → number, within [min, max] when given.
 export function parseTypedNumber(text, { min = -Infinity, max = Infinity, unit = '' } = {}) {
   const raw = String(text).trim().replace(/\s+/g, '');
-  const range = `a number in [${min}, ${max}]${unit ? ` ${unit}` : ''}`;
-  if (raw === '') return { error: `type ${Number.isFinite(min) || Number.isFinite(max) ? range : 'a number'}` };
+  const bounds = Number.isFinite(max) ? (Number.isFinite(min) ? ` in [${min}, ${max}]` : ` ≤ ${max}`) : (Number.isFinite(min) ? ` ≥ ${min}` : '');
+  const range = `a number${bounds}${unit ? ` ${unit}` : ''}`;
+  if (raw === '') return { error: `type ${range}` };
   const commas = (raw.match(/,/g) || []).length;
   if (commas > 1 || (commas === 1 && raw.includes('.'))) return { error: `"${text}" can be read two ways: write one decimal separator, as 0.3 or 0,3` };
   const normal = raw.replace(',', '.');

@@ -28,4 +28,5 @@ test('a range with its unit', () => {
   assert.deepEqual(parseTypedNumber('0,3', { min: 0, max: 1, unit: 'm' }), { value: 0.3 });
   assert.equal(parseTypedNumber('3', { min: 0, max: 1, unit: 'm' }).error, '3 is out of range: type a number in [0, 1] m');
   assert.match(parseTypedNumber('', { min: 0, max: 1 }).error, /type a number in \[0, 1\]/);
+  assert.equal(parseTypedNumber('-0,1', { min: 0, unit: 'm' }).error, '-0.1 is out of range: type a number ≥ 0 m');
 });
