@@ -38,11 +38,51 @@ await suite('compare', [
     await t.page.fill('#crit-error', '0.001');
     await t.page.locator('#crit-error').dispatchEvent('change');
     await eventually(async () => (await t.page.textContent('.verdict-headline')) === 'All fail the criterion.', 'the verdict under a 1 mm criterion');
+    // a decimal comma is a decimal point; text read two ways is refused beside the field
+    await t.page.fill('#crit-error', '0,001');
+    await t.page.press('#crit-error', 'Tab');
+    await eventually(async () => (await t.page.textContent('.verdict-headline')) === 'All fail the criterion.', 'the verdict under "0,001"');
+    await t.page.fill('#crit-error', '0,1.0');
+    await t.page.press('#crit-error', 'Tab');
+    await eventually(async () => (await t.page.getAttribute('#crit-error', 'aria-invalid')) === 'true', 'the criterion field marked');
+    check((await t.page.inputValue('#crit-error')) === '0.001', `the field back to the criterion in use: ${await t.page.inputValue('#crit-error')}`);
+    check((await t.page.textContent('.criterion + .field-error')).includes('two ways'), 'the message beside the field');
+    await t.screenshot('criterion-refused');
     await t.page.click('#crit-default');
     await eventually(async () => (await t.page.textContent('.verdict-headline')).startsWith('closest_point passes'), 'the default criterion back');
+    check(!(await t.page.getAttribute('#crit-error', 'aria-invalid')) && !(await t.page.isVisible('.criterion + .field-error')), 'the default clears the mark');
     await t.screenshot('criterion');
   }],
 
+  ['lanes of one method are named by the parameters in which they differ', async (t) => {
+    await t.page.goto(t.base + '/');
+    await t.page.waitForSelector('#compare-rows .compare-row');
+    await t.page.selectOption('#compare-scenario', '01_planar7_obstacles');
+    const rows = t.page.locator('#compare-rows .compare-row');
+    for (const [i, link] of [[0, 2], [1, 3]]) {
+      await rows.nth(i).locator('select').selectOption('ccp_voronoi');
+      await rows.nth(i).locator('input').fill(`ccp_link=${link}`);
+    }
+    await t.page.selectOption('#rate', '0');
+    await t.page.click('#start-compare');
+    await eventually(async () => !(await t.page.isHidden('#compare-summary')), 'the summary at the end');
+    const texts = (selector) => t.page.locator(selector).evaluateAll((els) => els.map((e) => e.textContent.trim()));
+    const want = ['ccp_voronoi · ccp_link=2', 'ccp_voronoi · ccp_link=3'];
+    await eventually(async () => (await texts('#lane-tabs button')).join('|') === want.join('|'), 'the parameter tabs named by ccp_link');
+    check((await texts('#summary-table th[data-lane]')).join('|') === want.join('|'), `the summary's columns: ${await texts('#summary-table th[data-lane]')}`);
+    const headline = await t.page.textContent('.verdict-headline');
+    // the verdict names lanes only when they part (one passes, another fails); then by these labels
+    check(!headline.includes('ccp_voronoi') || (headline.includes('ccp_link=2') && headline.includes('ccp_link=3')), `the verdict names both lanes apart: ${headline}`);
+    check((await texts('#metrics thead th')).slice(1).join('|') === want.join('|'), `the metric columns: ${await texts('#metrics thead th')}`);
+    check(await t.page.evaluate(() => window.__rrlab.session.lanes.map((l) => l.view && l.view.label).join('|')) === want.join('|'), 'the views\' captions');
+    await eventually(async () => {
+      const list = await texts('#runs li .muted');
+      return want.every((label) => list.some((line) => line.startsWith(label)));
+    }, 'the run list names both runs by ccp_link');
+    const page = await t.page.textContent('body');
+    check(page.includes('ccp_link=2') && page.includes('ccp_link=3'), 'ccp_link=2 and ccp_link=3 on the page');
+    await t.screenshot('labels');
+  }],
   ['methods that give the same result are said to give no difference', async (t) => {
     // damped least squares without damping is the pseudoinverse
     const group = await t.post('/api/compare', { scenario: '01_planar7_obstacles', methods: ['pinv', { name: 'dls', params: { lambda: 0 } }], mode: 'batch' });

@@ -162,6 +162,32 @@ await suite('dashboard', [
     }
   }],
 
+  ['a typed decimal comma is a decimal point; text read two ways is refused at its field', async (t) => {
+    const id = await openLive(t, '01_planar7_obstacles', { paused: true });  // closest_point: influence in m
+    const typed = t.page.locator('.param:has(#param-influence) input.typed');
+    const events = async () => (await t.get(`/api/runs/${id}/events`)).filter((e) => e.kind === 'params');
+    const type = async (text) => { await typed.click({ clickCount: 3 }); await t.page.keyboard.type(text); await t.page.keyboard.press('Tab'); };
+    await type('0,3');
+    await eventually(async () => (await events()).some((e) => e.payload.influence === 0.3), 'influence 0.3 stored (not 3)');
+    check((await events()).every((e) => e.payload.influence !== 3), 'never 3 m');
+    await eventually(async () => (await typed.inputValue()) === '0.3', 'the field to show 0.3');
+    // read two ways: refused beside the field, which shows the current value again
+    const count = (await events()).length;
+    await type('0,3.5');
+    await eventually(async () => (await typed.getAttribute('aria-invalid')) === 'true', 'the field marked');
+    const note = t.page.locator('.param:has(#param-influence) .field-error');
+    check(await note.isVisible() && (await note.textContent()).includes('two ways'), `the message beside the field: ${await note.textContent()}`);
+    check((await typed.inputValue()) === '0.3', `the field back to the current value: ${await typed.inputValue()}`);
+    const [fieldBox, noteBox] = [await typed.boundingBox(), await note.boundingBox()];
+    check(Math.abs(noteBox.y - (fieldBox.y + fieldBox.height)) < 40, 'the message right under the field');
+    await t.screenshot('refused');
+    check((await events()).length === count, 'nothing sent for the refused text');
+    // a good value clears the mark
+    await type('0,35');
+    await eventually(async () => (await events()).some((e) => e.payload.influence === 0.35), 'influence 0.35 stored');
+    check(!(await typed.getAttribute('aria-invalid')) && !(await note.isVisible()), 'the mark cleared');
+  }],
+
   ['a slider and the method switch change the run on the server', async (t) => {
     const id = await openLive(t, '01_planar7_obstacles', { paused: true });  // a paused run stays live and takes inputs
     const slider = t.page.locator('.param input[type=range]').first();

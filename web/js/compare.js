@@ -5,6 +5,7 @@ import { api, ApiError } from './api.js';
 import { app, LANE_COLOURS } from './state.js';
 import { DEFAULT_CRITERION, compareVerdict } from './compare_verdict.js';
 import { escapeHtml, fmt } from './dom.js';
+import { parseTypedNumber, refuse, accept } from './typed_number.js';
 
 const $ = (id) => document.getElementById(id);
 const MAX_LANES = 4;
@@ -129,8 +130,8 @@ function buildSummary(box, session) {
   box.dataset.group = session.runIds.join(',');
   box.innerHTML = `<details open><summary><h2>Summary of the compare group</h2></summary>
     <p class="verdict-headline"></p>
-    <p class="criterion small">Success: tracking error ≤ <input type="number" id="crit-error" min="0" step="any" aria-label="largest tracking error that passes, m"> m,
-      clearance ≥ <input type="number" id="crit-distance" step="any" placeholder="any" aria-label="smallest clearance that passes, m"> m,
+    <p class="criterion small">Success: tracking error ≤ <input type="text" inputmode="decimal" id="crit-error" aria-label="largest tracking error that passes, m"> m,
+      clearance ≥ <input type="text" inputmode="decimal" id="crit-distance" placeholder="any" aria-label="smallest clearance that passes, m"> m,
       <label class="inline"><input type="checkbox" id="crit-collision"> no collision</label>,
       <label class="inline"><input type="checkbox" id="crit-limits"> joint limits kept</label>
       <button type="button" id="crit-default" title="the benchmark suite's criterion">default</button></p>
@@ -143,16 +144,22 @@ function buildSummary(box, session) {
     $('crit-limits').checked = criterion.joint_limits;
   };
   fields();
-  const number = (id) => { const v = $(id).value.trim(); return v === '' ? null : Number(v); };
+  // typed numbers (typed_number.js): "0,01" is 0.01; an empty field is no bound
+  const number = (id, min) => {
+    const text = $(id).value;
+    if (text.trim() === '') { accept($(id)); return { value: null }; }
+    const read = parseTypedNumber(text, { min, unit: 'm' });
+    // the message under the criterion's line: nothing on the line moves when it goes
+    if ('error' in read) refuse($(id), read.error, String(id === 'crit-error' ? criterion.max_tracking_error ?? '' : criterion.min_distance ?? ''), $(id).closest('p'));
+    else accept($(id));
+    return read;
+  };
   const changed = () => {
-    const error = number('crit-error'), distance = number('crit-distance');
-    if ((error !== null && !(error >= 0)) || (distance !== null && !Number.isFinite(distance))) {
-      app.error('the success criterion takes a tracking error of 0 m or more and a clearance in metres');
-      return;
-    }
-    Object.assign(criterion, { max_tracking_error: error, min_distance: distance, collision: !$('crit-collision').checked, joint_limits: $('crit-limits').checked });
+    const error = number('crit-error', 0), distance = number('crit-distance', -Infinity);
+    if ('error' in error || 'error' in distance) return;
+    Object.assign(criterion, { max_tracking_error: error.value, min_distance: distance.value, collision: !$('crit-collision').checked, joint_limits: $('crit-limits').checked });
     renderSummary();
   };
   for (const id of ['crit-error', 'crit-distance', 'crit-collision', 'crit-limits']) $(id).onchange = changed;
-  $('crit-default').onclick = () => { Object.assign(criterion, DEFAULT_CRITERION); fields(); renderSummary(); };
+  $('crit-default').onclick = () => { Object.assign(criterion, DEFAULT_CRITERION); fields(); accept($('crit-error')); accept($('crit-distance')); renderSummary(); };
 }

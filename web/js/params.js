@@ -4,6 +4,7 @@
 // input commands. The panel follows the focused lane's snapshots.
 import { app } from './state.js';
 import { escapeHtml as escape, fmt } from './dom.js';
+import { typedNumber } from './typed_number.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -46,7 +47,8 @@ function markChanged(div, value, start) {
   div.querySelector('button.reset').disabled = !changed;
 }
 
-function paramControl(spec, value, start, setParam) {
+// current(): the run's value now (a refused typed value gives way to it)
+function paramControl(spec, value, start, setParam, current) {
   const div = document.createElement('div');
   div.className = 'param';
   div.title = spec.help || '';
@@ -60,21 +62,19 @@ function paramControl(spec, value, start, setParam) {
   } else {
     const scale = sliderScale(spec);
     div.innerHTML = `${head}<input id="${id}" type="range" min="${scale.min}" max="${scale.max}" step="${scale.step}" value="${scale.toPosition(value)}"${scale.log ? ' data-scale="log"' : ''}>`;
-    div.querySelector('.value').innerHTML = `<input type="number" class="typed" step="any" min="${spec.min}" max="${spec.max}" aria-label="${escape(spec.name)}, typed"> <span class="unit">${escape(spec.unit || '')}</span>`;
+    div.querySelector('.value').innerHTML = `<input type="text" inputmode="decimal" class="typed" aria-label="${escape(spec.name)}, typed"> <span class="unit">${escape(spec.unit || '')}</span>`;
     const slider = div.querySelector('input[type=range]');
     const typed = div.querySelector('input.typed');
     typed.value = String(value);
     slider.oninput = () => { typed.value = String(scale.fromPosition(Number(slider.value))); };
     slider.onchange = () => setParam(spec.name, scale.fromPosition(Number(slider.value)));
-    typed.onchange = () => {
-      typed.dataset.committed = typed.value;  // sent: new values from the run may replace it
-      const v = Number(typed.value);
-      if (typed.value.trim() === '' || !Number.isFinite(v) || v < spec.min || v > spec.max) {
-        app.error(`${spec.label || spec.name}: type a number in [${fmt(spec.min)}, ${fmt(spec.max)}]${spec.unit ? ` ${spec.unit}` : ''}`);
-        return;
-      }
-      setParam(spec.name, v);
-    };
+    // "0,3" is 0.3; text read two ways or out of range is refused at the field
+    typedNumber(typed, {
+      min: spec.min, max: spec.max, unit: spec.unit,
+      current: () => { typed.dataset.committed = String(current()); return typed.dataset.committed; },
+      after: div.querySelector('.head'),
+      onValue: (v) => { typed.dataset.committed = typed.value; setParam(spec.name, v); },
+    });
     div.scale = scale;
   }
   markChanged(div, value, start);
@@ -92,14 +92,14 @@ function buildParams(session) {
   $('params-section').hidden = !lane || !lane.snapshot;
   if (!lane || !lane.snapshot) return;
   const snapshot = lane.snapshot;
-  $('params-lane').textContent = `${snapshot.method}${session.compare ? ` · run #${lane.runId}` : ''}`;
+  $('params-lane').textContent = `${lane.label}${session.compare ? ` · run #${lane.runId}` : ''}`;
   const box = $('params');
   box.replaceChildren();
   if (!snapshot.param_specs.length) box.innerHTML = '<p class="muted">This method has no parameters.</p>';
   const start = startValues(lane);
   for (const spec of snapshot.param_specs) {
     const setParam = (name, value) => app.execute({ type: 'input', kind: 'params', payload: { [name]: value }, runId: lane.runId });
-    const control = paramControl(spec, snapshot.params[spec.name], start[spec.name], setParam);
+    const control = paramControl(spec, snapshot.params[spec.name], start[spec.name], setParam, () => lane.snapshot.params[spec.name]);
     if (!live) for (const el of control.querySelectorAll('input, select, button')) el.disabled = true;
     box.appendChild(control);
   }

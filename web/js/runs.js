@@ -7,8 +7,17 @@ import { app } from './state.js';
 import { isLive } from './session.js';
 import { outcomeText } from './failure_modes.js';
 import { escapeHtml } from './dom.js';
+import { laneLabels } from './lane_labels.js';
 
 const $ = (id) => document.getElementById(id);
+
+// A run's method as its compare group names it (lane_labels.js): the method
+// plus the parameters in which it differs from the group's other runs in the list.
+function runLabel(r, runs) {
+  if (!r.compare_group) return r.method;
+  const group = runs.filter((o) => o.compare_group === r.compare_group).sort((a, b) => a.id - b.id);
+  return laneLabels(group.map((o) => ({ method: o.method, params: o.params })))[group.indexOf(r)] ?? r.method;
+}
 
 export class RunList {
   // sweeps() → the server's sweeps [{id, name, total, status}], grouped below the runs
@@ -89,7 +98,7 @@ export class RunList {
         <div class="actions"></div>`;
     } else {
       li.innerHTML = `<div class="title">#${r.id} ${escapeHtml(r.scenario)}</div>
-      <div class="muted small">${escapeHtml(r.method)} · ${escapeHtml(r.mode)}${r.source_run ? ` of #${r.source_run}` : ''} · ${escapeHtml(r.status)} · <span class="frames">${r.frames}</span> frames</div>
+      <div class="muted small">${escapeHtml(runLabel(r, runs))} · ${escapeHtml(r.mode)}${r.source_run ? ` of #${r.source_run}` : ''} · ${escapeHtml(r.status)} · <span class="frames">${r.frames}</span> frames</div>
       <div class="actions"></div>`;
     }
     const actions = li.querySelector('.actions');

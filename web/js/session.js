@@ -8,6 +8,7 @@
 import { api, paths, ApiError, Stream } from './api.js';
 import { app, LANE_COLOURS, writeUrl } from './state.js';
 import { View2D } from './view2d.js';
+import { laneLabels } from './lane_labels.js';
 
 const TERMINAL = new Set(['completed', 'stopped', 'failed', 'interrupted']);
 export const isLive = (status) => status === 'running' || status === 'paused';
@@ -16,7 +17,8 @@ class Lane {
   constructor(index, run, colour) {
     this.index = index;
     this.runId = run.id;
-    this.label = run.method;
+    this.method = run.method;
+    this.label = run.method;  // set by Session.relabel: the method plus what tells it from the other lanes
     this.colour = colour;
     this.replayId = null;
     this.snapshot = null;
@@ -38,11 +40,21 @@ export class Session {
     this.runs = runs;
     this.layout = runs.length > 1 ? layout : 'side';
     this.lanes = runs.map((run, i) => new Lane(i, run, runs.length > 1 ? LANE_COLOURS[i] : '#37474f'));
+    this.relabel();
     this.focus = 0;
     this.frameCount = Math.max(0, ...runs.map((r) => r.frames));
     this.closed = false;
     this.endSeen = false;   // sessionEnded dispatched
     this.shownStatus = null;  // lane 0's run status as the header shows it
+  }
+
+  // Every lane's label from its method and starting parameters (lane_labels.js):
+  // lanes of one method are told apart by the parameters in which they differ.
+  relabel() {
+    // the run's own method: its stored parameters; a method switched to: its first snapshot's
+    const params = (lane) => (lane.method === this.runs[lane.index].method ? this.runs[lane.index].params : lane.startParams[lane.method]) || {};
+    const labels = laneLabels(this.lanes.map((lane) => ({ method: lane.method, params: params(lane) })));
+    this.lanes.forEach((lane, i) => { lane.label = labels[i]; });
   }
 
   get runIds() { return this.runs.map((r) => r.id); }
@@ -119,9 +131,12 @@ export class Session {
     lane.resolveReady(snapshot);
     if (!lane.startParams[snapshot.method]) lane.startParams[snapshot.method] = { ...snapshot.params };
     // after a method switch the lane's name is its new method: tabs, captions, legends
-    if (lane.label !== snapshot.method) {
-      lane.label = snapshot.method;
-      if (lane.view && this.compare && this.layout === 'side') { lane.view.label = lane.label; lane.view.invalidate(); }
+    if (lane.method !== snapshot.method) {
+      lane.method = snapshot.method;
+      this.relabel();
+      if (this.compare && this.layout === 'side') {
+        for (const l of this.lanes) if (l.view && l.view.label !== l.label) { l.view.label = l.label; l.view.invalidate(); }
+      }
     }
     const framesBefore = lane.framesReceived;
     if (!lane.view && lane.cell) await this.makeView(lane, snapshot);
