@@ -326,8 +326,7 @@ class QpConstraints final : public Method {
   // discrete deceleration v, v − a dt, …
   static double braking_velocity(double room, double acc, double dt) {
     if (room <= 0 || !std::isfinite(acc)) return room / dt;  // eq 11 alone
-    const double b = 1.5 * dt;
-    return acc * (-b + std::sqrt(b * b + 2.0 * room / acc));  // root of v²/(2a) + b v = room
+    return rrlab::braking_velocity(room, acc, dt);           // velocity_constraints.hpp
   }
 
   // [lo, hi] ∩ [a, b]; when empty, the point of [lo, hi] nearest to [a, b].
@@ -419,10 +418,7 @@ class QpConstraints final : public Method {
         // row at one of them alone lets the other end swing in
         const Eigen::Vector3d ends[3] = {pair.on_link, in.kin.link_start.col(link), in.kin.link_end.col(link)};
         const double radius = in.model.links[link].radius;
-        const ShapeKind shape = in.scene.obstacles[o].shape;
-        const bool has_faces = shape == ShapeKind::box || shape == ShapeKind::polygon || shape == ShapeKind::wall ||
-                               shape == ShapeKind::mesh;
-        for (int e = 0; e < (has_faces ? 3 : 1); ++e) {
+        for (int e = 0; e < (has_faces(in.scene.obstacles[o].shape) ? 3 : 1); ++e) {
           const double de = e == 0 ? d : r_oc.dot(ends[e] - pair.on_obstacle) - radius;
           if (e > 0 && (de > ds + sigma || (ends[e] - pair.on_link).squaredNorm() < 1e-12)) continue;
           point_jacobian_linear(in.model, in.kin, link, ends[e], point_jacobian_);

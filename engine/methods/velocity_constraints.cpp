@@ -38,13 +38,10 @@ constexpr double kBoundShrink = 1.0 - 1e-9;  // a ratio to a limit never rounds 
 constexpr double kLimitMargin = 1e-9;        // rad (m): the position bound stays this far inside
 constexpr double kViolationRegularisation = 1e-6;  // ε of the least-violation QP
 
-// The largest velocity towards a limit `room` away that one step of it and
-// then braking at `acc` keeps inside: v²/(2a) + 1.5 v dt = room (the braking
-// distance of the discrete deceleration v, v − a dt, …, plus the step).
+// braking_velocity where acceleration is limited and there is room; else no bound
 double braking_velocity_towards(double room, double acc, double dt) {
   if (room <= 0 || !std::isfinite(acc)) return kNoBound;
-  const double b = 1.5 * dt;
-  return acc * (-b + std::sqrt(b * b + 2.0 * room / acc));
+  return braking_velocity(room, acc, dt);
 }
 
 // [lo, hi] ∩ [a, b]; when empty, the point of [a, b] nearest to [lo, hi] wins:
@@ -58,11 +55,6 @@ void merge_bounds(double& lo, double& hi, double a, double b) {
     lo = std::max(lo, a);
     hi = std::min(hi, b);
   }
-}
-
-bool has_faces(ShapeKind shape) {
-  return shape == ShapeKind::box || shape == ShapeKind::polygon || shape == ShapeKind::wall ||
-         shape == ShapeKind::mesh;
 }
 
 }  // namespace
@@ -95,6 +87,11 @@ void VelocityConstraintBuilder::build(const StepInput& in, const LimitSettings& 
   out.rows = 0;
   obstacle_rows(in, dampers, out);
   if (dampers.self_pairs) self_rows(in, dampers, out);
+}
+
+double braking_velocity(double room, double acc, double dt) {
+  const double b = 1.5 * dt;
+  return acc * (-b + std::sqrt(b * b + 2.0 * room / acc));  // root of v²/(2a) + b v = room
 }
 
 void joint_reach(const Model& model, const KinematicsData& kin, Eigen::VectorXd& reach) {

@@ -50,6 +50,19 @@ struct VelocityConstraints {
 // `reach` has one entry per joint. (qp_constraints' step cap uses it too.)
 void joint_reach(const Model& model, const KinematicsData& kin, Eigen::VectorXd& reach);
 
+// An obstacle shape with flat faces (box, polygon, wall, mesh): a link nearly
+// parallel to a face has two near points, so rows go at the link's ends too.
+// (qp_constraints' rows use it too.)
+inline bool has_faces(ShapeKind shape) {
+  return shape == ShapeKind::box || shape == ShapeKind::polygon || shape == ShapeKind::wall || shape == ShapeKind::mesh;
+}
+
+// The largest velocity towards a limit `room` (> 0) away that one step of it
+// and then braking at `acc` (finite) keeps inside: v²/(2a) + 1.5 v dt = room,
+// the step plus the braking distance of the discrete deceleration v, v − a dt, …
+// (qp_constraints' bounds use it too.)
+double braking_velocity(double room, double acc, double dt);
+
 class VelocityConstraintBuilder {
  public:
   VelocityConstraintBuilder(const Model& model, int obstacle_count);
