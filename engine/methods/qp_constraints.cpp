@@ -56,7 +56,8 @@
 //  - empty bounds (eq 15 can give lower > upper): acceleration wins over
 //    velocity, velocity over the joint-range step; bounds are shrunk by a
 //    relative 1e-9 so rounding never reports a ratio above 1.
-//  - step cap (not in the paper, whose examples have velocity limits): no
+//  - step cap (not in the paper, whose examples have velocity limits; max_step
+//    = 0 turns it off): no
 //    point of the arm moves more than c = min(max_step, σ) in one step, so a
 //    link outside the buffer cannot reach d_s in one step and no step jumps
 //    through a thin obstacle. Each joint alone: |q̇_i|·dt·R_i ≤ c (R_i: the
@@ -270,6 +271,7 @@ class QpConstraints final : public Method {
   // in one step (the task loop after a large error, K·e) is scaled to c, so a
   // relaxed step heads for the target instead of saturating every bound.
   void clamp_task_velocity(const StepInput& in) {
+    if (!step_capped()) return;
     const double limit = step_cap() / in.dt;
     const double speed = xdot_.head(std::min(m_, 3)).norm();
     if (speed > limit) xdot_ *= limit / speed;
@@ -290,7 +292,9 @@ class QpConstraints final : public Method {
   }
 
   // The step cap's c: no point of the arm moves more than this in one step.
-  double step_cap() const { return std::min(p(kMaxStep), p(kBuffer)); }
+  // max_step = 0: no cap at all (the paper has none).
+  bool step_capped() const { return p(kMaxStep) > 0; }
+  double step_cap() const { return step_capped() ? std::min(p(kMaxStep), p(kBuffer)) : kInf; }
 
   // Qiu eq 11–15, merged: lower = max(range, velocity, acceleration), upper = min(…);
   // then the step cap. lower_free_/upper_free_: the same without eq 13 (stage 3).
@@ -346,6 +350,7 @@ class QpConstraints final : public Method {
   // acceleration bound). Returns the factor applied (1: none).
   double cap_step(const StepInput& in, Eigen::VectorXd& qdot, const Eigen::VectorXd& lower,
                   const Eigen::VectorXd& upper) {
+    if (!step_capped()) return 1.0;
     const Model& model = in.model;
     double largest = 0;  // the largest ratio of a link's displacement to its cap
     for (int l = 0; l < model.link_count(); ++l) {
@@ -556,8 +561,8 @@ std::vector<ParamSpec> qp_constraints_params() {
            "share of each joint's range, at either end, in which limit_gain acts", 0.1, 0.0, 0.5, 0.01, {}},
           {"max_step", "Step cap", "m",
            "no point of the arm moves more than min(max_step, σ) in one step (so no step jumps through an "
-           "obstacle, also without velocity limits)",
-           0.02, 1e-4, 10.0, 0.01, {}}};
+           "obstacle, also without velocity limits); 0 = no cap (the paper has none)",
+           0.02, 0.0, 10.0, 0.01, {}}};
 }
 std::unique_ptr<Method> make_qp_constraints(const MethodContext& ctx) {
   return std::make_unique<QpConstraints>(ctx);

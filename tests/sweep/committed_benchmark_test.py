@@ -8,8 +8,8 @@ max_qddot, rms_jerk, max_jerk) and the steps past limits after integration
 (position_limit_steps, velocity_limit_steps), measures of the motion that no
 success criterion reads, are checked once a committed file is re-run and has them. Likewise the first case of
 every committed reproduction sweep (benchmarks/reproductions/NAME.json with its
-NAME-runs.csv) against its CSV, and the marks table of docs/results.md against
-scripts/reproduction-table.
+NAME-runs.csv) against its CSV, and the marks table of docs/results.md, the
+README's tallies and the Papers panel's data against scripts/reproduction-table.
 
 Runs against the Release build only (the Makefile's RELEASE_TESTS): that build
 wrote the committed file, and other compilers may round differently.
@@ -97,6 +97,13 @@ class CommittedBenchmark(unittest.TestCase):
         done = subprocess.run([sys.executable, os.path.join(SOURCE_DIR, "scripts", "reproduction-table"), "--check",
                                os.path.join(SOURCE_DIR, "docs", "results.md")], capture_output=True, text=True)
         self.assertEqual(done.returncode, 0, done.stderr + " (re-run scripts/reproduction-table into docs/results.md)")
+
+    def test_the_readmes_tallies_count_the_marks_table_row_for_row(self):
+        """Each paper's README line reads "N ✓, M ◐, L ✗ of K; R of them (rrlab)" as scripts/reproduction-table counts
+        the rows of paper-rows.json, the rows the Papers panel shows."""
+        done = subprocess.run([sys.executable, os.path.join(SOURCE_DIR, "scripts", "reproduction-table"), "--check-tallies",
+                               os.path.join(SOURCE_DIR, "README.md")], capture_output=True, text=True)
+        self.assertEqual(done.returncode, 0, done.stderr + " (copy scripts/reproduction-table --tallies into README.md)")
 
     def test_the_dashboards_papers_panel_shows_the_same_marks(self):
         """web/data/papers.json (the Papers panel) is what scripts/reproduction-table --papers-json prints."""

@@ -18,14 +18,22 @@ await suite('papers', [
     await eventually(async () => (await t.page.locator('#papers-list li').count()) === 5, 'five papers in the list');
     const listed = await t.page.locator('#papers-list li').evaluateAll((lis) => lis.map((li) => li.dataset.paper));
     check(listed.join() === 'sezgin,chen,qiu,zhang,kapoor', `the five papers: ${listed}`);
-    const expected = { sezgin: 18, chen: 4, qiu: 5, zhang: 6, kapoor: 2 };
+    const expected = { sezgin: 30, chen: 4, qiu: 5, zhang: 6, kapoor: 3 };
     for (const key of listed) {
       await t.page.locator(`#papers-list li[data-paper="${key}"] button`).click();
       await eventually(async () => (await t.page.locator('.paper-examples tr[data-example]').count()) === expected[key], `${key}'s ${expected[key]} examples`);
       check(new URLSearchParams(new URL(t.page.url()).search).get('paper') === key, `the address names the paper: ${t.page.url()}`);
       const marks = await t.page.locator('.paper-examples td.mark').allTextContents();
       check(marks.every((m) => /^[✓◐✗]/.test(m)), `${key}: every example has a mark`);
+      // the tally (the README's) counts the rows the page shows, and the marks in them
+      const tally = await t.page.textContent('.paper-tally');
+      const parts = tally.match(/^(\d+) ✓, (\d+) ◐, (\d+) ✗ of (\d+); (\d+) of them \(rrlab\)$/);
+      check(parts, `${key}: a tally "N ✓, M ◐, L ✗ of K; R of them (rrlab)": ${tally}`);
+      const counted = ['✓', '◐', '✗'].map((m) => marks.filter((x) => x.startsWith(m)).length);
+      check(Number(parts[4]) === marks.length && counted.every((n, i) => n === Number(parts[i + 1])) &&
+            Number(parts[5]) === marks.filter((m) => /\(rrlab[;)]/.test(m)).length, `${key}: the tally counts the page's rows: ${tally}`);
     }
+    await t.screenshot('kapoor');  // the last one opened, at its top: the tally and the rows
     await t.page.goto(`${t.base}/?paper=sezgin`);
     await t.page.waitForSelector('.paper-title');
     check((await t.page.textContent('.paper-title')) === 'Redundancy utilization for obstacle avoidance of planar robot manipulators', 'the title');
@@ -42,7 +50,7 @@ await suite('papers', [
     await t.page.goto(`${t.base}/?paper=qiu`);
     await t.page.waitForSelector('.paper-examples tr[data-example]');
     // Ex. 1, Fig. 4 with rrlab's criterion term φ: qp_constraints against pinv
-    const row = t.page.locator('.paper-examples tr[data-example]', { hasText: 'with rrlab\'s criterion term' });
+    const row = t.page.locator('.paper-examples tr[data-example]', { hasText: 'Ex. 1, Fig. 4, with rrlab\'s φ' });
     await row.locator('.run-compare').click();
     const labels = await eventually(() => laneLabels(t.page), 'the compare group');
     check(labels.join() === 'qp_constraints,pinv', `qp_constraints beside pinv: ${labels}`);
@@ -55,7 +63,7 @@ await suite('papers', [
     // the same row beside today's baselines: qp_ik, hqp and diffik with their defaults
     await t.page.goto(`${t.base}/?paper=qiu`);
     await t.page.waitForSelector('.paper-examples tr[data-example]');
-    await t.page.locator('.paper-examples tr[data-example]', { hasText: 'with rrlab\'s criterion term' }).locator('.run-modern').click();
+    await t.page.locator('.paper-examples tr[data-example]', { hasText: 'Ex. 1, Fig. 4, with rrlab\'s φ' }).locator('.run-modern').click();
     const modern = await eventually(async () => { const l = await laneLabels(t.page); return l && l.length === 4 ? l : null; }, 'the four lanes');
     check(modern.join() === 'qp_constraints,qp_ik,hqp,diffik', `qp_constraints beside today's baselines: ${modern}`);
     await t.screenshot('qiu-todays-baselines');
@@ -64,7 +72,7 @@ await suite('papers', [
     // a Sezgin example live: its CCP configuration (choice parameters by label)
     await t.page.goto(`${t.base}/?paper=sezgin`);
     await t.page.waitForSelector('.paper-examples tr[data-example]');
-    await t.page.locator('.paper-examples tr[data-example]').nth(1).locator('.run-live').click();
+    await t.page.locator('.paper-examples tr[data-example]', { hasText: 'Fig. 3b, CCP at joint 3' }).first().locator('.run-live').click();
     const live = await eventually(() => laneLabels(t.page), 'the live run');
     check(live.join() === 'ccp_voronoi', `ccp_voronoi runs: ${live}`);
     const ccp = await t.page.evaluate(() => window.__rrlab.session.lanes[0].snapshot.params.ccp_link);

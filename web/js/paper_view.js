@@ -75,19 +75,20 @@ export class Papers {
     })));
     if (this.key !== key) return;
     const rows = paper.examples.map((e, i) => `<tr data-example="${i}">
-      <td>${escapeHtml(e.figure)}${e.scenario ? `<div class="mono small muted">${escapeHtml(e.scenario)}</div>` : ''}</td>
+      <td>${escapeHtml(e.figure)}${e.scenario ? `<div class="mono small muted">${escapeHtml(e.scenario)}</div>` : ''}
+        <div class="actions">${e.scenario ? `<button type="button" class="run-live" title="run the shipped scenario live with this configuration">Run live</button>` : ''}
+        ${e.scenario && e.config && e.baselines.length ? `<button type="button" class="run-compare" title="${escapeHtml(`side by side with ${e.baselines.map((b) => parseConfigName(b)).join(', ')}`)}">Compare with baselines</button>` : ''}
+        ${e.scenario && e.config ? `<button type="button" class="run-modern" title="side by side with ${TODAYS_BASELINES.join(', ')}: the methods practitioners use today, with their defaults (not part of the paper's mark)">Compare with today's baselines</button>` : ''}</div></td>
       <td>${escapeHtml(e.outcome)}</td>
       <td>${escapeHtml(e.shipped)}</td>
-      <td>${escapeHtml(e.rate)}${e.paired && e.paired !== '—' ? `<div class="small muted">${escapeHtml(e.paired)}</div>` : ''}</td>
-      <td class="mark">${escapeHtml(e.mark)}${e.why ? `<div class="small muted">${escapeHtml(e.why)}</div>` : ''}</td>
-      <td class="actions">${e.scenario ? `<button type="button" class="run-live" title="run the shipped scenario live with this configuration">Run live</button>` : ''}
-        ${e.scenario && e.config && e.baselines.length ? `<button type="button" class="run-compare" title="${escapeHtml(`side by side with ${e.baselines.map((b) => parseConfigName(b)).join(', ')}`)}">Compare with baselines</button>` : ''}
-        ${e.scenario && e.config ? `<button type="button" class="run-modern" title="side by side with ${TODAYS_BASELINES.join(', ')}: the methods practitioners use today, with their defaults (not part of the paper's mark)">Compare with today's baselines</button>` : ''}</td></tr>`).join('');
+      <td class="rate">${escapeHtml(e.rate)}${e.paired && e.paired !== '—' ? `<div class="small muted">${escapeHtml(e.paired)}</div>` : ''}${e.harsh && e.harsh !== '—' ? `<div class="small muted harsh">harsh family: ${escapeHtml(e.harsh)}</div>` : ''}${e.today && e.today !== '—' ? `<div class="small muted today">today's baselines: ${escapeHtml(e.today)}</div>` : ''}</td>
+      <td class="mark">${escapeHtml(e.mark)}${e.why ? `<div class="small muted">${escapeHtml(e.why)}</div>` : ''}</td></tr>`).join('');
     const described = scenarios.map((name) => `<details class="scenario-text"><summary>${escapeHtml(name)}</summary><p>${escapeHtml(descriptions[name])}</p></details>`).join('');
     page.innerHTML = `<h2 class="paper-title">${escapeHtml(paper.title)}</h2>
       <p class="paper-authors">${escapeHtml(paper.authors)}${paper.venue ? `, ${escapeHtml(paper.venue)}` : ''}${paper.year ? ` (${paper.year})` : ' (the year is not stated in the paper\'s text)'} · implemented as <code>${escapeHtml(paper.method)}</code></p>
       <h3>Examples: the paper's outcome and what rrlab gets</h3>
-      <table class="paper-examples"><tr><th>example</th><th>the paper</th><th>rrlab, shipped scenario</th><th>over its nudged copies (95 % CI)</th><th>mark</th><th></th></tr>${rows}</table>
+      ${paper.tally ? `<p class="paper-tally">${escapeHtml(paper.tally)}</p>` : ''}
+      <table class="paper-examples"><tr><th>example</th><th>the paper</th><th>rrlab, shipped scenario</th><th>over its nudged copies (95 % CI)</th><th>mark</th></tr>${rows}</table>
       <p class="small muted rule">${escapeHtml(data.rule.replace(/\*\*/g, ''))}</p>
       <h3>The scenarios</h3>${described}`;
     page.querySelectorAll('tr[data-example]').forEach((tr) => {

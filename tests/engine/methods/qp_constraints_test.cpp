@@ -214,6 +214,25 @@ TEST(QpConstraints, StepCapKeepsAStepFromJumpingThroughAThinObstacle) {
               qp.summary.min_distance);
 }
 
+// max_step = 0 is the paper's QP without rrlab's step cap: no step is scaled
+// (capped_steps stays 0) and the hand moves farther than the cap in one step.
+TEST(QpConstraints, MaxStepZeroTurnsTheStepCapOff) {
+  const json doc = thin_obstacle_jump();
+  const auto capped = run_scenario(doc, "qp_constraints");
+  const auto uncapped = run_scenario(doc, "qp_constraints", {{"max_step", 0.0}});
+  auto largest_hand_step = [](const test::RunResult& r) {
+    double largest = 0;
+    for (size_t i = 1; i < r.frames.size(); ++i)
+      largest = std::max(largest, (r.frames[i].ee_position - r.frames[i - 1].ee_position).norm());
+    return largest;
+  };
+  EXPECT_LE(largest_hand_step(capped), 0.02 + 1e-9);
+  EXPECT_GT(largest_hand_step(uncapped), 0.05);  // sigma (0.05 by default) no longer caps it either
+  for (const Frame& f : uncapped.frames) EXPECT_TRUE(f.qdot.allFinite());
+  std::printf("thin obstacle: largest hand step %.4f m capped, %.4f m with max_step 0\n", largest_hand_step(capped),
+              largest_hand_step(uncapped));
+}
+
 // A hand path straight through a point obstacle at 1 m/s with low
 // acceleration limits: the task must give way; d_s must hold.
 TEST(QpConstraints, TheTaskGivesWayAndTheSlackNeverBreaksTheMargin) {
