@@ -69,6 +69,38 @@ TEST(CcpVoronoiEx1, AllFiveOutcomesOfFigs3And4) {
   }
 }
 
+// The same five figures with the paper's method as published: no vertex
+// hysteresis (rrlab's addition; the paper takes the nearest vertex always).
+// At gain 8 Fig. 4b's CCPs at the middles of links 2 and 3 then collide: the
+// reproduction table's paper rows mark Fig. 4b and the five together ✗, the
+// hysteresis rows (rrlab) ✓ and ◐.
+TEST(CcpVoronoiEx1, FiguresWithThePapersNearestVertex) {
+  const std::vector<FigureCase> cases = {
+      {"3a: CCP at joint 2", {{"ccp_link", 2}, {"ccp_at", 0}}, true, -0.1356},
+      {"3b: CCP at joint 3", {{"ccp_link", 3}, {"ccp_at", 0}}, false, 0.0236},
+      {"3c: CCP at the middle of link 3", {{"ccp_link", 3}, {"ccp_at", 0.5}}, false, 0.0146},
+      {"4a: CCPs at the middles of links 1 and 2",
+       {{"ccp_link", 1}, {"ccp_at", 0.5}, {"ccp2_link", 2}, {"ccp2_at", 0.5}}, true, -0.0932},
+      // the gap: the paper's Fig. 4b avoids; without hysteresis rrlab's collides
+      {"4b: CCPs at the middles of links 2 and 3",
+       {{"ccp_link", 2}, {"ccp_at", 0.5}, {"ccp2_link", 3}, {"ccp2_at", 0.5}}, true, -0.1208},
+  };
+  for (FigureCase c : cases) {
+    c.params["hysteresis"] = 0;
+    const auto r = run_ccp("10_sezgin_ex1_lshape.json", c.params);
+    std::printf("[ Ex1 gain 8, hysteresis 0 ] Fig. %s: collided %d, min distance %.4f\n", c.figure,
+                int(r.summary.collided), r.summary.min_distance);
+    EXPECT_EQ(r.summary.collided, c.collides) << c.figure;
+    EXPECT_NEAR(r.summary.min_distance, c.min_distance, 0.01) << c.figure;
+  }
+  for (const char* file : {"10a_sezgin_fig5a_three_ccp.json", "10b_sezgin_fig5b_four_ccp.json",
+                           "11_sezgin_ex1_box.json"}) {
+    const auto r = run_ccp(file, {{"hysteresis", 0}});
+    EXPECT_FALSE(r.summary.collided) << file;
+    EXPECT_GT(r.summary.min_distance, 0.02) << file;  // measured 0.0236, 0.0236, 0.0506
+  }
+}
+
 // Fig. 5: three and four CCPs avoid (scenarios 10a, 10b), at gain 8 as in the
 // scenarios and at the defaults.
 TEST(CcpVoronoiEx1, ThreeAndFourCcpsOfFig5Avoid) {

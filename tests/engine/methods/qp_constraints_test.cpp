@@ -142,6 +142,29 @@ TEST(QpConstraints, MinimumNormObjectiveAloneIsALocalTrap) {
               with.relaxed);
 }
 
+// Qiu's QP as published: none of rrlab's additions (no criterion term φ, no
+// step cap, no least approach rate). On the circle it loses the path as with
+// φ = 0 alone (the reproduction's paper row, ✗); on the ellipse it passes the
+// singular boundary clear of the obstacle (its family: 32 %, ◐).
+TEST(QpConstraints, ThePapersQpWithoutRrlabsAdditions) {
+  const std::vector<std::pair<std::string, double>> paper = {
+      {"clearance_gain", 0.0}, {"max_step", 0.0}, {"approach_rate", 0.0}, {"limit_gain", 0.0}};
+  auto run = [&](const char* file) {
+    Simulator sim(load_scenario_file(test::source_path(file)));
+    for (const auto& [name, value] : paper) sim.set_param(name, value);
+    return run_to_end(sim, nullptr);
+  };
+  const Summary circle = run("scenarios/20_qiu_circle.json");
+  EXPECT_NEAR(circle.max_tracking_error, 0.138, 0.01);  // measured 0.138 m, as with φ = 0 alone
+  EXPECT_GE(circle.min_distance, 0.1 - 1e-3);           // 0.127 m: d_s kept
+  const Summary ellipse = run("scenarios/21_qiu_ellipse.json");
+  EXPECT_FALSE(ellipse.collided);
+  EXPECT_NEAR(ellipse.min_distance, 0.179, 0.01);  // measured 0.1794
+  EXPECT_LT(ellipse.final_tracking_error, 0.001);
+  std::printf("the paper's QP: circle max tracking error %.4f m, min distance %.4f m; ellipse min distance %.4f m\n",
+              circle.max_tracking_error, circle.min_distance, ellipse.min_distance);
+}
+
 TEST(QpConstraints, QiuEllipseBypassesTheSingularityAndKeepsTheObstacleMargin) {
   const FileRun pinv = run_file("scenarios/21_qiu_ellipse.json", "pinv");
   const FileRun qp = run_file("scenarios/21_qiu_ellipse.json", "qp_constraints");
