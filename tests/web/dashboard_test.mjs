@@ -210,7 +210,7 @@ await suite('dashboard', [
     await t.request('PATCH', `/api/runs/${id}/params`, { [name]: spec.max });
     await eventually(async () => Number(await typed.inputValue()) === spec.max && Number(await slider.inputValue()) === Number(await slider.getAttribute('max')), `the controls to show ${spec.max}`);
     check(await slider.evaluate((el) => el.dataset.kept === 'yes'), 'the panel was updated in place, not rebuilt');
-    // a slider moved by the mouse sends its value (3 significant digits on a log slider)
+    // a slider moved by the mouse sends its value (2 significant digits on a log slider)
     const box = await slider.boundingBox();
     await slider.click({ position: { x: box.width * 0.5, y: box.height / 2 } });
     await eventually(async () => {
@@ -232,6 +232,34 @@ await suite('dashboard', [
     check((await t.get(`/api/runs/${id}/events`)).some((e) => e.kind === 'method'), 'the method switch is stored');
     check((await t.page.textContent('#params-lane')).includes('dls'), 'the parameter panel shows the new method');
     await t.screenshot('switched');
+  }],
+
+  ['a log slider says so, steps by a fraction of a decade and records one event per settled change', async (t) => {
+    const id = await openLive(t, '01_planar7_obstacles', { paused: true });
+    const slider = t.page.locator('.param input[type=range][data-scale=log]').first();
+    const name = (await slider.getAttribute('id')).replace('param-', '');
+    const mark = t.page.locator(`.param:has(#param-${name}) .scale-mark`);
+    check((await mark.textContent()) === 'log' && await mark.isVisible(), 'the log scale is marked');
+    const typed = t.page.locator(`.param:has(#param-${name}) input.typed`);
+    const start = Number(await typed.inputValue());
+    const params = async () => (await t.get(`/api/runs/${id}/events`)).filter((e) => e.kind === 'params');
+    const before = (await params()).length;
+    await slider.focus();
+    for (let i = 0; i < 6; i++) await slider.press('ArrowRight');
+    const up = Number(await typed.inputValue());
+    check(up > start * 1.5 && up < start * 2.5, `six steps right: ${start} to ${up} (about ×2, a fraction of a decade each)`);
+    // keys pressed faster than they settle make one event (on a machine slow enough to pause between two
+    // presses, one per pause: never one per step)
+    await eventually(async () => { const p = await params(); return p.length > before && p.at(-1).payload[name] === up; }, 'the settled value stored');
+    const afterRight = (await params()).length;
+    check(afterRight - before < 6, `fewer events than steps: ${afterRight - before}`);
+    for (let i = 0; i < 6; i++) await slider.press('ArrowLeft');
+    check(Number(await typed.inputValue()) === start, `six steps back return to ${start} exactly`);
+    await eventually(async () => { const p = await params(); return p.length > afterRight && p.at(-1).payload[name] === start; },
+      'back at the starting value, stored');
+    check((await params()).length - afterRight < 6, 'fewer events than steps on the way back');
+    await eventually(async () => (await t.page.locator('.param.changed').count()) === 0, 'nothing marked changed');
+    await t.screenshot('log-slider');
   }],
 
   ['the keyboard joystick moves the target', async (t) => {

@@ -14,30 +14,44 @@ function sliderStep(spec) {
   return spec.step && Number.isInteger(Math.round(((spec.max - spec.min) / spec.step) * 1e9) / 1e9) ? spec.step : 'any';
 }
 
-const LOG_POSITIONS = 1000;
+// A log slider moves in twentieths of a decade (a step is ×1.12) and sets two
+// significant digits (1.0, 1.1, 1.3, … 8.9): fine enough to choose, coarse
+// enough that the keyboard's steps land on the same values both ways.
+const STEPS_PER_DECADE = 20;
 
 // How a slider maps a parameter's range: linear, or logarithmic where the
 // range spans two decades or more (0.001–10 m, 0–1000), so every decade gets
-// the same travel; a range from 0 keeps 0 at the left end. Exported for tests.
-export function sliderScale(spec) {
+// the same travel; a range from 0 keeps 0 at the left end. `anchors`: values
+// (the run's starting value, the value the control opened with) that their
+// own positions give back exactly, so steps out and back return to them.
+// Exported for tests.
+export function sliderScale(spec, anchors = []) {
   const lo = spec.min > 0 ? spec.min : Math.max(spec.step || 0, spec.max * 1e-4);
   const log = spec.min >= 0 && spec.max > 0 && lo > 0 && spec.max / lo >= 100;
   if (!log) return { log: false, min: spec.min, max: spec.max, step: sliderStep(spec), toPosition: (v) => v, fromPosition: (p) => p };
   const zero = spec.min === 0;  // position 0 is the value 0
   const first = zero ? 1 : 0;
-  const span = LOG_POSITIONS - first;
+  const span = Math.max(1, Math.round(STEPS_PER_DECADE * Math.log10(spec.max / lo)));
   const toPosition = (v) => {
     if (zero && v <= 0) return 0;
     const x = Math.min(spec.max, Math.max(lo, v));
     return first + Math.round((span * Math.log(x / lo)) / Math.log(spec.max / lo));
   };
+  const exact = new Map();  // position -> anchor value
+  for (const a of anchors) if (typeof a === 'number' && Number.isFinite(a) && a >= spec.min && a <= spec.max) exact.set(toPosition(a), a);
   const fromPosition = (p) => {
+    if (exact.has(p)) return exact.get(p);
     if (zero && p <= 0) return 0;
+    if (p - first >= span) return spec.max;
     const value = lo * Math.pow(spec.max / lo, (p - first) / span);
-    return Number(value.toPrecision(3));  // a slider sets 3 significant digits; type for more
+    return Math.min(spec.max, Math.max(lo, Number(value.toPrecision(2))));  // type for more digits
   };
-  return { log: true, min: 0, max: LOG_POSITIONS, step: 1, toPosition, fromPosition };
+  return { log: true, min: 0, max: first + span, step: 1, toPosition, fromPosition };
 }
+
+// A change made with the keyboard is sent once the keys rest this long, as
+// one recorded event (a drag sends one on release).
+const KEYS_SETTLE_MS = 400;
 
 // Whether the value differs from the run's starting value (the scenario's):
 // marked, and the reset (back to it) enabled.
@@ -60,14 +74,30 @@ function paramControl(spec, value, start, setParam, current) {
     div.innerHTML = `${head}<select id="${id}">${spec.choices.map((c, i) => `<option value="${i}" ${i === value ? 'selected' : ''}>${escape(c)}</option>`).join('')}</select>`;
     div.querySelector('select').onchange = (e) => setParam(spec.name, Number(e.target.value));
   } else {
-    const scale = sliderScale(spec);
-    div.innerHTML = `${head}<input id="${id}" type="range" min="${scale.min}" max="${scale.max}" step="${scale.step}" value="${scale.toPosition(value)}"${scale.log ? ' data-scale="log"' : ''}>`;
+    const scale = sliderScale(spec, [start, value]);
+    div.innerHTML = `${head}<div class="slider-row"><input id="${id}" type="range" min="${scale.min}" max="${scale.max}" step="${scale.step}" value="${scale.toPosition(value)}"${scale.log ? ' data-scale="log"' : ''}>
+      <span class="scale-mark" title="${scale.log ? 'logarithmic: each step is ×1.12, a twentieth of a decade' : 'linear'}">${scale.log ? 'log' : 'lin'}</span></div>`;
     div.querySelector('.value').innerHTML = `<input type="text" inputmode="decimal" class="typed" aria-label="${escape(spec.name)}, typed"> <span class="unit">${escape(spec.unit || '')}</span>`;
     const slider = div.querySelector('input[type=range]');
     const typed = div.querySelector('input.typed');
     typed.value = String(value);
     slider.oninput = () => { typed.value = String(scale.fromPosition(Number(slider.value))); };
-    slider.onchange = () => setParam(spec.name, scale.fromPosition(Number(slider.value)));
+    // one event per settled change: a drag on release, keys once they rest
+    let keyed = false;
+    const send = () => {
+      clearTimeout(div.pendingSend);
+      div.pendingSend = null;
+      const chosen = scale.fromPosition(Number(slider.value));
+      if (chosen !== current()) setParam(spec.name, chosen);  // steps out and back: nothing to record
+    };
+    slider.onkeydown = () => { keyed = true; };
+    slider.onpointerdown = () => { keyed = false; };
+    slider.onchange = () => {
+      if (!keyed) return send();
+      clearTimeout(div.pendingSend);
+      div.pendingSend = setTimeout(send, KEYS_SETTLE_MS);
+    };
+    slider.onblur = () => { if (div.pendingSend) send(); };
     // "0,3" is 0.3; text read two ways or out of range is refused at the field
     typedNumber(typed, {
       min: spec.min, max: spec.max, unit: spec.unit,
@@ -123,7 +153,8 @@ function updateParams(session) {
     if (!div) return buildParams(session);  // not the panel of this method: build it
     const value = lane.snapshot.params[spec.name];
     const control = div.querySelector('input[type=range], select');
-    if (!control.matches(':active')) control.value = String(div.scale ? div.scale.toPosition(value) : value);  // not while the user drags it
+    // not while the user drags it or has a keyboard change waiting to be sent
+    if (!control.matches(':active') && !div.pendingSend) control.value = String(div.scale ? div.scale.toPosition(value) : value);
     const typed = div.querySelector('input.typed');
     // not over a number being typed (focused, and changed since it was last sent)
     if (typed && (document.activeElement !== typed || typed.value === typed.dataset.committed)) {
