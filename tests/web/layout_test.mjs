@@ -75,7 +75,11 @@ await suite('layout', [
     await t.page.goto(`${t.base}/?paper=qiu`);
     await t.page.waitForSelector('.paper-examples');
     await fitsThePhone(t, 'a paper');
-    check(await t.page.evaluate(() => document.getElementById('paper-page').getBoundingClientRect().right <= window.innerWidth + 0.5), 'the paper page fits (its table scrolls inside it)');
+    check(await t.page.evaluate(() => document.getElementById('paper-page').getBoundingClientRect().right <= window.innerWidth + 0.5), 'the paper page fits');
+    // each example a card: the mark and the buttons on screen, not in a scrolled-off column
+    const offscreen = await t.page.evaluate(() => [...document.querySelectorAll('.paper-examples td.mark, .paper-examples .actions button')]
+      .filter((el) => el.getBoundingClientRect().right > window.innerWidth + 0.5).length);
+    check(offscreen === 0, `every mark and button within the screen (${offscreen} outside)`);
     await t.screenshot('phone-paper');
   }],
 ]);

@@ -79,10 +79,10 @@ export class Papers {
         <div class="actions">${e.scenario ? `<button type="button" class="run-live" title="run the shipped scenario live with this configuration">Run live</button>` : ''}
         ${e.scenario && e.config && e.baselines.length ? `<button type="button" class="run-compare" title="${escapeHtml(`side by side with ${e.baselines.map((b) => parseConfigName(b)).join(', ')}`)}">Compare with baselines</button>` : ''}
         ${e.scenario && e.config ? `<button type="button" class="run-modern" title="side by side with ${TODAYS_BASELINES.join(', ')}: the methods practitioners use today, with their defaults (not part of the paper's mark)">Compare with today's baselines</button>` : ''}</div></td>
-      <td>${escapeHtml(e.outcome)}</td>
-      <td>${escapeHtml(e.shipped)}</td>
-      <td class="rate">${escapeHtml(e.rate)}${e.paired && e.paired !== '—' ? `<div class="small muted">${escapeHtml(e.paired)}</div>` : ''}${e.harsh && e.harsh !== '—' ? `<div class="small muted harsh">harsh family: ${escapeHtml(e.harsh)}</div>` : ''}${e.today && e.today !== '—' ? `<div class="small muted today">today's baselines: ${escapeHtml(e.today)}</div>` : ''}</td>
-      <td class="mark">${escapeHtml(e.mark)}${e.why ? `<div class="small muted">${escapeHtml(e.why)}</div>` : ''}</td></tr>`).join('');
+      <td data-label="the paper">${escapeHtml(e.outcome)}</td>
+      <td data-label="rrlab, shipped scenario">${escapeHtml(e.shipped)}</td>
+      <td class="rate" data-label="over its nudged copies (95 % CI)">${escapeHtml(e.rate)}${e.paired && e.paired !== '—' ? `<div class="small muted">${escapeHtml(e.paired)}</div>` : ''}${e.harsh && e.harsh !== '—' ? `<div class="small muted harsh">harsh family: ${escapeHtml(e.harsh)}</div>` : ''}${e.today && e.today !== '—' ? `<div class="small muted today">today's baselines: ${escapeHtml(e.today)}</div>` : ''}</td>
+      <td class="mark" data-label="mark">${escapeHtml(e.mark)}${e.why ? `<div class="small muted">${escapeHtml(e.why)}</div>` : ''}</td></tr>`).join('');
     const described = scenarios.map((name) => `<details class="scenario-text"><summary>${escapeHtml(name)}</summary><p>${escapeHtml(descriptions[name])}</p></details>`).join('');
     page.innerHTML = `<h2 class="paper-title">${escapeHtml(paper.title)}</h2>
       <p class="paper-authors">${escapeHtml(paper.authors)}${paper.venue ? `, ${escapeHtml(paper.venue)}` : ''}${paper.year ? ` (${paper.year})` : ' (the year is not stated in the paper\'s text)'} · implemented as <code>${escapeHtml(paper.method)}</code></p>
