@@ -115,10 +115,10 @@ function renderSummary() {
   box.querySelector('.verdict-headline').textContent = verdict.headline;
   const head = `<tr><th></th>${session.lanes.map((l, i) => `<th data-lane="${i}">${escapeHtml(l.label)}</th>`).join('')}</tr>`;
   const verdictRow = `<tr class="verdict-row"><td>verdict</td>${verdict.verdicts.map((v) =>
-    `<td class="${v.pass ? 'pass' : 'fail'}" title="${escapeHtml(v.reasons.join('; ') || 'meets the criterion')}">${v.pass ? 'pass' : 'fail'}</td>`).join('')}</tr>`;
+    `<td class="${v.pass ? 'pass' : 'fail'}" title="${escapeHtml(v.reasons.join('; ') || 'meets the criterion')}">${v.pass ? 'pass' : 'fail'}${v.reasons.length ? `<div class="why">${escapeHtml(v.reasons.join(', '))}</div>` : ''}</td>`).join('')}</tr>`;
   const rows = verdict.rows.map((row) => `<tr class="${row.differs ? 'differs' : ''}" data-row="${row.key}"><td>${row.label}</td>${row.values.map((v, i) => {
     const classes = [row.best.includes(i) ? 'best' : '', v === true && row.better === 'false' ? 'collided' : ''].filter(Boolean).join(' ');
-    return `<td class="${classes}"${row.best.includes(i) ? ' title="best of the group"' : ''}>${fmt(v)}</td>`;
+    return `<td class="${classes}"${row.best.includes(i) ? ` title="best of the group${row.stated ? `, by more than ${row.stated}` : ''}"` : ''}>${fmt(v)}</td>`;
   }).join('')}</tr>`);
   const table = box.querySelector('#summary-table');
   table.innerHTML = head + verdictRow + rows.join('');
@@ -136,7 +136,7 @@ function buildSummary(box, session) {
       <label class="inline"><input type="checkbox" id="crit-limits"> joint limits kept</label>
       <button type="button" id="crit-default" title="the benchmark suite's criterion">default</button></p>
     <table id="summary-table"></table>
-    <p class="muted small">Bold: the best value of a row. Shaded rows: the methods differ there (to 4 digits; step times always differ).</p></details>`;
+    <p class="muted small">Bold: the best value of a row, marked only when it beats the others by more than the row's tolerance (distances 1 mm, tracking errors 0.1 mm, condition number 1 %, step times 10 %). Shaded rows: the methods differ there (to 4 digits; step times always differ).</p></details>`;
   const fields = () => {
     $('crit-error').value = criterion.max_tracking_error ?? '';
     $('crit-distance').value = criterion.min_distance ?? '';

@@ -19,6 +19,15 @@ test('the best value follows the row\'s direction; ties share it; equal rows hav
   assert.deepEqual(bestOf([0.1, 0.3], null), []);
 });
 
+test('"best" is marked only beyond the row\'s stated tolerance', () => {
+  assert.deepEqual(bestOf([8.70e-6, 8.80e-6], 'low', { abs: 1e-4 }), []);  // 0.01 µm apart: noise
+  assert.deepEqual(bestOf([0.002, 0.0035, 0.0021], 'low', { abs: 1e-4 }), [0, 2]);
+  assert.deepEqual(bestOf([10, 10.05, 12], 'low', { rel: 0.01 }), [0, 1]);
+  const rows = compareVerdict([summary({ max_tracking_error: 8.7e-6 }), summary({ max_tracking_error: 8.8e-6 })], ['a', 'b']).rows;
+  assert.deepEqual(rows.find((r) => r.key === 'max_tracking_error').best, []);
+  assert.equal(rows.find((r) => r.key === 'max_tracking_error').stated, '0.1 mm');
+});
+
 test('values equal to 4 significant digits do not differ', () => {
   assert.equal(differs([0.16411, 0.164112]), false);
   assert.equal(differs([0.1641, 0.1642]), true);
@@ -29,8 +38,9 @@ test('values equal to 4 significant digits do not differ', () => {
 test('the default criterion is the benchmark suite\'s; each failure is named', () => {
   assert.deepEqual({ ...DEFAULT_CRITERION }, { max_tracking_error: 0.01, min_distance: null, collision: false, joint_limits: true });
   assert.deepEqual(judge(summary()), { pass: true, reasons: [] });
-  assert.deepEqual(judge(summary({ collided: true, min_distance: -0.1 })).reasons, ['collided']);
-  assert.deepEqual(judge(summary({ max_tracking_error: 0.02 })).reasons, ['tracking error above 0.01 m']);
+  assert.deepEqual(judge(summary({ collided: true, min_distance: -0.1 })).reasons, ['collision, 10 cm deep']);
+  assert.deepEqual(judge(summary({ max_tracking_error: 0.0478 })).reasons, ['tracking error 4.8 cm > 1 cm']);
+  assert.deepEqual(judge(summary({ min_distance: 0.031 }), { min_distance: 0.05 }).reasons, ['clearance 3.1 cm < 5 cm']);
   assert.deepEqual(judge(summary({ max_tracking_error: NaN })).pass, false);  // NaN never passes a bound
   assert.deepEqual(judge(summary({ joint_limit_violated: true, nonfinite_steps: 3 })).reasons, ['crossed a joint limit', 'non-finite output']);
   assert.equal(judge(summary({ collided: true }), { collision: true }).pass, true);
@@ -40,7 +50,7 @@ test('the default criterion is the benchmark suite\'s; each failure is named', (
 test('a self-collision is named as such, beside or without an obstacle contact', () => {
   // format 2: collided is either contact
   assert.deepEqual(judge(summary({ collided: true, obstacle_collided: false, self_collided: true })).reasons, ['self-collision']);
-  assert.deepEqual(judge(summary({ collided: true, obstacle_collided: true, self_collided: true })).reasons, ['collided', 'self-collision']);
+  assert.deepEqual(judge(summary({ collided: true, obstacle_collided: true, self_collided: true, min_distance: -0.002 })).reasons, ['collision, 2 mm deep', 'self-collision']);
   assert.deepEqual(judge(summary({ collided: true, obstacle_collided: false, self_collided: true }), { collision: true }).reasons, []);
   assert.deepEqual(contacts(summary({ collided: true })), ['collided']);  // format 1: obstacles only
   const rows = compareVerdict([summary({ self_collided: true, min_self_distance: -0.02 }), summary({ self_collided: false, min_self_distance: 0.3 })], ['a', 'b']).rows;
@@ -53,7 +63,9 @@ test('a self-collision is named as such, beside or without an obstacle contact',
 test('the headline says no difference, who passes and who fails', () => {
   assert.match(compareVerdict([summary(), summary({ step_us: { p50: 5, p99: 20 } })], ['pinv', 'dls']).headline, /^No difference/);
   const split = compareVerdict([summary({ collided: true, min_distance: -0.1 }), summary({ min_distance: 0.19 })], ['pinv', 'closest_point']);
-  assert.equal(split.headline, 'closest_point passes; pinv fails.');
+  assert.equal(split.headline, 'closest_point passes; pinv fails (collision, 10 cm deep).');
+  const none = compareVerdict([summary({ max_tracking_error: 0.02 }), summary({ collided: true, min_distance: -0.001 })], ['pinv', 'dls']);
+  assert.equal(none.headline, 'All fail: pinv (tracking error 2 cm > 1 cm); dls (collision, 1 mm deep).');
   assert.deepEqual(split.verdicts.map((v) => v.pass), [false, true]);
   const distance = split.rows.find((r) => r.key === 'min_distance');
   assert.deepEqual(distance.best, [1]);
