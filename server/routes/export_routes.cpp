@@ -40,8 +40,14 @@ ApiResponse get_group_export(RouteContext& c) {
   filter.compare_group = group;
   filter.limit = kExportGroupLanes;
   std::vector<storage::RunRecord> runs = c.runs.store().runs(filter);
-  if (runs.empty())
-    throw DomainError(Problem::not_found, "not_found", "no compare group " + std::to_string(group), "id");
+  if (runs.empty()) {
+    // a lane's run id other than the first: say which group it is in
+    const auto run = c.runs.store().run(group);
+    const std::string hint = run && run->compare_group ? " (run " + std::to_string(group) + " is in compare group " +
+                                                             std::to_string(*run->compare_group) + ")"
+                                                       : "";
+    throw DomainError(Problem::not_found, "not_found", "no compare group " + std::to_string(group) + hint, "id");
+  }
   std::sort(runs.begin(), runs.end(), [](const auto& a, const auto& b) { return a.id < b.id; });  // lane order
   const std::string id = std::to_string(group);
   return html_export_response(c, runs, "rrlab compare " + id, "rrlab-compare-" + id + ".html");
