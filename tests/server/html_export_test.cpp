@@ -40,6 +40,7 @@ struct ExportedFile {
   json header;
   std::vector<json> lanes;                 // each lane's metadata
   std::vector<std::vector<float>> values;  // each lane's rows, flat
+  std::vector<std::vector<json>> scenes;   // each lane's obstacle keyframes {row, t, obstacles}
 };
 
 std::vector<unsigned char> from_base64(const std::string& text) {
@@ -81,10 +82,18 @@ ExportedFile read_export(const std::string& html) {
     std::size_t lane_end = 0, chunk_end = 0;
     const std::size_t lane = between(pos, lane_open, ");\n", lane_end);
     const std::size_t chunk = between(pos, chunk_open, "\");\n", chunk_end);
+    std::size_t scene_end = 0;
+    const std::size_t scene = between(pos, "RRLAB_LANE.scenes.push(", ");\n", scene_end);
+    if (scene != std::string::npos && scene < std::min(lane, chunk)) {
+      file.scenes.back().push_back(json::parse(html.substr(scene, scene_end - scene)));
+      pos = scene_end;
+      continue;
+    }
     if (lane == std::string::npos && chunk == std::string::npos) break;
     if (lane != std::string::npos && (chunk == std::string::npos || lane < chunk)) {
       file.lanes.push_back(json::parse(html.substr(lane, lane_end - lane)));
       file.values.emplace_back();
+      file.scenes.emplace_back();
       pos = lane_end;
     } else {
       if (file.values.empty()) throw std::runtime_error("a chunk before any lane");
@@ -193,6 +202,30 @@ TEST_F(HtmlExport, ARunOverTheDefaultCapIsDecimatedUnderItWithANote) {
   EXPECT_NEAR(file.values[0][(rows - 1) * width], (kSteps - 1) * 0.01, 1e-3);  // the last frame
   // streamed: the server did not build the 20 MB file (nor 45 MB of rows) in memory
   EXPECT_LT(resident_kib(server_->pid()) - before, kExportGrowthBoundKib);
+}
+
+// An obstacle moved during a live run: the file's obstacles move at that frame.
+TEST_F(HtmlExport, RecordedObstacleEditsBecomeKeyframesAtTheirFrame) {
+  const std::int64_t id = start_live({{"scenario", "01_planar7_obstacles"}, {"rate", 1}, {"paused", true}});
+  const std::string base = "/api/runs/" + std::to_string(id);
+  for (int i = 0; i < 3; ++i) ASSERT_EQ(send("POST", base + "/control", {{"action", "step"}}).status, 200);
+  ASSERT_EQ(send("PUT", base + "/obstacles/disc", {{"position", {0.2, 1.6}}}).status, 200);
+  for (int i = 0; i < 3; ++i) ASSERT_EQ(send("POST", base + "/control", {{"action", "step"}}).status, 200);
+  ASSERT_EQ(send("POST", base + "/control", {{"action", "stop"}}).status, 200);
+  wait_ended(id);
+  const HttpResult r = get(base + "/export.html");
+  ASSERT_EQ(r.status, 200) << r.body.substr(0, 300);
+  const ExportedFile file = read_export(r.body);
+  ASSERT_EQ(file.scenes.size(), 1u);
+  ASSERT_EQ(file.scenes[0].size(), 2u) << json(file.scenes[0]);
+  EXPECT_EQ(file.scenes[0][0]["row"], 0);
+  EXPECT_EQ(file.scenes[0][1]["row"], 3);
+  json disc;
+  for (const json& o : file.scenes[0][1]["obstacles"])
+    if (o["id"] == "disc") disc = o;
+  ASSERT_FALSE(disc.is_null());
+  EXPECT_NEAR(disc["center"][0].get<double>(), 0.2, 1e-9);
+  EXPECT_NEAR(disc["center"][1].get<double>(), 1.6, 1e-9);
 }
 
 TEST_F(HtmlExport, UnknownOrMalformedIdsAndCapsAnswerJsonErrors) {
