@@ -129,5 +129,19 @@ await suite('html_export', [
     const text = readFileSync(await download.path(), 'utf8');
     check(text.includes('RRLAB_EXPORT') && text.includes('type="range"'), 'the download is the export');
     await eventually(async () => /downloaded/.test(await page.locator('#export-progress').textContent()), 'the dialog to say downloaded');
+    await page.locator('#export-cancel').click();
+
+    // a compare group opened whole: the group's file
+    const compare = await t.post('/api/compare', { scenario: '01_planar7_obstacles', methods: ['pinv', 'dls'], mode: 'batch' });
+    await page.goto(`${t.base}/?compare=${compare.runs.map((r) => r.id).join(',')}`);
+    await eventually(() => page.locator('#open-export').isEnabled(), { message: 'the Export button enabled for the compare', timeout: 30000 });
+    await page.locator('#open-export').click();
+    await eventually(async () => (await what.locator('option[value="html"]').count()) === 1, 'the HTML option for the compare');
+    await what.selectOption('html');
+    check(/compare as one HTML file/.test(await what.locator('option[value="html"]').textContent()), 'the option names the compare');
+    const [groupDownload] = await Promise.all([page.waitForEvent('download'), page.locator('#export-go').click()]);
+    check(groupDownload.suggestedFilename() === `rrlab-compare-${compare.group}.html`, `file name ${groupDownload.suggestedFilename()}`);
+    const groupText = readFileSync(await groupDownload.path(), 'utf8');
+    check((groupText.match(/RRLAB_EXPORT\.lanes\.push\(/g) || []).length === 2, 'both lanes in the file');
   }],
 ]);
