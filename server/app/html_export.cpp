@@ -197,8 +197,8 @@ ExportLane open_lane(storage::RunStore& store, const storage::RunRecord& run) {
 
 class HtmlExport : public BodyStream {
  public:
-  HtmlExport(storage::RunStore& store, std::vector<ExportLane> lanes, std::string header)
-      : store_(store), lanes_(std::move(lanes)), header_(std::move(header)) {}
+  HtmlExport(storage::RunStore& store, std::vector<ExportLane> lanes, std::string header, std::int64_t stride)
+      : store_(store), lanes_(std::move(lanes)), header_(std::move(header)), stride_(stride) {}
 
   bool next(std::string& out, std::size_t target) override {
     out.clear();
@@ -221,8 +221,6 @@ class HtmlExport : public BodyStream {
     return stage_ != Stage::done;
   }
 
-  std::int64_t stride = 1;
-
  private:
   enum class Stage { head, lane_start, frames, tail, done };
 
@@ -243,16 +241,16 @@ class HtmlExport : public BodyStream {
     ExportLane& lane = lanes_[lane_index_];
     batch_.clear();
     if (next_seq_ <= lane.last) {
-      store_.frames(lane.run.id, next_seq_, lane.last, stride, [&](const storage::StoredFrame& f) {
+      store_.frames(lane.run.id, next_seq_, lane.last, stride_, [&](const storage::StoredFrame& f) {
         batch_.push_back(f);
         return std::int64_t(batch_.size()) < kExportBatchRows;
       });
-      next_seq_ = std::int64_t(batch_.size()) < kExportBatchRows ? lane.last + 1 : batch_.back().seq + stride;
+      next_seq_ = std::int64_t(batch_.size()) < kExportBatchRows ? lane.last + 1 : batch_.back().seq + stride_;
     }
     if (next_seq_ > lane.last && !last_written_ && std::int64_t(batch_.size()) < kExportBatchRows) {
       // the last stored frame, when the stride passed it by
       if (batch_.empty() || batch_.back().seq != lane.last) {
-        if (lane.last % stride != 0)
+        if (lane.last % stride_ != 0)
           store_.frames(lane.run.id, lane.last, lane.last, 1, [&](const storage::StoredFrame& f) {
             batch_.push_back(f);
             return false;
@@ -317,6 +315,7 @@ class HtmlExport : public BodyStream {
   storage::RunStore& store_;
   std::vector<ExportLane> lanes_;
   std::string header_;
+  const std::int64_t stride_;  // every stride-th stored frame (and the last)
   Stage stage_ = Stage::head;
   std::size_t lane_index_ = 0;
   std::int64_t next_seq_ = 0, rows_ = 0;
@@ -350,7 +349,7 @@ const std::string& html_viewer_tail() {
 }
 
 std::shared_ptr<BodyStream> make_html_export(storage::RunStore& store, const std::vector<storage::RunRecord>& runs,
-                                             const std::string& title, std::int64_t max_bytes, HtmlExportPlan* plan) {
+                                             const std::string& title, std::int64_t max_bytes) {
   max_bytes = std::min(max_bytes, kHtmlExportCap);
   std::vector<ExportLane> lanes;
   for (const storage::RunRecord& run : runs) lanes.push_back(open_lane(store, run));
@@ -363,15 +362,18 @@ std::shared_ptr<BodyStream> make_html_export(storage::RunStore& store, const std
     for (const ExportLane& lane : lanes) total += lane.estimate(stride);
     return total;
   };
-  std::int64_t stored_bytes = 0, longest = 1;
-  for (const ExportLane& lane : lanes) {
-    stored_bytes += (lane.last + 1) * lane.row_bytes() * 4 / 3;
-    longest = std::max(longest, lane.last + 1);
+  std::int64_t longest = 1;
+  for (const ExportLane& lane : lanes) longest = std::max(longest, lane.last + 1);
+  // the smallest stride that fits (the estimate falls as the stride grows)
+  std::int64_t lo = 1, hi = longest;
+  while (lo < hi) {
+    const std::int64_t mid = lo + (hi - lo) / 2;
+    if (estimate(mid) <= max_bytes)
+      hi = mid;
+    else
+      lo = mid + 1;
   }
-  // a first guess from the rows alone, then larger strides until the whole fits
-  std::int64_t stride = std::max<std::int64_t>(1, stored_bytes / std::max<std::int64_t>(max_bytes - estimate(longest), 1));
-  if (estimate(1) <= max_bytes) stride = 1;
-  while (estimate(stride) > max_bytes && stride < longest) stride = std::min(longest, stride + stride / 4 + 1);
+  const std::int64_t stride = lo;
   // the fewest rows a lane would keep
   std::int64_t fewest = INT64_MAX;
   for (const ExportLane& lane : lanes) fewest = std::min(fewest, lane.rows(stride));
@@ -400,10 +402,7 @@ std::shared_ptr<BodyStream> make_html_export(storage::RunStore& store, const std
                                           {"note", note},
                                           {"lanes", json::array()}}) +
                              ";\n</script>\n";
-  if (plan) *plan = {stride, estimate(stride)};
-  auto stream = std::make_shared<HtmlExport>(store, std::move(lanes), header);
-  stream->stride = stride;
-  return stream;
+  return std::make_shared<HtmlExport>(store, std::move(lanes), header, stride);
 }
 
 }  // namespace rrlab::server

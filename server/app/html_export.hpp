@@ -28,18 +28,12 @@ namespace rrlab::server {
 inline constexpr std::int64_t kHtmlExportCap = 20 * 1024 * 1024;  // bytes: the largest file answered
 inline constexpr std::int64_t kHtmlExportMinFrames = 100;         // per lane, fewer only when stored so
 
-struct HtmlExportPlan {
-  std::int64_t stride = 1;          // every stride-th stored frame (and each lane's last)
-  std::int64_t estimated_bytes = 0;  // an upper bound of the file's size
-};
-
 // The stream of the file for `lanes` (one run, or a compare group's runs in
 // lane order). Throws DomainError: wrong_state when a run has no stored
 // frames or its scenario no longer loads; too_large (413) when it cannot fit
 // `max_bytes`. `title` heads the page ("run 12", "compare 40").
 std::shared_ptr<BodyStream> make_html_export(storage::RunStore& store, const std::vector<storage::RunRecord>& lanes,
-                                             const std::string& title, std::int64_t max_bytes,
-                                             HtmlExportPlan* plan = nullptr);
+                                             const std::string& title, std::int64_t max_bytes);
 
 // The viewer page (html_viewer.html, compiled in): the part before the data
 // and the part after it.
