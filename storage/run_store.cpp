@@ -359,12 +359,14 @@ std::vector<RunRecord> RunStore::runs(const RunFilter& filter) {
                              " AND (?3 IS NULL OR status = ?3) AND status != 'deleting'"
                              " AND (?6 IS NULL OR (?6 = '') = NOT EXISTS (SELECT 1 FROM sweep_runs w WHERE w.run_id = runs.id"
                              " AND (?6 = '' OR w.sweep = ?6)))"
+                             " AND (?7 IS NULL OR compare_group = ?7)"
                              " ORDER BY id DESC LIMIT ?4 OFFSET ?5");
   if (filter.scenario) s.bind(1, *filter.scenario); else s.bind_null(1);
   if (filter.method) s.bind(2, *filter.method); else s.bind_null(2);
   if (filter.status) s.bind(3, *filter.status); else s.bind_null(3);
   s.bind(4, filter.limit).bind(5, filter.offset);
   if (filter.sweep) s.bind(6, *filter.sweep); else s.bind_null(6);
+  if (filter.compare_group) s.bind(7, *filter.compare_group); else s.bind_null(7);
   std::vector<RunRecord> out;
   while (s.step()) out.push_back(read_run(s));
   return out;

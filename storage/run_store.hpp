@@ -96,6 +96,7 @@ struct SweepRunEntry {
 struct RunFilter {
   std::optional<std::string> scenario, method, status;
   std::optional<std::string> sweep;  // a sweep's name: its runs; "" : runs of no sweep
+  std::optional<std::int64_t> compare_group;  // the runs /api/compare started together (the first lane's id)
   int limit = 100, offset = 0;
 };
 

@@ -41,10 +41,12 @@ constexpr Route kRoutes[] = {
     {"POST", "/api/runs/{}/joystick", post_joystick},
     {"POST", "/api/runs/{}/method", post_method},
     {"GET", "/api/runs/{}/frames", get_frames},
+    {"GET", "/api/runs/{}/export.html", get_run_export, true},  // loads the run's scenario
     {"POST", "/api/runs/{}/replay", post_replay, true},
     {"GET", "/api/replays/{}", get_replay},
     {"POST", "/api/replays/{}/control", post_replay_control},
     {"POST", "/api/compare", post_compare, true},
+    {"GET", "/api/compare/{}/export.html", get_group_export, true},
     {"POST", "/api/sweeps", post_sweep, true},
     {"POST", "/api/sweeps/validate", validate_sweep, true},
     {"GET", "/api/sweeps", list_sweeps},

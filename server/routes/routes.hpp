@@ -98,6 +98,9 @@ ApiResponse get_replay(RouteContext&);
 ApiResponse post_replay_control(RouteContext&);
 // compare_routes.cpp
 ApiResponse post_compare(RouteContext&);
+// export_routes.cpp: a run, or a compare group, as one HTML file that replays offline
+ApiResponse get_run_export(RouteContext&);
+ApiResponse get_group_export(RouteContext&);
 
 // Shared by the run routes: the stored run (404 if unknown) and its live group if any.
 storage::RunRecord find_run(RouteContext& context, std::int64_t id);

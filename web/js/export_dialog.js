@@ -1,11 +1,23 @@
 // The Export dialog: what to export (a view, a chart, a figure, a video of a
-// replay), its size, and for a video the frame range, stride and rate; the
-// file downloads when it is ready, with progress for a video.
+// replay, the run or compare group as one HTML file that replays offline),
+// its size, and for a video the frame range, stride and rate; the file
+// downloads when it is ready, with progress for a video.
+import { api } from './api.js';
 import { app } from './state.js';
 import { escapeHtml } from './dom.js';
 import { viewPng, chartPng, figurePng, recordVideo, checkRange, download } from './exports.js';
 
 const $ = (id) => document.getElementById(id);
+
+// The server's HTML export of what is shown: one run, or a compare group
+// when the lanes are exactly the runs one compare started (null otherwise).
+function htmlLink(session) {
+  const runs = session.runs.filter((r) => r.frames > 0);
+  if (runs.length !== session.runs.length || runs.length === 0) return null;
+  if (!session.compare) return api.exportLink(runs[0].id);
+  const group = runs[0].compare_group;
+  return group && runs.every((r) => r.compare_group === group) && Math.min(...session.runIds) === group ? api.groupExportLink(group) : null;
+}
 
 export class ExportDialog {
   // plots and replayBar: the page's (charts to draw, frames to show for a video)
@@ -30,6 +42,7 @@ export class ExportDialog {
     for (const c of this.plots.chartIds()) options.push([`chart:${c.id}`, `chart: ${c.title} (PNG)`]);
     options.push(['figure', 'a figure for a paper: views, charts, legend, metadata (PNG)']);
     if (session.kind === 'replay' && !session.empty) options.push(['video', 'a video of the replay (WebM)']);
+    if (htmlLink(session)) options.push(['html', session.compare ? 'the compare as one HTML file that replays offline' : 'the run as one HTML file that replays offline']);
     $('export-what').innerHTML = options.map(([v, t]) => `<option value="${escapeHtml(v)}">${escapeHtml(t)}</option>`).join('');
     const last = Math.max(0, session.frameCount - 1);
     $('export-from').value = '0';
@@ -43,11 +56,13 @@ export class ExportDialog {
   showFields() {
     const what = $('export-what').value;
     $('export-video').hidden = what !== 'video';
-    $('export-height-label').hidden = what === 'figure';
+    $('export-height-label').hidden = what === 'figure' || what === 'html';
+    $('export-width').parentElement.hidden = what === 'html';
     const notes = {
       view: 'Drawn afresh at this size (3D: distance and lane labels are HTML and are left out).',
       figure: 'The height follows from the width and the lanes.',
       video: 'One video frame per stored frame of the range (every N-th), at the chosen rate; it takes about as long as the video lasts.',
+      html: 'One file with the stored frames, views, scrubber and charts: it opens from disk with no network (a run over 20 MB is decimated, with a note in the file).',
     };
     $('export-note').textContent = notes[what] || 'The chart drawn afresh at this size, with its title.';
     if (what === 'view' || what === 'video') {
@@ -77,7 +92,14 @@ export class ExportDialog {
     this.cancel = false;
     $('export-go').disabled = true;
     $('export-progress').textContent = 'drawing…';
-    if (what === 'view') download(await viewPng(session, width, height), `${name}-view-${width}x${height}.png`);
+    if (what === 'html') {
+      const a = document.createElement('a');
+      a.href = htmlLink(session);
+      a.download = session.compare ? `rrlab-compare-${session.runIds[0]}.html` : `${name}.html`;
+      document.body.appendChild(a);
+      a.click();
+      a.remove();
+    } else if (what === 'view') download(await viewPng(session, width, height), `${name}-view-${width}x${height}.png`);
     else if (what.startsWith('chart:')) download(await chartPng(this.plots, what.slice(6), width, height), `${name}-${what.slice(6)}-${width}x${height}.png`);
     else if (what === 'figure') download(await figurePng(session, this.plots, { width, meta: this.metadata(session) }), `${name}-figure.png`);
     else if (what === 'video') {

@@ -128,6 +128,12 @@ export class RunList {
         a.download = `run-${r.id}.${format}`;
         actions.appendChild(a);
       }
+      const html = document.createElement('a');
+      html.href = api.exportLink(r.id);
+      html.textContent = 'HTML';
+      html.title = 'the run as one HTML file that replays offline (views, scrubber, charts)';
+      html.download = `rrlab-run-${r.id}.html`;
+      actions.appendChild(html);
     }
     const del = button('Delete', 'delete the run, its frames and events', async () => {
       if (!confirm(`Delete run #${r.id} and its frames?`)) return;
