@@ -9,7 +9,13 @@ import { DEFAULT_CRITERION, judge } from './compare_verdict.js';
 import { failureModeText } from './failure_modes.js';
 
 const seconds = (t) => `${t.toFixed(2)} s`;
-const centimetres = (m) => `${Number((m * 100).toPrecision(2))} cm`;
+const centimetres = (m, digits = 2) => `${Number((m * 100).toPrecision(digits))} cm`;
+// An error against its bound, each in centimetres, with the digits that tell them apart: "4.8 cm > 1 cm", "1.03 cm > 1 cm".
+function errorAgainstBound(error, bound) {
+  let digits = 2;
+  while (digits < 6 && centimetres(error, digits) === centimetres(bound, digits)) digits += 1;
+  return `${centimetres(error, digits)} > ${centimetres(bound)}`;
+}
 
 // Does the run fail? From its sweep row when it has one ({success}), else its
 // summary against `criterion`. Unknown (no summary): false.
@@ -63,16 +69,16 @@ export function firstFailure(run, frames, dt, criterion = DEFAULT_CRITERION) {
 }
 
 // The obstacles a view frame's arm touches ({nearest: [[link, obstacle index,
-// distance, …]], obstacles}), by id; the snapshot's obstacles name an index
-// the frame does not carry.
+// distance, …]]}), by id: the snapshot's obstacles (or the frame's, when they
+// carry ids) name the index; unnamed, the index itself.
 export function touchedObstacles(viewFrame, snapshotObstacles = []) {
   if (!viewFrame || !Array.isArray(viewFrame.nearest)) return [];
-  const obstacles = Array.isArray(viewFrame.obstacles) ? viewFrame.obstacles : snapshotObstacles;
+  const poses = Array.isArray(viewFrame.obstacles) ? viewFrame.obstacles : [];
   const ids = [];
   for (const n of viewFrame.nearest) {
     if (!Array.isArray(n) || typeof n[2] !== 'number' || !(n[2] <= 0)) continue;
-    const o = obstacles[n[1]] || snapshotObstacles[n[1]];
-    const id = o && o.id !== undefined ? String(o.id) : String(n[1]);
+    const named = [snapshotObstacles[n[1]], poses[n[1]]].find((o) => o && typeof o === 'object' && o.id !== undefined);
+    const id = named ? String(named.id) : String(n[1]);
     if (!ids.includes(id)) ids.push(id);
   }
   return ids;
@@ -92,7 +98,7 @@ export function failureText(failure, obstacles = []) {
       return m.self_link_a > 0 && m.self_link_b > 0 ? `self-collision of links ${m.self_link_a} and ${m.self_link_b}${at}` : `self-collision${at}`;
     case 'tracking_lost':
       if (!Number.isFinite(m.task_error)) return `tracking lost${at}`;
-      return Number.isFinite(failure.bound) ? `tracking error ${centimetres(m.task_error)} > ${centimetres(failure.bound)}${at}`
+      return Number.isFinite(failure.bound) ? `tracking error ${errorAgainstBound(m.task_error, failure.bound)}${at}`
         : `tracking lost${at} (error ${centimetres(m.task_error)})`;
     case 'joint_limit':
       return `joint limit crossed${at}`;

@@ -29,6 +29,8 @@ test('tracking error past the criterion, in centimetres against the bound', () =
   const f = firstFailure({ summary: tracking }, [frame(0), frame(320, { task_error: 0.048 })], 0.01);
   assert.equal(f.mode, 'tracking_lost');
   assert.equal(failureText(f), 'tracking error 4.8 cm > 1 cm at 3.20 s');
+  const near = firstFailure({ summary: tracking }, [frame(13, { task_error: 0.01032 })], 0.01);
+  assert.equal(failureText(near), 'tracking error 1.03 cm > 1 cm at 0.13 s');
 });
 
 test("a sweep's row gives the mode and the time; the frame nearest it the details", () => {
@@ -44,6 +46,7 @@ test("a sweep's row gives the mode and the time; the frame nearest it the detail
 test('touched obstacles by id from a view frame', () => {
   const viewFrame = { nearest: [[1, 0, 0.3], [2, 1, -0.01], [3, 1, 0], [4, 0, null]], obstacles: [{ id: 'wall' }, { id: 'post' }] };
   assert.deepEqual(touchedObstacles(viewFrame), ['post']);
+  assert.deepEqual(touchedObstacles({ nearest: [[1, 1, -0.1]], obstacles: [[0, 0], [1, 1]] }, [{ id: 'wall' }, { id: 'post' }]), ['post']);
   assert.deepEqual(touchedObstacles({ nearest: [[1, 0, -1]] }, [{ id: 7 }]), ['7']);
 });
 
