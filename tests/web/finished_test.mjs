@@ -74,11 +74,10 @@ await suite('finished', [
 
     // Restart with this scene: a new live run
     await t.page.locator('#restart-scene').click();
-    const fresh = await eventually(() => t.page.evaluate(() => {
+    const fresh = await eventually(() => t.page.evaluate((old) => {
       const s = window.__rrlab.session;
-      return s && s.kind === 'live' && s.lanes[0].runId !== undefined && s.lanes[0].frame ? s.lanes[0].runId : null;
-    }), 'the restarted live run');
-    check(fresh !== run.id, 'a new run');
+      return s && s.kind === 'live' && s.lanes[0].runId !== old && s.lanes[0].frame ? s.lanes[0].runId : null;
+    }, run.id), 'the restarted live run, a new one');
     await stopIfLive(t, fresh);
   }],
 
@@ -90,6 +89,27 @@ await suite('finished', [
     check(s.frameCount === 150, `150 frames (${s.frameCount})`);
     await eventually(async () => (await t.page.textContent('.verdict-headline') || '').length > 0, 'the verdict');
     await t.screenshot('compare-ended-replay');
+  }],
+
+  ['a run whose replay the server refuses stays as it ended, says why, and still restarts', async (t) => {
+    const run = await t.post('/api/runs', { scenario: await shortScenario(t, '01_planar7_obstacles', 1), mode: 'live', rate: 1, paused: true });
+    await t.page.route('**/api/runs/*/replay', (route) => route.fulfill({ status: 429, contentType: 'application/json',
+      body: JSON.stringify({ error: { code: 'too_many_replays', message: 'too many replays at once', path: '' } }) }));
+    await t.page.goto(`${t.base}/?run=${run.id}`);
+    await eventually(async () => { const s = await shown(t.page); return s && s.kind === 'live' && s.seqs[0] !== null; }, 'the live run');
+    await t.page.locator('#controls [data-action="start"]').click();
+    await eventually(async () => (await t.page.textContent('#message span')).includes('too many replays'), 'the refusal on the message line');
+    const s = await shown(t.page);
+    check(s.kind === 'live' && !s.fromLive && s.barHidden && s.pill.startsWith('ended'), `the session stays as it ended (${JSON.stringify(s)})`);
+    await t.screenshot('refused');
+    await t.page.locator('#restart-scene').click();
+    const fresh = await eventually(() => t.page.evaluate((old) => {
+      const now = window.__rrlab.session;
+      return now && now.kind === 'live' && now.lanes[0].runId !== old && now.lanes[0].frame ? now.lanes[0].runId : null;
+    }, run.id), 'the restarted live run');
+    await stopIfLive(t, fresh);
+    // Chromium logs the refused request as a failed resource load: the test asked for it
+    for (let i = t.errors.length - 1; i >= 0; --i) if (/status of 429/.test(t.errors[i])) t.errors.splice(i, 1);
   }],
 
   ['a stored compare opened from the run list brings its views into sight, on a phone too', async (t) => {

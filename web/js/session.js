@@ -97,7 +97,15 @@ export class Session {
   async becomeReplay() {
     if (this.closed || !this.ended) return false;
     const runs = await Promise.all(this.runIds.map((id) => api.run(id)));
-    if (this.closed) return false;
+    // every player first: when one cannot start (too many replays), the session stays as it ended
+    const settled = await Promise.allSettled(runs.map((run) => (run.frames > 0 ? api.replayRun(run.id, { mode: 'frames', speed: 1, from: run.frames - 1 }) : null)));
+    const players = settled.map((p) => (p.status === 'fulfilled' ? p.value : null));
+    const refused = settled.find((p) => p.status === 'rejected');
+    if (this.closed || refused) {
+      for (const player of players) if (player) api.replayControl(player.replay, { action: 'pause' }).catch(() => {});
+      if (refused && !this.closed) throw refused.reason;
+      return false;
+    }
     this.kind = 'replay';
     this.fromLive = true;
     this.runs = runs;
@@ -106,11 +114,9 @@ export class Session {
       if (lane.stream) lane.stream.close();
       lane.stream = null;
       lane.status = runs[lane.index].status;
-      const frames = runs[lane.index].frames;
-      if (frames === 0) continue;
-      const player = await api.replayRun(lane.runId, { mode: 'frames', speed: 1, from: frames - 1 });
+      const player = players[lane.index];
+      if (!player) continue;
       lane.replayId = player.replay;
-      if (this.closed) { api.replayControl(player.replay, { action: 'pause' }).catch(() => {}); return false; }
       this.connect(lane, player.ws);
     }
     return true;
