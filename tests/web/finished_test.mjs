@@ -102,14 +102,17 @@ await suite('finished', [
     const s = await shown(t.page);
     check(s.kind === 'live' && !s.fromLive && s.barHidden && s.pill.startsWith('ended'), `the session stays as it ended (${JSON.stringify(s)})`);
     await t.screenshot('refused');
+    // Chromium logs the refused request as a failed resource load: the test asked for it
+    await eventually(() => t.errors.some((e) => /status of 429/.test(e)), 'the refusal in the console');
+    for (let i = t.errors.length - 1; i >= 0; --i) if (/status of 429/.test(t.errors[i])) t.errors.splice(i, 1);
+    // the restarted run (of 1 s, too) may end and become its replay: the server answers again
+    await t.page.unroute('**/api/runs/*/replay');
     await t.page.locator('#restart-scene').click();
     const fresh = await eventually(() => t.page.evaluate((old) => {
       const now = window.__rrlab.session;
       return now && now.kind === 'live' && now.lanes[0].runId !== old && now.lanes[0].frame ? now.lanes[0].runId : null;
     }, run.id), 'the restarted live run');
     await stopIfLive(t, fresh);
-    // Chromium logs the refused request as a failed resource load: the test asked for it
-    for (let i = t.errors.length - 1; i >= 0; --i) if (/status of 429/.test(t.errors[i])) t.errors.splice(i, 1);
   }],
 
   ['a stored compare opened from the run list brings its views into sight, on a phone too', async (t) => {
