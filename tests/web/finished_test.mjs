@@ -3,7 +3,7 @@
 // scrubs like any replay and still restarts with its scene; a stored compare
 // opened from the run list brings its views into sight.
 // Usage: node finished_test.mjs   (RRLAB_BINARY, RRLAB_SCREENSHOTS, CHROMIUM)
-import { suite, eventually, check, stopIfLive } from './harness.mjs';
+import { suite, eventually, check, stopIfLive, animationFrames } from './harness.mjs';
 
 // A catalogue scenario cut to `seconds`: a live run of it ends soon after it plays.
 async function shortScenario(t, name, seconds) {
@@ -89,6 +89,36 @@ await suite('finished', [
     check(s.frameCount === 150, `150 frames (${s.frameCount})`);
     await eventually(async () => (await t.page.textContent('.verdict-headline') || '').length > 0, 'the verdict');
     await t.screenshot('compare-ended-replay');
+  }],
+
+  ['a 3D live run that ends keeps the camera the user turned', async (t) => {
+    const run = await t.post('/api/runs', { scenario: await shortScenario(t, '02_spatial_xz_reach', 1), mode: 'live', rate: 1, paused: true });
+    await t.page.goto(`${t.base}/?run=${run.id}`);
+    await eventually(async () => { const s = await shown(t.page); return s && s.kind === 'live' && s.seqs[0] !== null && s.tags.length === 1; }, 'the live 3D view');
+    // turn the camera: a drag across empty space near the view's top
+    const cell = await t.page.locator('#views .view-cell').boundingBox();
+    await t.page.mouse.move(cell.x + cell.width * 0.2, cell.y + 30);
+    await t.page.mouse.down();
+    await t.page.mouse.move(cell.x + cell.width * 0.45, cell.y + 40, { steps: 8 });
+    await t.page.mouse.up();
+    const camera = () => t.page.evaluate(() => window.__rrlab.session.lanes[0].view.rig.camera.position.toArray().map((v) => Number(v.toFixed(6))));
+    // the orbit coasts a little after the drag: where it comes to rest
+    const settled = (what) => eventually(async () => {
+      const before = await camera();
+      await animationFrames(t.page, 10);
+      return (await camera()).join() === before.join() ? before : null;
+    }, what);
+    const turned = await settled('the camera to come to rest after the drag');
+    check(turned.join() !== '3,-5,3', `the drag turned the camera (${turned})`);
+    await t.page.evaluate(() => { window.__rrlab.session.lanes[0].view.testTag = 'view 0'; });
+    await t.page.locator('#controls [data-action="start"]').click();
+    await eventually(async () => {
+      const s = await shown(t.page);
+      return s.kind === 'replay' && s.tags[0] === 'view 0' && s.seqs[0] === s.frameCount - 1 && s.scrubber === s.frameCount - 1;
+    }, { timeout: 30000, message: 'the ended 3D run to become its replay at its end in the same view' });
+    const kept = await settled('the camera at rest in the replay');
+    check(kept.join() === turned.join(), `the camera stays where the user turned it (${kept} vs ${turned})`);
+    await t.screenshot('3d-ended-replay');
   }],
 
   ['a run whose replay the server refuses stays as it ended, says why, and still restarts', async (t) => {
