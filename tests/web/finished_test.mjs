@@ -148,24 +148,33 @@ await suite('finished', [
   ['a stored compare opened from the run list brings its views into sight, on a phone too', async (t) => {
     const group = await t.post('/api/compare', { scenario: '00_demo_avoidance', methods: ['pinv', 'closest_point'], mode: 'batch' });
     const first = Math.min(...group.runs.map((r) => r.id));
-    await t.page.setViewportSize({ width: 390, height: 844 });
-    await t.page.goto(`${t.base}/`);
-    // on a phone the run list is below everything: scroll to it as a person does
-    const compare = t.page.locator(`#runs li[data-run="${first}"] button`, { hasText: 'Compare' });
-    await compare.waitFor({ timeout: 15000 });
-    await compare.scrollIntoViewIfNeeded();
     const views = t.page.locator('#views');
     const inSight = async () => {
       const box = await views.boundingBox();
       const height = t.page.viewportSize().height;
       return box && box.y >= -1 && box.y < height && box.y + Math.min(box.height, height / 2) <= height;
     };
-    check(!(await inSight()), 'the views are out of sight before');
-    await compare.click();
-    await eventually(async () => {
-      const s = await shown(t.page);
-      return s && s.kind === 'replay' && s.seqs.length === 2 && s.seqs.every((q) => q !== null) && (await inSight());
-    }, { timeout: 20000, message: 'the compare opened with its views in sight' });
+    const openCompare = async (what) => {
+      const compare = t.page.locator(`#runs li[data-run="${first}"] button`, { hasText: 'Compare' });
+      await compare.waitFor({ timeout: 15000 });
+      await compare.scrollIntoViewIfNeeded();
+      check(!(await inSight()), `the views are out of sight before (${what})`);
+      await compare.click();
+      await eventually(async () => {
+        const s = await shown(t.page);
+        return s && s.kind === 'replay' && s.seqs.length === 2 && s.seqs.every((q) => q !== null) && (await inSight());
+      }, { timeout: 20000, message: `the compare opened with its views in sight (${what})` });
+    };
+    // at 1400 × 900: a replay whose centre column is scrolled down to its last chart
+    await t.page.goto(`${t.base}/?run=${first}&frame=0`);
+    await eventually(() => t.page.evaluate(() => window.__rrlab.plots.charts.size >= 3), 'the replay\'s charts');
+    await t.page.locator('#plots .plots-chart').last().scrollIntoViewIfNeeded();
+    await openCompare('the centre column scrolled down');
+    await t.screenshot('desktop-compare');
+    // on a phone the run list is below everything: scroll to it as a person does
+    await t.page.setViewportSize({ width: 390, height: 844 });
+    await t.page.goto(`${t.base}/`);
+    await openCompare('a phone');
     await t.screenshot('phone-compare');
   }],
 ]);

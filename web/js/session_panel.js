@@ -29,8 +29,9 @@ export class SessionPanel {
     signals.status.add((text) => { $('status').textContent = text; });
     signals.connection.add((s) => { if (s === app.session) this.showConnection(s); });
     signals.sessionEnded.add((s) => this.ended(s));
-    // a stored run or group opens with its views in sight (the centre column, or the page on a phone, may be scrolled away)
-    signals.sessionOpened.add((s) => { if (s.kind === 'replay' && !s.fromLive) $('views').scrollIntoView({ block: 'nearest' }); });
+    // a run or group opens with its views in sight (the centre column, or the page on a phone, may be
+    // scrolled away: down the charts, a paper's or a sweep's page); an ended run that became its replay stays put
+    signals.sessionOpened.add((s) => { if (!s.fromLive) $('views').scrollIntoView({ block: 'nearest' }); });
     signals.viewCreated.add(() => $('empty-hint')?.remove());
     signals.control.add((controller) => { if (app.liveSession) this.showControl(controller); });
     signals.controlTaken.add((text) => { this.showControl('other'); app.error(text); });
