@@ -117,7 +117,9 @@ await suite('finished', [
       return s.kind === 'replay' && s.tags[0] === 'view 0' && s.seqs[0] === s.frameCount - 1 && s.scrubber === s.frameCount - 1;
     }, { timeout: 30000, message: 'the ended 3D run to become its replay at its end in the same view' });
     const kept = await settled('the camera at rest in the replay');
-    check(kept.join() === turned.join(), `the camera stays where the user turned it (${kept} vs ${turned})`);
+    // the orbit's damping may still creep by a micrometre; a re-fit or reset would move it by metres
+    const moved = Math.hypot(...kept.map((v, i) => v - turned[i]));
+    check(moved < 1e-3, `the camera stays where the user turned it (${kept} vs ${turned}: ${moved} m)`);
     await t.screenshot('3d-ended-replay');
   }],
 

@@ -97,13 +97,15 @@ export class Session {
   async becomeReplay() {
     if (this.closed || !this.ended) return false;
     const runs = await Promise.all(this.runIds.map((id) => api.run(id)));
+    // an answer cut short (the page is leaving) is no run: nothing changes
+    if (this.closed || runs.some((r, i) => !r || r.id !== this.runIds[i] || !Number.isInteger(r.frames))) return false;
     // every player first: when one cannot start (too many replays), the session stays as it ended
     const settled = await Promise.allSettled(runs.map((run) => (run.frames > 0 ? api.replayRun(run.id, { mode: 'frames', speed: 1, from: run.frames - 1 }) : null)));
-    const players = settled.map((p) => (p.status === 'fulfilled' ? p.value : null));
-    const refused = settled.find((p) => p.status === 'rejected');
+    const players = settled.map((p) => (p.status === 'fulfilled' && p.value && typeof p.value.ws === 'string' ? p.value : null));
+    const refused = settled.find((p, i) => p.status === 'rejected' || (runs[i].frames > 0 && !players[i]));
     if (this.closed || refused) {
       for (const player of players) if (player) api.replayControl(player.replay, { action: 'pause' }).catch(() => {});
-      if (refused && !this.closed) throw refused.reason;
+      if (refused && !this.closed) throw refused.status === 'rejected' ? refused.reason : new Error('the server did not start a replay of the run');
       return false;
     }
     this.kind = 'replay';
