@@ -11,6 +11,8 @@ import { resimulate } from './resimulate.js';
 import { eventMarkers } from './events.js';
 import { fmt } from './dom.js';
 import { contacts } from './compare_verdict.js';
+import { runFails } from './first_failure.js';
+import { failureSources } from './failures.js';
 
 const report = (e) => app.error(e);
 
@@ -20,10 +22,20 @@ async function show(next, frame = null) {
   app.setSession(next);
   await next.open();
   if (app.session !== next) return;  // another session was opened meanwhile
-  app.signals.sessionOpened.dispatch(next, { frame });
-  if (next.kind === 'replay' && !next.empty) {
-    loadStoredFrames(next).catch(report);
-    loadMarkers(next).catch(report);
+  await opened(next, frame);
+}
+
+// The panels hear that a session's streams are open (at `frame`, or for a
+// failed single run at its first failure when no frame is asked for); a
+// replay's stored frames and recorded inputs load.
+async function opened(s, frame) {
+  const sources = s.kind === 'replay' ? await failureSources(s.runs) : [];
+  if (app.session !== s) return;
+  const atFailure = frame === null && !s.compare && sources.length > 0 && runFails(sources[0]);
+  app.signals.sessionOpened.dispatch(s, { frame, sources, atFailure });
+  if (s.kind === 'replay' && !s.empty) {
+    loadStoredFrames(s).catch(report);
+    loadMarkers(s).catch(report);
   }
 }
 
@@ -187,7 +199,7 @@ export const commands = {
   // stood at the end), with the obstacles where the run left them.
   async restart() {
     const s = app.session;
-    if (!s || s.kind !== 'live' || !s.ended) return;
+    if (!s || !s.restartable) return;
     const lane = s.lanes[0];
     const record = await api.record(lane.runId);
     const scenario = structuredClone(record.scenario);
@@ -204,6 +216,14 @@ export const commands = {
     }
     const run = await api.startRun(body);
     await open([run.id]);
+  },
+
+  // The live session on screen ended: it becomes the replay of its runs,
+  // its views kept, the scrubber at the end.
+  async replayEnded() {
+    const s = app.session;
+    if (!s || !s.ended || !(await s.becomeReplay()) || app.session !== s) return;
+    await opened(s, s.frameCount - 1);
   },
 
   // A run that stored no frames: re-simulated from its recorded inputs

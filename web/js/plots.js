@@ -261,20 +261,34 @@ export class Plots {
     for (const chart of this.charts.values()) this.placeMarkers(chart);
   }
 
+  // The lanes' first failures ({t, text}): a red line on every chart, its reason beside it.
+  setFailures(failures) {
+    this.failures = failures.filter((f) => Number.isFinite(f.t));
+    for (const chart of this.charts.values()) this.placeMarkers(chart);
+  }
+
   placeMarkers(chart) {
     if (!chart.markerBox) {
       chart.markerBox = document.createElement('div');
       chart.markerBox.className = 'plots-markers';
       chart.u.over.appendChild(chart.markerBox);
     }
-    const list = this.mode === 'replay' ? this.markers || [] : [];
+    const list = this.mode === 'replay' ? [...(this.markers || []), ...(this.failures || [])] : [];
+    const width = chart.u.over.clientWidth;
     chart.markerBox.replaceChildren(...list.map((m) => {
       const x = chart.u.valToPos(m.t, 'x');
-      if (!Number.isFinite(x) || x < 0 || x > chart.u.over.clientWidth) return null;
+      if (!Number.isFinite(x) || x < 0 || x > width) return null;
       const mark = document.createElement('div');
       mark.className = `plots-marker event-${m.kind}`;
-      mark.title = m.text;
+      mark.title = m.kind === 'failure' ? `first failure: ${m.text}` : m.text;
       mark.style.transform = `translateX(${Math.round(x)}px)`;
+      if (m.kind === 'failure') {
+        // the reason beside the line: on its right, or on its left past the middle
+        const label = document.createElement('span');
+        label.className = `plots-failure-label${x > width / 2 ? ' left' : ''}`;
+        label.textContent = `✗ ${m.text}`;
+        mark.appendChild(label);
+      }
       return mark;
     }).filter(Boolean));
   }
@@ -405,6 +419,9 @@ export function followSession(plots) {
   });
   app.signals.storedFrames.add((lane, data) => { if (current(lane)) plots.setRun(lane.index, data); });
   app.signals.markers.add((markers) => plots.setMarkers(markers));
+  app.signals.failures.add((failures) => plots.setFailures(failures));
+  // a live session that ended became its replay: the whole stored run, as any replay
+  app.signals.sessionOpened.add((s) => { if (s.kind === 'replay' && plots.mode !== 'replay') configure(s, s.runs.map((r) => r.diagnostic_names || [])); });
   app.signals.playhead.add((seq) => {
     const lane = app.session && app.session.lanes[0];
     if (lane && lane.snapshot) plots.setCursor(seq * lane.snapshot.dt);

@@ -23,6 +23,9 @@ export class ReplayBar {
     this.head = 0;          // fractional playhead while playing, in frames
     this.lastTick = null;
     this.lastUrl = 0;
+    this.events = [];         // recorded inputs, marked under the scrubber
+    this.failures = [];       // the lanes' first failures, marked and written beside their marks
+    this.awaitingFailure = false;  // a failed run opened without a frame: seek to its failure when found
     $('replay-play').onclick = () => this.setPlaying(!this.playing);
     $('replay-back').onclick = () => this.step(-1);
     $('replay-forward').onclick = () => this.step(1);
@@ -39,28 +42,33 @@ export class ReplayBar {
     });
     const current = (lane) => this.session && this.session === app.session && this.session.lanes.includes(lane);
     app.signals.sessionChanged.add(() => this.detach());
-    app.signals.sessionOpened.add((session, { frame }) => { if (session.kind === 'replay' && !session.empty) this.attach(session, frame); });
+    app.signals.sessionOpened.add((session, { frame, atFailure }) => { if (session.kind === 'replay' && !session.empty) this.attach(session, frame, atFailure); });
     app.signals.frame.add((lane) => { if (current(lane)) this.onFrame(lane, lane.frame); });
     // a replay's snapshot carries the frame its player shows
     app.signals.snapshot.add((lane) => { if (current(lane) && lane.frame) this.onFrame(lane, lane.frame); });
     app.signals.storedFrames.add((lane, data) => { if (current(lane)) this.setStored(lane, data.frames); });
     app.signals.markers.add((markers) => { if (this.session) this.setMarkers(markers); });
+    app.signals.failures.add((failures) => { if (this.session) this.setFailures(failures); });
   }
 
   get last() { return Math.max(0, this.session ? this.session.frameCount - 1 : 0); }
   get seq() { return this.current; }
   get speed() { return Number($('replay-speed').value); }
 
-  // Shows frame `startFrame` paused, or plays from the start when it is null.
-  attach(session, startFrame) {
+  // Shows frame `startFrame` paused, or plays from the start when it is
+  // null; `atFailure`: paused, at the first failure once it is found.
+  attach(session, startFrame, atFailure = false) {
     this.session = session;
+    this.events = [];
+    this.failures = [];
+    this.awaitingFailure = Boolean(atFailure) && (startFrame === null || startFrame === undefined);
     this.players = new Map(session.lanes.map((lane) => [lane, {
       wanted: null, inflight: null, inflightSince: 0, paused: false, shownSeq: lane.frame ? lane.frame.seq : null, stored: null,
     }]));
     $('replay-bar').hidden = false;
     $('scrubber').max = String(this.last);
     const start = startFrame === null || startFrame === undefined ? 0 : startFrame;
-    this.playing = startFrame === null || startFrame === undefined;
+    this.playing = (startFrame === null || startFrame === undefined) && !this.awaitingFailure;
     this.lastTick = null;
     this.showPlaying();
     this.show(start, true);
@@ -69,23 +77,54 @@ export class ReplayBar {
   // The recorded inputs along the scrubber ({seq, kind, text}): each a mark
   // with its words as a tooltip; a click shows its frame.
   setMarkers(markers) {
-    const box = $('replay-markers');
-    box.replaceChildren();
+    this.events = markers;
+    this.drawMarks();
+  }
+
+  // The lanes' first failures ({lane, seq, kind: 'failure', text}): marked
+  // too, each with its reason written under the scrubber beside its mark. A
+  // failed run opened without a frame is shown at its failure.
+  setFailures(failures) {
+    this.failures = failures;
+    this.drawMarks();
+    const first = this.awaitingFailure && failures.find((f) => f.lane === 0 && Number.isInteger(f.seq));
+    if (first) this.seek(first.seq);
+  }
+
+  drawMarks() {
     const last = this.last;
-    for (const m of markers) {
+    const at = (seq) => `${last > 0 ? (100 * Math.max(0, Math.min(seq, last))) / last : 0}%`;
+    const marks = [...this.events, ...this.failures.filter((f) => Number.isInteger(f.seq))].map((m) => {
       const mark = document.createElement('button');
       mark.type = 'button';
       mark.className = `event-marker event-${m.kind}`;
-      mark.title = `frame ${m.seq}: ${m.text}`;
+      mark.title = `frame ${m.seq}: ${m.kind === 'failure' ? `first failure: ${m.text}` : m.text}`;
       mark.setAttribute('aria-label', mark.title);
-      mark.style.left = `${last > 0 ? (100 * Math.min(m.seq, last)) / last : 0}%`;
+      mark.style.left = at(m.seq);
       mark.onclick = () => this.seek(m.seq);
-      box.appendChild(mark);
-    }
+      return mark;
+    });
+    $('replay-markers').replaceChildren(...marks);
+    // each reason on a line of its own, its text placed at its mark (kept inside the bar)
+    const labels = this.failures.map((f) => {
+      const line = document.createElement('div');
+      line.className = 'failure-label';
+      const text = document.createElement('span');
+      text.textContent = `✗ ${f.text}`;
+      if (Number.isInteger(f.seq)) { text.style.left = at(f.seq); text.style.transform = `translateX(-${at(f.seq)})`; }
+      line.appendChild(text);
+      return line;
+    });
+    $('failure-labels').replaceChildren(...labels);
+    $('replay-bar').style.setProperty('--failure-lines', String(labels.length));
+    $('replay-bar').classList.toggle('has-failure', labels.length > 0);
   }
 
   detach() {
-    $('replay-markers').replaceChildren();
+    this.events = [];
+    this.failures = [];
+    this.awaitingFailure = false;
+    this.drawMarks();
     this.session = null;
     this.players = new Map();
     this.playing = false;
@@ -94,6 +133,7 @@ export class ReplayBar {
 
   setPlaying(playing) {
     if (!this.session) return;
+    this.awaitingFailure = false;
     // Play at the end starts again from the first frame
     if (playing && this.current >= this.last) this.show(0, true);
     this.playing = playing;
@@ -110,6 +150,7 @@ export class ReplayBar {
   // Seeking pauses: the frame shown is the one asked for.
   seek(seq) {
     if (!this.session) return;
+    this.awaitingFailure = false;
     if (this.playing) { this.playing = false; this.showPlaying(); }
     this.show(seq, true);
   }

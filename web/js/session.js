@@ -45,6 +45,7 @@ export class Session {
     this.frameCount = Math.max(0, ...runs.map((r) => r.frames));
     this.closed = false;
     this.endSeen = false;   // sessionEnded dispatched
+    this.fromLive = false;  // a live session that ended and became its replay (becomeReplay)
     this.shownStatus = null;  // lane 0's run status as the header shows it
   }
 
@@ -84,23 +85,62 @@ export class Session {
         if (this.closed) { api.replayControl(player.replay, { action: 'pause' }).catch(() => {}); return; }
         path = player.ws;
       }
-      lane.stream = new Stream(path, {
-        onSnapshot: (snapshot) => this.snapshot(lane, snapshot),
-        onFrame: (frame) => this.frame(lane, frame),
-        onMessage: (message) => {
-          if (message.type === 'params') this.paramsChanged(lane, message);
-          else if (message.type === 'scene') this.sceneChanged(lane, message);
-          else if (message.type === 'error') app.error(new ApiError(message.error.status || 400, message.error));
-          // who holds control of this run: on connecting, and at every change
-          else if (message.type === 'control' && message.event === 'state') app.signals.control.dispatch(message.controller);
-          // another client took control of this run from this tab
-          else if (message.type === 'control' && message.event === 'taken') app.signals.controlTaken.dispatch(message.message);
-        },
-        onState: (state) => this.streamState(lane, state),
-        probe: () => this.probe(lane),
-      });
+      this.connect(lane, path);
     }
     this.updateUrl();
+  }
+
+  // A live session whose runs all ended becomes their replay, its lanes and
+  // views kept (camera, zoom, trace): each lane's stream is now a player of
+  // its stored run, started at its last frame. Resolves false when the
+  // session was closed meanwhile or was not an ended live one.
+  async becomeReplay() {
+    if (this.closed || !this.ended) return false;
+    const runs = await Promise.all(this.runIds.map((id) => api.run(id)));
+    // an answer cut short (the page is leaving) is no run: nothing changes
+    if (this.closed || runs.some((r, i) => !r || r.id !== this.runIds[i] || !Number.isInteger(r.frames))) return false;
+    // every player first: when one cannot start (too many replays), the session stays as it ended
+    const settled = await Promise.allSettled(runs.map((run) => (run.frames > 0 ? api.replayRun(run.id, { mode: 'frames', speed: 1, from: run.frames - 1 }) : null)));
+    const players = settled.map((p) => (p.status === 'fulfilled' && p.value && typeof p.value.ws === 'string' ? p.value : null));
+    const refused = settled.find((p, i) => p.status === 'rejected' || (runs[i].frames > 0 && !players[i]));
+    if (this.closed || refused) {
+      for (const player of players) if (player) api.replayControl(player.replay, { action: 'pause' }).catch(() => {});
+      if (refused && !this.closed) throw refused.status === 'rejected' ? refused.reason : new Error('the server did not start a replay of the run');
+      return false;
+    }
+    this.kind = 'replay';
+    this.fromLive = true;
+    this.runs = runs;
+    this.frameCount = Math.max(0, ...runs.map((r) => r.frames));
+    for (const lane of this.lanes) {
+      if (lane.stream) lane.stream.close();
+      lane.stream = null;
+      lane.status = runs[lane.index].status;
+      const player = players[lane.index];
+      if (!player) continue;
+      lane.replayId = player.replay;
+      this.connect(lane, player.ws);
+    }
+    return true;
+  }
+
+  // The lane's stream at `path` (a live run's, or a replay player's).
+  connect(lane, path) {
+    lane.stream = new Stream(path, {
+      onSnapshot: (snapshot) => this.snapshot(lane, snapshot),
+      onFrame: (frame) => this.frame(lane, frame),
+      onMessage: (message) => {
+        if (message.type === 'params') this.paramsChanged(lane, message);
+        else if (message.type === 'scene') this.sceneChanged(lane, message);
+        else if (message.type === 'error') app.error(new ApiError(message.error.status || 400, message.error));
+        // who holds control of this run: on connecting, and at every change
+        else if (message.type === 'control' && message.event === 'state') app.signals.control.dispatch(message.controller);
+        // another client took control of this run from this tab
+        else if (message.type === 'control' && message.event === 'taken') app.signals.controlTaken.dispatch(message.message);
+      },
+      onState: (state) => this.streamState(lane, state),
+      probe: () => this.probe(lane),
+    });
   }
 
   // Reconnect only to something that still exists and still runs.
@@ -210,9 +250,9 @@ export class Session {
   }
 
   // A live session whose runs all ended (seen in a frame, or in the first
-  // snapshot when the runs ended before the page attached) says so once; one
-  // that ended before any frame reached the page opens its stored runs as a
-  // replay instead.
+  // snapshot when the runs ended before the page attached) says so once and
+  // becomes their replay (commands.js replayEnded); one that ended before any
+  // frame reached the page opens its stored runs as a replay instead.
   checkEnded() {
     if (this.closed || this.endSeen || !this.ended) return;
     this.endSeen = true;
@@ -221,6 +261,7 @@ export class Session {
       return;
     }
     app.signals.sessionEnded.dispatch(this);
+    app.execute({ type: 'replayEnded' });
   }
 
   // The overlay toggles changed: every view draws again.
@@ -234,6 +275,8 @@ export class Session {
   }
 
   get ended() { return this.kind === 'live' && this.lanes.every((l) => TERMINAL.has(l.status)); }
+  // Restart with this scene: an ended live session, or the replay it became.
+  get restartable() { return (this.kind === 'live' && this.ended) || this.fromLive; }
   get empty() { return this.kind === 'replay' && this.frameCount === 0; }
 
   updateUrl(frame) {

@@ -29,6 +29,9 @@ export class SessionPanel {
     signals.status.add((text) => { $('status').textContent = text; });
     signals.connection.add((s) => { if (s === app.session) this.showConnection(s); });
     signals.sessionEnded.add((s) => this.ended(s));
+    // a run or group opens with its views in sight (the centre column, or the page on a phone, may be
+    // scrolled away: down the charts, a paper's or a sweep's page); an ended run that became its replay stays put
+    signals.sessionOpened.add((s) => { if (!s.fromLive) $('views').scrollIntoView({ block: 'nearest' }); });
     signals.viewCreated.add(() => $('empty-hint')?.remove());
     signals.control.add((controller) => { if (app.liveSession) this.showControl(controller); });
     signals.controlTaken.add((text) => { this.showControl('other'); app.error(text); });
@@ -96,6 +99,8 @@ export class SessionPanel {
     const el = $('connection');
     const open = states.every((x) => x === 'open');
     if (s.ended) { el.textContent = `ended (${s.lanes[0].status})`; el.className = 'pill muted'; return; }
+    // an ended live run that became its replay still says how it ended
+    if (s.fromLive) { el.textContent = `ended (${s.runs[0].status}) · replay`; el.className = 'pill muted'; return; }
     const paused = s.kind === 'live' && s.lanes[0].status === 'paused';
     el.textContent = open ? (s.kind === 'live' ? (paused ? 'paused' : 'live') : 'replay') : states.find((x) => x !== 'open') || '';
     el.className = `pill ${open ? 'ok' : 'warn'}`;

@@ -42,7 +42,7 @@ export const app = {
   choice: { scenario: null, method: '', rate: 1 },  // the pickers of a new run
   signals: {
     sessionChanged: new Signal(),  // (session | null) another session is on screen (its streams not yet open), or none
-    sessionOpened: new Signal(),   // (session, {frame}) its streams are open; frame: the replay frame the address asked for
+    sessionOpened: new Signal(),   // (session, {frame, sources, atFailure}) its streams are open; frame: the replay frame asked for; sources: each run's {summary, sweep}; atFailure: open paused at its first failure
     sessionEnded: new Signal(),    // (session) every run of the live session on screen ended
     pageChanged: new Signal(),     // (page | null) a paper's or a sweep's page in the centre, or none
     focusChanged: new Signal(),    // (session) another lane's parameters are shown
@@ -53,6 +53,7 @@ export const app = {
     connection: new Signal(),      // (session) a stream's state, or the live run's status, changed
     storedFrames: new Signal(),    // (lane, {frames}) a replayed lane's stored frames (strided), each with its t
     markers: new Signal(),         // (markers) a replay's recorded inputs, [{seq, t, kind, text}]
+    failures: new Signal(),        // (failures) a replay's first failures, one per failing lane: [{lane, seq, t, kind: 'failure', mode, text}]
     playhead: new Signal(),        // (seq, frame | null) the replay's current frame (app.setPlayhead)
     scenariosChanged: new Signal(),  // () app.scenarios (and app.choice.scenario) loaded anew
     methodsChanged: new Signal(),  // () app.methods loaded
