@@ -49,50 +49,43 @@ struct FigureCase {
   double min_distance;  // measured
 };
 
-TEST(CcpVoronoiEx1, AllFiveOutcomesOfFigs3And4) {
-  const std::vector<FigureCase> cases = {
+// Figs. 3a-4b's CCP placements, each with its outcome and measured clearance
+// at the given hysteresis (the scenario's 0.2, or the paper's 0).
+std::vector<FigureCase> figures(double fig3c, double fig4a, bool fig4b_collides, double fig4b) {
+  return {
       {"3a: CCP at joint 2", {{"ccp_link", 2}, {"ccp_at", 0}}, true, -0.1356},
       {"3b: CCP at joint 3", {{"ccp_link", 3}, {"ccp_at", 0}}, false, 0.0236},
-      {"3c: CCP at the middle of link 3", {{"ccp_link", 3}, {"ccp_at", 0.5}}, false, 0.0188},
+      {"3c: CCP at the middle of link 3", {{"ccp_link", 3}, {"ccp_at", 0.5}}, false, fig3c},
       {"4a: CCPs at the middles of links 1 and 2",
-       {{"ccp_link", 1}, {"ccp_at", 0.5}, {"ccp2_link", 2}, {"ccp2_at", 0.5}}, true, -0.0273},
+       {{"ccp_link", 1}, {"ccp_at", 0.5}, {"ccp2_link", 2}, {"ccp2_at", 0.5}}, true, fig4a},
       {"4b: CCPs at the middles of links 2 and 3",
-       {{"ccp_link", 2}, {"ccp_at", 0.5}, {"ccp2_link", 3}, {"ccp2_at", 0.5}}, false, 0.0236},
+       {{"ccp_link", 2}, {"ccp_at", 0.5}, {"ccp2_link", 3}, {"ccp2_at", 0.5}}, fig4b_collides, fig4b},
   };
-  for (const FigureCase& c : cases) {
+}
+
+void expect_figures(const std::vector<FigureCase>& cases, double hysteresis) {
+  for (FigureCase c : cases) {
+    c.params["hysteresis"] = hysteresis;
     const auto r = run_ccp("10_sezgin_ex1_lshape.json", c.params);
-    std::printf("[ Ex1 gain 8, hysteresis 0.2 ] Fig. %s: collided %d, min distance %.4f, max tracking error %.5f\n",
-                c.figure, int(r.summary.collided), r.summary.min_distance, r.summary.max_tracking_error);
+    std::printf("[ Ex1 gain 8, hysteresis %g ] Fig. %s: collided %d, min distance %.4f, max tracking error %.5f\n",
+                hysteresis, c.figure, int(r.summary.collided), r.summary.min_distance, r.summary.max_tracking_error);
     EXPECT_EQ(r.summary.collided, c.collides) << c.figure;
     EXPECT_NEAR(r.summary.min_distance, c.min_distance, 0.01) << c.figure;
     EXPECT_LT(r.summary.max_tracking_error, 0.01) << c.figure;
   }
 }
 
+TEST(CcpVoronoiEx1, AllFiveOutcomesOfFigs3And4) {
+  expect_figures(figures(0.0188, -0.0273, false, 0.0236), 0.2);
+}
+
 // The same five figures with the paper's method as published: no vertex
 // hysteresis (rrlab's addition; the paper takes the nearest vertex always).
-// At gain 8 Fig. 4b's CCPs at the middles of links 2 and 3 then collide: the
-// reproduction table's paper rows mark Fig. 4b and the five together ✗, the
-// hysteresis rows (rrlab) ✓ and ◐.
+// At gain 8 Fig. 4b's CCPs at the middles of links 2 and 3 then collide (the
+// gap: the paper's Fig. 4b avoids): the reproduction table's paper rows mark
+// Fig. 4b and the five together ✗, the hysteresis rows (rrlab) ✓ and ◐.
 TEST(CcpVoronoiEx1, FiguresWithThePapersNearestVertex) {
-  const std::vector<FigureCase> cases = {
-      {"3a: CCP at joint 2", {{"ccp_link", 2}, {"ccp_at", 0}}, true, -0.1356},
-      {"3b: CCP at joint 3", {{"ccp_link", 3}, {"ccp_at", 0}}, false, 0.0236},
-      {"3c: CCP at the middle of link 3", {{"ccp_link", 3}, {"ccp_at", 0.5}}, false, 0.0146},
-      {"4a: CCPs at the middles of links 1 and 2",
-       {{"ccp_link", 1}, {"ccp_at", 0.5}, {"ccp2_link", 2}, {"ccp2_at", 0.5}}, true, -0.0932},
-      // the gap: the paper's Fig. 4b avoids; without hysteresis rrlab's collides
-      {"4b: CCPs at the middles of links 2 and 3",
-       {{"ccp_link", 2}, {"ccp_at", 0.5}, {"ccp2_link", 3}, {"ccp2_at", 0.5}}, true, -0.1208},
-  };
-  for (FigureCase c : cases) {
-    c.params["hysteresis"] = 0;
-    const auto r = run_ccp("10_sezgin_ex1_lshape.json", c.params);
-    std::printf("[ Ex1 gain 8, hysteresis 0 ] Fig. %s: collided %d, min distance %.4f\n", c.figure,
-                int(r.summary.collided), r.summary.min_distance);
-    EXPECT_EQ(r.summary.collided, c.collides) << c.figure;
-    EXPECT_NEAR(r.summary.min_distance, c.min_distance, 0.01) << c.figure;
-  }
+  expect_figures(figures(0.0146, -0.0932, true, -0.1208), 0.0);
   for (const char* file : {"10a_sezgin_fig5a_three_ccp.json", "10b_sezgin_fig5b_four_ccp.json",
                            "11_sezgin_ex1_box.json"}) {
     const auto r = run_ccp(file, {{"hysteresis", 0}});
