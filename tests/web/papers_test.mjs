@@ -32,6 +32,9 @@ await suite('papers', [
       const counted = ['✓', '◐', '✗'].map((m) => marks.filter((x) => x.startsWith(m)).length);
       check(Number(parts[4]) === marks.length && counted.every((n, i) => n === Number(parts[i + 1])) &&
             Number(parts[5]) === marks.filter((m) => /\(rrlab[;)]/.test(m)).length, `${key}: the tally counts the page's rows: ${tally}`);
+      // the page says what to use in the paper's setting, and why (rates from its rows)
+      const advice = await t.page.textContent('.paper-advice');
+      check(/^What to use in this paper's setting: .+, which succeeds on \d+ % of the nudged copies .+ against .+ \d+ %.*\.$/.test(advice), `${key}: the advice: ${advice}`);
     }
     await t.screenshot('kapoor');  // the last one opened, at its top: the tally and the rows
     await t.page.goto(`${t.base}/?paper=sezgin`);

@@ -89,6 +89,7 @@ export class Papers {
       <h3>Examples: the paper's outcome and what rrlab gets</h3>
       ${paper.tally ? `<p class="paper-tally">${escapeHtml(paper.tally)}</p>` : ''}
       <table class="paper-examples"><tr><th>example</th><th>the paper</th><th>rrlab, shipped scenario</th><th>over its nudged copies (95 % CI)</th><th>mark</th></tr>${rows}</table>
+      ${paper.advice ? `<p class="paper-advice">${escapeHtml(paper.advice)}</p>` : ''}
       <p class="small muted rule">${escapeHtml(data.rule.replace(/\*\*/g, ''))}</p>
       <h3>The scenarios</h3>${described}`;
     page.querySelectorAll('tr[data-example]').forEach((tr) => {
