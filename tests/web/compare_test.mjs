@@ -106,6 +106,12 @@ await suite('compare', [
       const views = await t.page.locator('#views').evaluate((e) => { const r = e.getBoundingClientRect(); return { x: r.x, y: r.y, w: r.width, h: r.height }; });
       const area = cells.reduce((a, c) => a + c.w * c.h, 0);
       check(area > 0.9 * views.w * views.h, `${methods.length} lanes fill the view area (${(100 * area / (views.w * views.h)).toFixed(0)} %)`);
+      // the metrics are readable: no cell cut short ("0.23…", "clos…"), every lane's parameter tab on screen
+      await eventually(async () => (await t.page.locator('#metrics tbody tr').count()) > 5, 'the metrics');
+      const cut = await t.page.locator('#metrics th, #metrics td').evaluateAll((els) => els.filter((e) => e.scrollWidth > e.clientWidth + 1).map((e) => e.textContent));
+      check(cut.length === 0, `${methods.length} lanes: no metric cut short (${cut.join(' | ')})`);
+      const tabs = await t.page.locator('#lane-tabs button').evaluateAll((els) => els.map((e) => e.getBoundingClientRect().right <= window.innerWidth && e.offsetParent !== null));
+      check(tabs.length === methods.length && tabs.every(Boolean), `every lane's parameter tab shown (${tabs})`);
       await t.screenshot(`${methods.length}-lanes`);
     }
     await t.page.click('#compare-setup > summary');  // the panel folds away while a session is on screen

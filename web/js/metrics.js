@@ -23,11 +23,18 @@ const ROWS = [
   ['step (µs)', (m) => m.step_us],
 ];
 
-function cell(row, value, colour) {
+// Three significant digits where 3–4 lanes share the column's width (the
+// full value in the tooltip): readable, not cut to "0.23…".
+function fmtCompact(v) {
+  if (typeof v !== 'number' || Number.isInteger(v) || !Number.isFinite(v)) return fmt(v);
+  return Math.abs(v) >= 1e4 || (Math.abs(v) < 1e-3 && v !== 0) ? v.toExponential(1) : String(Number(v.toPrecision(3)));
+}
+
+function cell(row, value, compact) {
   const td = row.insertCell();
-  td.textContent = fmt(value);
+  td.textContent = compact ? fmtCompact(value) : fmt(value);
+  if (compact) td.title = fmt(value);
   if (value === true) td.className = 'collided';
-  if (colour) td.style.color = colour;
   return td;
 }
 
@@ -57,12 +64,15 @@ function showMetrics(session) {
   if (!session) return;
   const lanes = session.lanes.filter((l) => l.frame);
   if (!lanes.length) return;
+  const compact = session.compare && lanes.length >= 3;
+  table.classList.toggle('compact', compact);
   if (session.compare) {
     const head = table.createTHead().insertRow();
     head.appendChild(document.createElement('th'));
     for (const lane of lanes) {
       const th = document.createElement('th');
-      th.textContent = lane.label;
+      // break a narrow column's name after "_" and before "·", not inside a word
+      th.textContent = compact ? lane.label.replace(/_/g, '_\u200b').replace(/ · /g, ' ·\u200b') : lane.label;
       th.style.color = lane.colour;
       head.appendChild(th);
     }
@@ -70,11 +80,12 @@ function showMetrics(session) {
   const body = table.createTBody();
   const time = body.insertRow();
   time.insertCell().textContent = 't (s) · step';
-  for (const lane of lanes) time.insertCell().textContent = `${lane.frame.t.toFixed(2)} · ${lane.frame.step}`;
+  for (const lane of lanes) time.insertCell().textContent = compact ? lane.frame.t.toFixed(2) : `${lane.frame.t.toFixed(2)} · ${lane.frame.step}`;
+  if (compact) time.cells[0].textContent = 't (s)';
   for (const [name, get] of ROWS) {
     const row = body.insertRow();
     row.insertCell().textContent = name;
-    for (const lane of lanes) cell(row, get(lane.frame.metrics));
+    for (const lane of lanes) cell(row, get(lane.frame.metrics), compact);
   }
   showLimits(session.focusLane);
   showDiagnostics(session.focusLane);
