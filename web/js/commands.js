@@ -90,14 +90,17 @@ function showSweep(id, cell = null) {
 }
 
 // What an address asks for (readUrl): a compare, a run (at a frame), a
-// sweep (and a cell), a paper, or nothing (the start view: the pickers).
+// sweep (and a cell), a paper; false when it names none of them (the start
+// view: the pickers), an unknown paper said on the message line.
 async function openAddress(url) {
   if (url.compare.length > 1) await open(url.compare, 'side', url.frame);
   else if (url.run) await open([url.run], 'side', url.frame);
   else if (url.sweep) showSweep(url.sweep, url.family ? { family: url.family, config: url.config } : null);
   else if (url.paper && PAPER_KEYS.includes(url.paper)) showPage({ name: 'paper', key: url.paper }, { paper: url.paper });
-  else if (url.paper) app.error(`no paper "${url.paper}" (paper= takes one of ${PAPER_KEYS.join(', ')})`);
-  else return false;
+  else {
+    if (url.paper) app.error(`no paper "${url.paper}" (paper= takes one of ${PAPER_KEYS.join(', ')})`);
+    return false;
+  }
   return true;
 }
 
