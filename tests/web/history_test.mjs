@@ -109,6 +109,19 @@ await suite('history', [
     await cellShown(t.page, 'planar_clutter', 'pinv');
     await t.page.goBack();
     await cellShown(t.page, 'planar_clutter', 'closest_point');
+    // a case compared across the sweep's methods: a view of its own, Back to the cell, Forward to the compare
+    await t.page.locator('.sweep-runs tr[data-run] .run-compare').first().click();
+    const group = await eventually(() => t.page.evaluate(() => {
+      const s = window.__rrlab.session;
+      return s && s.compare && s.kind === 'replay' && s.lanes.every((l) => l.frame) ? s.runIds.join(',') : null;
+    }), 'the compare to replay');
+    check((await shown(t.page)).address.startsWith(`?compare=${encodeURIComponent(group)}`), 'the compare\'s address');
+    await t.page.goBack();
+    await cellShown(t.page, 'planar_clutter', 'closest_point');
+    await t.page.goForward();
+    await at(t.page, `compare:${group}`);
+    await eventually(() => t.page.evaluate(() => window.__rrlab.session.lanes.every((l) => l.view && l.frame)), 'the compare drawn again');
+    await t.screenshot('compare-forward');
   }],
   ['a replay: scrubbing replaces its frame, a marker click is an entry of its own, Back returns to the frame before it', async (t) => {
     const run = await t.post('/api/runs', { scenario: '01_planar7_obstacles', mode: 'live', paused: true });
