@@ -59,16 +59,22 @@ async function loadMarkers(s) {
   const events = await Promise.all(s.runIds.map((id) => api.events(id)));
   const lane = s.lanes.find((l) => s.runs[l.index].frames > 0) || s.lanes[0];
   const { dt } = await lane.ready;
-  if (app.session === s) app.signals.markers.dispatch(eventMarkers(events).map((m) => ({ ...m, t: m.seq * dt })));
+  if (app.session !== s) return;
+  // the parameter panel shows the values recorded at the playhead (session.js showRecordedAt)
+  s.setEvents(events);
+  if (app.playhead !== null) s.showRecordedAt(app.playhead);
+  app.signals.markers.dispatch(eventMarkers(events).map((m) => ({ ...m, t: m.seq * dt })));
 }
 
 function open(ids, layout = 'side', frame = null) {
   return sessionFor(ids, layout).then((next) => show(next, frame));
 }
 
-function close(why) {
+// `replace`: the view closed can never come back (its run was deleted), so
+// it leaves no history entry to go Back to.
+function close(why, replace = false) {
   app.setSession(null);
-  writeUrl({});
+  writeUrl({}, { replace });
   if (why) app.info(why);
 }
 
@@ -77,6 +83,34 @@ function showPage(page, address) {
   app.setPage(page);
   writeUrl(address);
 }
+
+// A sweep's page, with one of its cells ({family, config}) open or none.
+function showSweep(id, cell = null) {
+  showPage({ name: 'sweep', id, cell }, { sweep: id, family: cell && cell.family, config: cell && cell.config });
+}
+
+// What an address asks for (readUrl): a compare, a run (at a frame), a
+// sweep (and a cell), a paper; false when it names none of them (the start
+// view: the pickers), an unknown paper said on the message line.
+async function openAddress(url) {
+  if (url.compare.length > 1) await open(url.compare, 'side', url.frame);
+  else if (url.run) await open([url.run], 'side', url.frame);
+  else if (url.sweep) showSweep(url.sweep, url.family ? { family: url.family, config: url.config } : null);
+  else if (url.paper && PAPER_KEYS.includes(url.paper)) showPage({ name: 'paper', key: url.paper }, { paper: url.paper });
+  else {
+    if (url.paper) app.error(`no paper "${url.paper}" (paper= takes one of ${PAPER_KEYS.join(', ')})`);
+    return false;
+  }
+  return true;
+}
+
+// The pickers' scenario and method from an address, where the catalogue has them.
+function choiceFrom(url) {
+  if (url.scenario && app.scenarios.some((s) => s.name === url.scenario)) app.choice.scenario = url.scenario;
+  if (url.method && app.methods.some((m) => m.name === url.method)) app.choice.method = url.method;
+}
+
+const sameIds = (a, b) => a.length === b.length && a.every((id, i) => id === b[i]);
 
 // An obstacle of a snapshot in the scenario format, where the run left it: an
 // obstacle of the scenario keeps its own description (sizes, rpy in the
@@ -121,19 +155,34 @@ export const commands = {
     [app.scenarios, app.methods, app.frameFields] = await Promise.all([api.scenarios(), api.methods(), api.frameFields()]);
     api.health().then((h) => { app.version = h.version; }, () => {});
     const url = readUrl();
-    if (url.scenario && app.scenarios.some((s) => s.name === url.scenario)) app.choice.scenario = url.scenario;
-    if (url.method && app.methods.some((m) => m.name === url.method)) app.choice.method = url.method;
+    choiceFrom(url);
     app.signals.scenariosChanged.dispatch();
     app.signals.methodsChanged.dispatch();
     try {
-      if (url.compare.length > 1) await open(url.compare, 'side', url.frame);
-      else if (url.run) await open([url.run], 'side', url.frame);
-      else if (url.sweep) showPage({ name: 'sweep', id: url.sweep }, { sweep: url.sweep });
-      else if (url.paper && PAPER_KEYS.includes(url.paper)) showPage({ name: 'paper', key: url.paper }, { paper: url.paper });
-      else if (url.paper) app.error(`no paper "${url.paper}" (paper= takes one of ${PAPER_KEYS.join(', ')})`);
+      await openAddress(url);
     } finally {
       app.signals.started.dispatch();
     }
+  },
+
+  // Back or Forward (popstate): what the address names now. The replay on
+  // screen at another frame seeks; any other view opens as a link does; an
+  // address that names nothing is the start view.
+  async navigate() {
+    const url = readUrl();
+    const s = app.session;
+    const ids = url.compare.length > 1 ? url.compare : url.run ? [url.run] : [];
+    if (s && ids.length && sameIds(s.runIds, ids)) {
+      if (s.kind === 'replay' && url.frame !== null) app.signals.seek.dispatch(url.frame);
+      return;
+    }
+    if (await openAddress(url)) return;
+    app.setSession(null);
+    const before = { ...app.choice };
+    choiceFrom(url);
+    // the pickers follow only what changed (a new catalogue signal rebuilds the compare rows)
+    if (app.choice.scenario !== before.scenario) app.signals.scenariosChanged.dispatch();
+    if (app.choice.method !== before.method) app.signals.methodsChanged.dispatch();
   },
 
   // The catalogue's scenarios again (one was saved), `select` chosen.
@@ -153,7 +202,8 @@ export const commands = {
   // Runs by id ({ids, layout, frame}): live ones attach, ended ones replay (at `frame`).
   open: ({ ids, layout, frame }) => open(ids, layout, frame),
   close: ({ why }) => close(why),
-  openSweep: ({ id }) => showPage({ name: 'sweep', id }, { sweep: id }),
+  // {id, cell?: {family, config}}: a sweep's page, and one of its cells
+  openSweep: ({ id, cell }) => showSweep(id, cell && cell.family && cell.config ? { family: cell.family, config: cell.config } : null),
   openPaper: ({ key }) => showPage({ name: 'paper', key }, { paper: key }),
 
   async startLive(c) {
@@ -244,7 +294,7 @@ export const commands = {
   // Deletes a stored run; the run on screen, if it was, is closed.
   async deleteRun({ id }) {
     await api.deleteRun(id);
-    if (app.session && app.session.runIds.includes(id)) close(`run #${id} was deleted`);
+    if (app.session && app.session.runIds.includes(id)) close(`run #${id} was deleted`, true);
   },
 
   // An input to the live run on screen ({kind, payload, runId}: see

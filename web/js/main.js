@@ -2,7 +2,8 @@
 // The state and its signals are state.js's, the commands commands.js's; each
 // panel subscribes itself to the signals it needs and sends what the user
 // does as a command (app.execute). Then the page opens what its address asks
-// for (?run=, ?compare=, ?sweep=, ?paper=, ?scenario=&method=).
+// for (?run=, ?compare=, ?sweep=, ?paper=, ?scenario=&method=), and again
+// on Back and Forward.
 import { setTokenPrompt } from './api.js';
 import { askForToken } from './token_prompt.js';
 import { app } from './state.js';
@@ -56,3 +57,5 @@ startRenderLoop({ replayBar, plots, metrics });
 window.__rrlab = { app, fps, get session() { return app.session; }, plots, replay: replayBar };
 
 app.execute({ type: 'start' });
+// Back and Forward: every view pushed a history entry (state.js writeUrl)
+window.addEventListener('popstate', () => app.execute({ type: 'navigate' }));

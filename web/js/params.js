@@ -115,6 +115,21 @@ function paramControl(spec, value, start, setParam, current) {
 // The run's starting values per method (the first snapshot of that method).
 const startValues = (lane) => lane.startParams[lane.snapshot.method];
 
+// In a replay the panel shows the values recorded at the playhead
+// (session.js showRecordedAt), and says so: as of which recorded input.
+function showRecordedNote(session) {
+  const note = $('params-recorded');
+  const lane = session.focusLane;
+  note.hidden = session.kind !== 'replay' || !lane || !lane.snapshot;
+  if (note.hidden) return;
+  const r = lane.recorded;
+  const dt = lane.snapshot.dt;
+  note.textContent = !r ? 'recorded values' : r.seq === null
+    ? 'recorded: the starting values (no input yet at this frame)'
+    : `recorded at t = ${(r.seq * dt).toFixed(2)} s (frame ${r.seq})`;
+  note.title = 'a replay shows the method and parameters as they were at the frame on screen';
+}
+
 // Rebuilds the panel from the focused lane's snapshot.
 function buildParams(session) {
   const lane = session.focusLane;
@@ -134,6 +149,7 @@ function buildParams(session) {
     box.appendChild(control);
   }
   buildLaneTabs(session);
+  showRecordedNote(session);
   // the switch shows the lane's method when it changes, not on every snapshot
   // (a snapshot after a parameter change must not undo what the user is choosing)
   const select = $('switch-method');
@@ -163,6 +179,7 @@ function updateParams(session) {
     }
     markChanged(div, value, start[spec.name]);
   }
+  showRecordedNote(session);
 }
 
 function buildLaneTabs(session) {
@@ -192,6 +209,8 @@ export function setupParams() {
   app.signals.focusChanged.add((session) => buildParams(session));
   app.signals.sessionEnded.add((session) => buildParams(session));  // its parameters read-only
   app.signals.sessionChanged.add((session) => { if (!session) $('params-section').hidden = true; });
+  // a replay's parameters follow its playhead (the values recorded at that frame)
+  app.signals.playhead.add((seq) => { if (app.session && app.session.kind === 'replay') app.session.showRecordedAt(seq); });
   $('switch-method-go').onclick = () => {
     const session = app.session;
     if (!session || session.kind !== 'live') return;

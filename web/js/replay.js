@@ -49,6 +49,8 @@ export class ReplayBar {
     app.signals.storedFrames.add((lane, data) => { if (current(lane)) this.setStored(lane, data.frames); });
     app.signals.markers.add((markers) => { if (this.session) this.setMarkers(markers); });
     app.signals.failures.add((failures) => { if (this.session) this.setFailures(failures); });
+    // Back / Forward to another frame of this replay
+    app.signals.seek.add((seq) => { if (this.session) this.seek(seq); });
   }
 
   get last() { return Math.max(0, this.session ? this.session.frameCount - 1 : 0); }
@@ -101,7 +103,7 @@ export class ReplayBar {
       mark.title = `frame ${m.seq}: ${m.kind === 'failure' ? `first failure: ${m.text}` : m.text}`;
       mark.setAttribute('aria-label', mark.title);
       mark.style.left = at(m.seq);
-      mark.onclick = () => this.seek(m.seq);
+      mark.onclick = () => this.jump(m.seq);
       return mark;
     });
     $('replay-markers').replaceChildren(...marks);
@@ -156,6 +158,15 @@ export class ReplayBar {
   }
 
   step(delta) { this.seek(this.current + delta); }
+
+  // A deliberate seek (a marker clicked): a history entry of its own, so Back
+  // returns to the frame shown before it (scrubbing only replaces the frame).
+  jump(seq) {
+    if (!this.session) return;
+    this.session.updateUrl(this.current);
+    this.session.updateUrl(Math.max(0, Math.min(this.last, Math.round(Number(seq) || 0))), { push: true });
+    this.seek(seq);
+  }
 
   // Seeks to the frame at run time t = seq·dt (a click on a plot).
   seekTime(t) {

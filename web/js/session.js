@@ -9,6 +9,7 @@ import { api, paths, ApiError, Stream } from './api.js';
 import { app, LANE_COLOURS, writeUrl } from './state.js';
 import { View2D } from './view2d.js';
 import { laneLabels } from './lane_labels.js';
+import { recordedAt } from './recorded.js';
 
 const TERMINAL = new Set(['completed', 'stopped', 'failed', 'interrupted']);
 export const isLive = (status) => status === 'running' || status === 'paused';
@@ -29,6 +30,8 @@ class Lane {
     this.status = run.status;
     this.framesReceived = 0;
     this.startParams = {};  // by method: the parameters of its first snapshot (the run's starting values)
+    this.events = null;     // a replay's recorded inputs (api.events), once loaded
+    this.recorded = null;   // a replay's method and parameters at the playhead (recorded.js): {method, params, seq}
     this.ready = new Promise((resolve) => { this.resolveReady = resolve; });  // the first snapshot
   }
 }
@@ -166,10 +169,12 @@ export class Session {
 
   async snapshot(lane, snapshot) {
     if (this.closed) return;
+    if (!lane.startParams[snapshot.method]) lane.startParams[snapshot.method] = { ...snapshot.params };
+    // a replay's player applies no parameter changes: the values recorded at the playhead
+    if (this.kind === 'replay' && lane.recorded && lane.recorded.method === snapshot.method) snapshot = { ...snapshot, params: { ...snapshot.params, ...lane.recorded.params } };
     lane.snapshot = snapshot;
     lane.status = snapshot.status;
     lane.resolveReady(snapshot);
-    if (!lane.startParams[snapshot.method]) lane.startParams[snapshot.method] = { ...snapshot.params };
     // after a method switch the lane's name is its new method: tabs, captions, legends
     if (lane.method !== snapshot.method) {
       lane.method = snapshot.method;
@@ -188,6 +193,36 @@ export class Session {
     this.refreshOverlayLanes();
     app.signals.snapshot.dispatch(lane);
     this.checkEnded();
+  }
+
+  // A replay's recorded inputs, per lane (in the order of runIds).
+  setEvents(eventsPerLane) {
+    // joystick inputs (many a second) change neither the method nor its parameters
+    for (const lane of this.lanes) lane.events = (eventsPerLane[lane.index] || []).filter((e) => e.kind !== 'joystick');
+  }
+
+  // The replay at frame `seq`: each lane's method and parameters as recorded
+  // then (its events), the panel told of a change in place. The method's own
+  // name, param specs and the obstacles come with the player's snapshot at
+  // that frame (it applies the scene's events and method switches).
+  showRecordedAt(seq) {
+    if (this.closed || this.kind !== 'replay') return;
+    for (const lane of this.lanes) {
+      if (!lane.events || !lane.snapshot) continue;
+      const run = this.runs[lane.index];
+      const start = { method: run.method, params: lane.startParams[run.method] || run.params || {} };
+      const recorded = recordedAt(lane.events, Math.min(seq, Math.max(0, run.frames - 1)), start, app.methods);
+      const before = lane.recorded;
+      lane.recorded = recorded;
+      const changed = !before || before.seq !== recorded.seq || before.method !== recorded.method;
+      if (recorded.method === lane.snapshot.method) {
+        const params = { ...lane.snapshot.params, ...recorded.params };
+        if (changed || Object.keys(params).some((k) => params[k] !== lane.snapshot.params[k])) {
+          lane.snapshot = { ...lane.snapshot, params };
+          app.signals.params.dispatch(lane);
+        }
+      } else if (changed) app.signals.params.dispatch(lane);
+    }
   }
 
   // A parameter change: new values, the same method; the panel updates in place.
@@ -279,9 +314,10 @@ export class Session {
   get restartable() { return (this.kind === 'live' && this.ended) || this.fromLive; }
   get empty() { return this.kind === 'replay' && this.frameCount === 0; }
 
-  updateUrl(frame) {
+  // The address of this session (at a replay's frame); options: writeUrl's.
+  updateUrl(frame, options) {
     const ids = this.runIds.join(',');
-    writeUrl({ run: this.compare ? null : ids, compare: this.compare ? ids : null, frame: this.kind === 'replay' ? frame : null });
+    writeUrl({ run: this.compare ? null : ids, compare: this.compare ? ids : null, frame: this.kind === 'replay' ? frame : null }, options);
   }
 
   render() {

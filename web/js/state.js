@@ -4,7 +4,9 @@
 // panels subscribe to; and execute(command), the one path by which inputs
 // and session changes are made. Commands are plain objects {type, ...}; their
 // handlers (commands.js) are the only code that calls setSession / setPage.
-// The address bar follows what is shown, so a copied link reopens it.
+// The address bar follows what is shown, so a copied link reopens it, and
+// every new view is a history entry of its own (writeUrl), so Back and
+// Forward move between views.
 
 export class Signal {
   constructor() { this.listeners = []; }
@@ -32,7 +34,7 @@ const handlers = {};
 
 export const app = {
   session: null,      // the run or compare group on screen (session.js), or null
-  page: null,         // the page shown in the centre instead: {name: 'paper', key} | {name: 'sweep', id} | null
+  page: null,         // the page shown in the centre instead: {name: 'paper', key} | {name: 'sweep', id, cell: {family, config} | null} | null
   playhead: null,     // a replay's frame on screen (replay.js moves it: setPlayhead)
   overlays: Object.fromEntries(OVERLAYS.map((o) => [o.key, true])),
   methods: [],        // the server's methods
@@ -55,6 +57,7 @@ export const app = {
     markers: new Signal(),         // (markers) a replay's recorded inputs, [{seq, t, kind, text}]
     failures: new Signal(),        // (failures) a replay's first failures, one per failing lane: [{lane, seq, t, kind: 'failure', mode, text}]
     playhead: new Signal(),        // (seq, frame | null) the replay's current frame (app.setPlayhead)
+    seek: new Signal(),            // (seq) the address asks the replay on screen for another frame (Back / Forward)
     scenariosChanged: new Signal(),  // () app.scenarios (and app.choice.scenario) loaded anew
     methodsChanged: new Signal(),  // () app.methods loaded
     started: new Signal(),         // () the page opened what its address asked for
@@ -96,9 +99,11 @@ export const app = {
     this.playhead = null;
     this.signals.sessionChanged.dispatch(next);
   },
-  // A paper's or a sweep's page instead of any session (commands only).
+  // A paper's or a sweep's page instead of any session (commands only); the
+  // same page again (another cell of the sweep on screen) stays up.
   setPage(page) {
-    this.setSession(null);
+    const same = this.page && page && this.page.name === page.name && this.page.id === page.id && this.page.key === page.key;
+    if (!same) this.setSession(null);
     this.page = page;
     this.signals.pageChanged.dispatch(page);
   },
@@ -115,18 +120,24 @@ export const app = {
   status(text) { this.signals.status.dispatch(text); },
 };
 
-// ?run=ID[&frame=K] | ?compare=ID,ID[,..][&frame=K] | ?sweep=ID | ?paper=KEY | ?scenario=NAME[&method=M]
-// The query string (with or without its "?") as {run, compare, sweep, paper, scenario, method, frame}.
+// ?run=ID[&frame=K] | ?compare=ID,ID[,..][&frame=K] | ?sweep=ID[&family=F&config=C] | ?paper=KEY | ?scenario=NAME[&method=M]
+// The query string (with or without its "?") as {run, compare, sweep, family,
+// config, paper, scenario, method, frame}; family and config (a sweep's cell)
+// only with a sweep and each other.
 export function parseUrlState(search) {
   const q = new URLSearchParams(search);
   // decimal digits only: '', ' 3', '0x10' and '1e2' are not ids or frames
   const integer = (s) => (/^\d+$/.test(s) ? Number(s) : NaN);
   const ids = (name) => (q.get(name) || '').split(',').map(integer).filter((n) => Number.isInteger(n) && n > 0);
   const frame = q.has('frame') ? integer(q.get('frame')) : null;
+  const sweep = ids('sweep')[0] || null;
+  const cell = sweep !== null && q.get('family') && q.get('config');
   return {
     run: ids('run')[0] || null,
     compare: ids('compare'),
-    sweep: ids('sweep')[0] || null,
+    sweep,
+    family: cell ? q.get('family') : null,
+    config: cell ? q.get('config') : null,
     paper: q.get('paper'),
     scenario: q.get('scenario'),
     method: q.get('method'),
@@ -147,8 +158,23 @@ export function readUrl() {
   return parseUrlState(location.search);
 }
 
-// Replaces the address (no history entry per frame).
-export function writeUrl(params) {
+// The view an address names: everything but a replay's frame and the
+// pickers' scenario and method.
+export function viewOf(state) {
+  const { run, compare, sweep, family, config, paper } = state;
+  return JSON.stringify({ run, compare, sweep, family, config, paper });
+}
+
+// The one place the address is written. A new view (another run, compare,
+// sweep, cell or paper, or none) pushes a history entry; the same view at
+// another frame, or another pick of scenario or method, replaces the
+// address: scrubbing adds no entry per frame. `push`: an entry even for the
+// same view (a deliberate seek: a marker clicked); `replace`: none even for
+// a new one (the view left can never come back: a deleted run).
+export function writeUrl(params, { push = false, replace = false } = {}) {
   const url = `${location.pathname}${formatUrlState(params)}`;
-  if (url !== location.pathname + location.search) history.replaceState(null, '', url);
+  if (url === location.pathname + location.search) return;
+  const newView = viewOf(parseUrlState(formatUrlState(params))) !== viewOf(parseUrlState(location.search));
+  if ((push || newView) && !replace) history.pushState(null, '', url);
+  else history.replaceState(null, '', url);
 }

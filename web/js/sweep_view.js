@@ -24,8 +24,10 @@ export class SweepPage {
     this.timer = null;
     this.status = null;
     this.cell = null;
+    // the sweep on screen with another cell (Back, Forward, a click) keeps its page
     app.signals.pageChanged.add((page) => {
-      if (page && page.name === 'sweep') this.show(page.id).catch((e) => app.error(e));
+      if (page && page.name === 'sweep' && page.id === this.id && this.status) this.selectCell(page.cell);
+      else if (page && page.name === 'sweep') this.show(page.id, page.cell).catch((e) => app.error(e));
       else this.hide();
     });
   }
@@ -34,11 +36,12 @@ export class SweepPage {
 
   get shown() { return this.id !== null; }
 
-  async show(id) {
+  // `cell`: {family, config} to open once the report is there, or null
+  async show(id, cell = null) {
     this.hide();
     this.id = id;
     this.token = (this.token || 0) + 1;  // one polling chain per page shown
-    this.cell = null;
+    this.cell = cell ? { family: cell.family, config: cell.config, offset: 0 } : null;
     document.getElementById('center').classList.add('showing-page');
     $('sweep-page').hidden = false;
     $('sweep-page').innerHTML = '<p class="muted">loading the sweep…</p>';
@@ -85,8 +88,9 @@ export class SweepPage {
     } else {
       page.innerHTML = head + this.reportHtml(s.report) + '<div id="sweep-cell"></div>';
       page.querySelectorAll('.legend-item').forEach((el) => { el.style.color = CHART_COLOURS[Number(el.dataset.colour) % CHART_COLOURS.length]; });
+      // a cell has an address of its own (?sweep=ID&family=F&config=C)
       page.querySelectorAll('td[data-family]').forEach((td) => {
-        td.onclick = () => this.showCell(td.dataset.family, td.dataset.config).catch((e) => app.error(e));
+        td.onclick = () => app.execute({ type: 'openSweep', id: s.id, cell: { family: td.dataset.family, config: td.dataset.config } });
       });
       if (this.cell) this.showCell(this.cell.family, this.cell.config, this.cell.offset).catch((e) => app.error(e));
     }
@@ -141,6 +145,14 @@ export class SweepPage {
       <h3>Step cost</h3><p class="small muted">p50 / p99 µs per step, and the ratio to pinv (shifted geometric mean).</p>
       <table class="sweep-cost">${headRow}${cost}</table>
       <h3>Ranking</h3><table class="sweep-ranking"><tr><th>#</th><th>method</th><th>success</th><th>runs</th></tr>${ranking}</table>`;
+  }
+
+  // The cell the address names ({family, config}), or none.
+  selectCell(cell) {
+    if (cell && this.cell && this.cell.family === cell.family && this.cell.config === cell.config) return;
+    if (!cell) { this.cell = null; $('sweep-cell')?.replaceChildren(); return; }
+    if (!this.status.report) { this.cell = { ...cell, offset: 0 }; return; }  // shown when the report comes
+    this.showCell(cell.family, cell.config).catch((e) => app.error(e));
   }
 
   // One cell's runs, a page at a time.

@@ -5,7 +5,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { parseUrlState, formatUrlState, readUrl, writeUrl } from '../../../web/js/state.js';
 
-const DEFAULTS = { run: null, compare: [], sweep: null, paper: null, scenario: null, method: null, frame: null };
+const DEFAULTS = { run: null, compare: [], sweep: null, family: null, config: null, paper: null, scenario: null, method: null, frame: null };
 
 test('an empty query string opens nothing: every field at its default', () => {
   assert.deepEqual(parseUrlState(''), DEFAULTS);
@@ -65,7 +65,7 @@ test('a frame must be a non-negative integer; frame 0 is a frame', () => {
 test('unknown keys are ignored and a repeated key keeps its first value', () => {
   const url = parseUrlState('?foo=1&run=2&bar=&run=3&layout=stacked');
   assert.deepEqual(url, { ...DEFAULTS, run: 2 });
-  assert.deepEqual(Object.keys(url).sort(), ['compare', 'frame', 'method', 'paper', 'run', 'scenario', 'sweep']);
+  assert.deepEqual(Object.keys(url).sort(), ['compare', 'config', 'family', 'frame', 'method', 'paper', 'run', 'scenario', 'sweep']);
 });
 
 test('formatUrlState writes the given keys in order and drops null, undefined and empty values', () => {
@@ -110,4 +110,39 @@ test('readUrl reads location.search; writeUrl replaces the address only when it 
   globalThis.location = { pathname: '/dash/', search: '' };
   writeUrl({ scenario: '' });
   assert.equal(calls.length, 1, 'already bare: nothing to replace');
+});
+
+test("a sweep's cell: family and config together, and only with a sweep", () => {
+  assert.deepEqual(parseUrlState('?sweep=4&family=planar_clutter&config=dls%20%C2%B7%20lambda%3D0.1'),
+    { ...DEFAULTS, sweep: 4, family: 'planar_clutter', config: 'dls · lambda=0.1' });
+  assert.equal(parseUrlState('?sweep=4&family=f').family, null, 'a family without a config is no cell');
+  assert.equal(parseUrlState('?family=f&config=c').config, null, 'a cell without a sweep is nothing');
+  assert.equal(parseUrlState('?sweep=x&family=f&config=c').family, null, 'nor with a malformed sweep id');
+});
+
+test('writeUrl pushes a history entry for a new view and replaces for a frame or a pick', (t) => {
+  const saved = { location: globalThis.location, history: globalThis.history };
+  t.after(() => Object.assign(globalThis, saved));
+  const calls = [];
+  const go = (search) => { globalThis.location = { pathname: '/', search }; };
+  globalThis.history = {
+    pushState: (_, __, url) => { calls.push(['push', url]); go(url.slice(1)); },
+    replaceState: (_, __, url) => { calls.push(['replace', url]); go(url.slice(1)); },
+  };
+  go('');
+  writeUrl({ scenario: 'a', method: 'dls' });  // the start view still
+  writeUrl({ paper: 'sezgin' });
+  writeUrl({ sweep: 3 });
+  writeUrl({ sweep: 3, family: 'f', config: 'c' });
+  writeUrl({ run: 9 });
+  writeUrl({ run: 9, frame: 0 });
+  writeUrl({ run: 9, frame: 40 });
+  writeUrl({ run: 9, frame: 41 }, { push: true });  // a marker clicked
+  writeUrl({ compare: '9,10' });
+  writeUrl({}, { replace: true });  // the compare's run was deleted
+  assert.deepEqual(calls, [
+    ['replace', '/?scenario=a&method=dls'], ['push', '/?paper=sezgin'], ['push', '/?sweep=3'],
+    ['push', '/?sweep=3&family=f&config=c'], ['push', '/?run=9'], ['replace', '/?run=9&frame=0'],
+    ['replace', '/?run=9&frame=40'], ['push', '/?run=9&frame=41'], ['push', '/?compare=9%2C10'], ['replace', '/'],
+  ]);
 });
