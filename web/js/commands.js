@@ -123,6 +123,8 @@ export const commands = {
     const url = readUrl();
     if (url.scenario && app.scenarios.some((s) => s.name === url.scenario)) app.choice.scenario = url.scenario;
     if (url.method && app.methods.some((m) => m.name === url.method)) app.choice.method = url.method;
+    // the picker's first scenario is the choice until one is picked (the start page draws it)
+    if (!app.choice.scenario && app.scenarios.length) app.choice.scenario = app.scenarios[0].name;
     app.signals.scenariosChanged.dispatch();
     app.signals.methodsChanged.dispatch();
     try {
@@ -148,6 +150,7 @@ export const commands = {
   choose(c) {
     for (const key of ['scenario', 'method', 'rate']) if (c[key] !== undefined) app.choice[key] = c[key];
     if ((c.scenario !== undefined || c.method !== undefined) && !app.session) writeUrl({ scenario: app.choice.scenario, method: app.choice.method });
+    app.signals.choiceChanged.dispatch();
   },
 
   // Runs by id ({ids, layout, frame}): live ones attach, ended ones replay (at `frame`).

@@ -57,6 +57,7 @@ export const app = {
     playhead: new Signal(),        // (seq, frame | null) the replay's current frame (app.setPlayhead)
     scenariosChanged: new Signal(),  // () app.scenarios (and app.choice.scenario) loaded anew
     methodsChanged: new Signal(),  // () app.methods loaded
+    choiceChanged: new Signal(),   // () the pickers of a new run (app.choice) changed
     started: new Signal(),         // () the page opened what its address asked for
     status: new Signal(),          // (text) a line about work in progress (a batch run, a re-simulation)
     message: new Signal(),         // (text or error, kind 'error'|'info')
