@@ -168,9 +168,18 @@ await suite('start', [
     const bad = await eventually(async () => { const p = await preview(t.page); return /bad name/.test(p.message) ? p : null; }, 'the bad name in the view');
     check(/letters, digits/.test(bad.message), bad.message);
     await t.screenshot('unknown');
-    // a good pick draws again
+    // a good pick draws again; on a phone too, its label inside the view
     await t.page.selectOption('#scenario', '01_planar7_obstacles');
     await waitForPreview(t.page, '01_planar7_obstacles', '2d');
+    await t.page.setViewportSize({ width: 390, height: 844 });
+    await eventually(async () => (await preview(t.page)).drawn, 'the preview redrawn at phone size');
+    const fits = await t.page.evaluate(() => {
+      const note = document.querySelector('.preview-note').getBoundingClientRect();
+      const cell = document.querySelector('.preview-cell').getBoundingClientRect();
+      return note.left >= cell.left && note.right <= cell.right && note.bottom < cell.top + cell.height / 3;
+    });
+    check(fits, 'the label fits the view on a phone and leaves it most of its height');
+    await t.screenshot('phone');
     // Chromium logs the refusals (404, 400) as failed loads: expected here, nothing else is
     const rest = t.errors.filter((e) => !/status of 40[04]/.test(e));
     check(t.errors.length - rest.length === 2, `two refusals in the console (${t.errors.join('; ')})`);

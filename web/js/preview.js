@@ -67,7 +67,8 @@ export class StartPreview {
     this.snapshot = snapshot;
   }
 
-  // A fresh cell in the centre with the preview's caption: what it is, the first action, where next.
+  // A fresh cell in the centre with the preview's line (what it is, the first
+  // action, where next) above the element the view fills.
   makeCell(name) {
     const views = $('views');
     views.replaceChildren();
@@ -87,10 +88,13 @@ export class StartPreview {
       const button = e.target.closest('button[data-goto]');
       if (button) goTo(button.dataset.goto);
     });
-    cell.appendChild(note);
+    // the view below the line, so that the line hides nothing of the scene
+    const host = document.createElement('div');
+    host.className = 'preview-host';
+    cell.append(note, host);
     views.appendChild(cell);
     this.cell = cell;
-    return cell;
+    return host;
   }
 
   // The scenario could not be drawn: why, in the view (not on the message line).
