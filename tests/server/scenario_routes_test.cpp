@@ -1,6 +1,8 @@
 // Scenario validation without saving (the dashboard's editor) and names that
 // exist already: a scenario is never replaced.
 #include <algorithm>
+#include <string>
+#include <vector>
 
 #include "server_fixture.hpp"
 
@@ -139,7 +141,7 @@ TEST_F(ScenarioRoutes, PreviewAnswersTheFirstSnapshotAndStoresNothing) {
   const HttpResult unknown = get("/api/scenarios/no_such_scenario/preview");
   EXPECT_EQ(unknown.status, 404);
   EXPECT_EQ(error_of(unknown)["path"], "scenario");
-  for (const std::string bad : {"bad%20name", "a$b", std::string(65, 'x')}) {
+  for (const std::string& bad : std::vector<std::string>{"bad%20name", "a$b", std::string(65, 'x')}) {
     const HttpResult malformed = get("/api/scenarios/" + bad + "/preview");
     EXPECT_EQ(malformed.status, 400) << bad << ": " << malformed.body;
     EXPECT_EQ(error_of(malformed)["path"], "name") << bad;
