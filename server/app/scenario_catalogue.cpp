@@ -3,12 +3,14 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <regex>
 #include <sstream>
 
 #include <rrlab/methods/method.hpp>
 #include <rrlab/scenario/scenario.hpp>
 #include <rrlab/server/api/errors.hpp>
+#include <rrlab/server/app/stream_json.hpp>
 #include <rrlab/sim/simulator.hpp>
 #include <rrlab/storage/run_store.hpp>
 #include <rrlab/util/nesting_depth.hpp>
@@ -31,17 +33,24 @@ std::string excerpt(const json& doc, const char* key, const std::string& otherwi
 
 // A scenario as a run would take it: parsed, and its simulator built (some
 // parameters are checked against the arm only there). Unprocessable naming the path.
-Scenario checked_scenario(const json& document) {
+std::unique_ptr<Simulator> checked_simulator(const json& document) {
   try {
-    Scenario scenario = parse_scenario(document);
-    Simulator check(scenario);
-    return scenario;
+    return std::make_unique<Simulator>(parse_scenario(document));
   } catch (const ParamError& e) {
     const std::string path = e.param() == "method" ? "method.name" : "method.params." + e.param();
     throw DomainError(Problem::unprocessable, "invalid", path + ": " + e.what(), path);
   } catch (...) {
     rethrow_as_domain_error("", Problem::unprocessable);
   }
+}
+
+Scenario checked_scenario(const json& document) { return checked_simulator(document)->scenario(); }
+
+// A scenario's name: 1 to 64 of [A-Za-z0-9_.-] (invalid otherwise).
+void check_name(const std::string& name) {
+  static const std::regex pattern("[A-Za-z0-9_.-]{1,64}");
+  if (!std::regex_match(name, pattern))
+    throw DomainError(Problem::invalid, "invalid", "must be 1 to 64 letters, digits, '_', '-' or '.'", "name");
 }
 
 }  // namespace
@@ -131,9 +140,7 @@ json ScenarioCatalogue::document(const std::string& name) {
 }
 
 json ScenarioCatalogue::add(const std::string& name, const json& document) {
-  static const std::regex pattern("[A-Za-z0-9_.-]{1,64}");
-  if (!std::regex_match(name, pattern))
-    throw DomainError(Problem::invalid, "invalid", "must be 1 to 64 letters, digits, '_', '-' or '.'", "name");
+  check_name(name);
   checked_scenario(document);
   // never replaces: a file of scenarios/ nor one added earlier (runs name their scenario)
   const auto exists = [&] {
@@ -170,6 +177,11 @@ json ScenarioCatalogue::validate(const json& document) {
           {"dt", scenario.dt},
           {"duration", scenario.duration},
           {"steps", scenario.steps()}};
+}
+
+json ScenarioCatalogue::preview(const std::string& name) {
+  check_name(name);
+  return preview_snapshot_json(*checked_simulator(document(name)));
 }
 
 }  // namespace rrlab::server

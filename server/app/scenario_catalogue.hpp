@@ -37,6 +37,12 @@ class ScenarioCatalogue {
   // {"valid": true, name, exists, kind, dof, ...} for a scenario a run would
   // accept (unprocessable naming the path otherwise).
   nlohmann::json validate(const nlohmann::json& document);
+  // The snapshot a run of catalogue scenario `name` would start its stream
+  // with, frame 0 included (stream_json.hpp preview_snapshot_json), built as
+  // validate builds it and stored nowhere. invalid for a name that is not 1
+  // to 64 of [A-Za-z0-9_.-], not_found for an unknown one, unprocessable
+  // naming the path for a stored scenario a run would now refuse.
+  nlohmann::json preview(const std::string& name);
 
  private:
   nlohmann::json summary(const std::string& name, const nlohmann::json& doc, bool builtin);

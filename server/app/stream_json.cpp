@@ -260,6 +260,19 @@ nlohmann::json snapshot_json(const FrameContext& c, const Simulator& sim, const 
           {"frame", frame_text.empty() ? json() : parse_json(frame_text)}};
 }
 
+nlohmann::json preview_snapshot_json(const Simulator& sim) {
+  // as a lane's first snapshot (RunGroup, LaneSource): scene version 1, frame 0
+  const FrameContext context{0, 0, 1, "preview"};
+  FrameGeometry geometry(sim.model(), sim.scene(), sim.scenario().task.space);
+  std::string frame;
+  encode_frame(context, sim.frame(), sim.model(), sim.scene(), geometry, frame);
+  nlohmann::json snapshot = snapshot_json(context, sim, frame);
+  snapshot["run"] = nullptr;
+  snapshot["frame"]["run"] = nullptr;
+  snapshot["preview"] = true;
+  return snapshot;
+}
+
 nlohmann::json params_message_json(const FrameContext& c, const Simulator& sim) {
   return {{"type", "params"},
           {"run", c.run_id},

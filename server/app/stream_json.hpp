@@ -43,6 +43,11 @@ nlohmann::json model_json(const Model& model);
 // {"type":"snapshot", run, scenario, method, status, params, param_specs, diagnostic_names,
 //  model, task {space, path}, obstacles, scene_version, frame}
 nlohmann::json snapshot_json(const FrameContext& context, const Simulator& sim, const std::string& frame_text);
+// The snapshot a run's stream would start with, of a simulator just built and
+// of no run (GET /api/scenarios/{name}/preview): its frame 0 encoded as a
+// lane's (links, nearest, ellipsoid), "run": null, "status": "preview",
+// "preview": true. Stores nothing; the cost of one frame's geometry.
+nlohmann::json preview_snapshot_json(const Simulator& sim);
 // What changed without a new snapshot: {"type":"params", run, scene_version,
 // params} after a parameter change; {"type":"scene", run, scene_version,
 // obstacles} after an obstacle edit (obstacles in scenario syntax, without a

@@ -27,6 +27,7 @@ constexpr Route kRoutes[] = {
     {"POST", "/api/scenarios", post_scenario, true},
     {"POST", "/api/scenarios/validate", validate_scenario, true},  // the literal before the {} pattern
     {"GET", "/api/scenarios/{}", get_scenario},
+    {"GET", "/api/scenarios/{}/preview", preview_scenario, true},  // builds the scenario's simulator
     {"POST", "/api/runs", post_run, true},
     {"GET", "/api/runs", list_runs},
     {"GET", "/api/runs/{}", get_run},

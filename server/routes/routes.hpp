@@ -73,6 +73,7 @@ ApiResponse list_scenarios(RouteContext&);
 ApiResponse get_scenario(RouteContext&);
 ApiResponse post_scenario(RouteContext&);
 ApiResponse validate_scenario(RouteContext&);
+ApiResponse preview_scenario(RouteContext&);
 // run_routes.cpp
 ApiResponse post_run(RouteContext&);
 ApiResponse list_runs(RouteContext&);

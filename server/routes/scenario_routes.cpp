@@ -30,4 +30,11 @@ ApiResponse validate_scenario(RouteContext& c) {
   return json_response(200, c.runs.catalogue().validate(parse_body(c.request)));
 }
 
+// A catalogue scenario's first frame, drawn as a run's stream starts (the
+// dashboard's start page): its simulator built as validate builds it, frame 0
+// computed, nothing stored.
+ApiResponse preview_scenario(RouteContext& c) {
+  return json_response(200, c.runs.catalogue().preview(c.captures.at(0)));
+}
+
 }  // namespace rrlab::server

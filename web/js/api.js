@@ -111,6 +111,7 @@ export const paths = {
   frameFields: () => '/api/frame-fields',
   scenarios: (params) => `/api/scenarios${query(params)}`,
   scenario: (name) => `/api/scenarios/${enc(name)}`,
+  scenarioPreview: (name) => `/api/scenarios/${enc(name)}/preview`,  // the snapshot and frame 0 a run of it starts with
   validateScenario: () => '/api/scenarios/validate',
   runs: (params) => `/api/runs${query(params)}`,
   run: (id) => `/api/runs/${id}`,
@@ -169,6 +170,7 @@ export const api = {
   frameFields: () => request('GET', paths.frameFields()).then((table) => table.fields),
   scenarios: listScenarios,
   scenario: (name) => request('GET', paths.scenario(name)),
+  scenarioPreview: (name) => request('GET', paths.scenarioPreview(name)),
   validateScenario: (scenario) => request('POST', paths.validateScenario(), scenario),
   saveScenario: (scenario) => request('POST', paths.scenarios(), scenario),
 

@@ -156,6 +156,8 @@ export const commands = {
     api.health().then((h) => { app.version = h.version; }, () => {});
     const url = readUrl();
     choiceFrom(url);
+    // the picker's first scenario is the choice until one is picked (the start page draws it)
+    if (!app.choice.scenario && app.scenarios.length) app.choice.scenario = app.scenarios[0].name;
     app.signals.scenariosChanged.dispatch();
     app.signals.methodsChanged.dispatch();
     try {
@@ -197,6 +199,7 @@ export const commands = {
   choose(c) {
     for (const key of ['scenario', 'method', 'rate']) if (c[key] !== undefined) app.choice[key] = c[key];
     if ((c.scenario !== undefined || c.method !== undefined) && !app.session) writeUrl({ scenario: app.choice.scenario, method: app.choice.method });
+    app.signals.choiceChanged.dispatch();
   },
 
   // Runs by id ({ids, layout, frame}): live ones attach, ended ones replay (at `frame`).

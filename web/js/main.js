@@ -26,6 +26,7 @@ import { SweepPage } from './sweep_view.js';
 import { Papers } from './paper_view.js';
 import { ExportDialog } from './export_dialog.js';
 import { startRenderLoop, fps } from './render_loop.js';
+import { StartPreview } from './preview.js';
 
 app.define(commands);
 setTokenPrompt(askForToken);
@@ -51,10 +52,11 @@ const sweepList = new SweepList();
 new RunList({ sweeps: () => sweepList.sweeps });
 new SweepPage();
 new Papers();
-startRenderLoop({ replayBar, plots, metrics });
+const preview = new StartPreview();
+startRenderLoop({ replayBar, plots, metrics, preview });
 
 // For browser tests and for measuring: the state, the session and the frame rate.
-window.__rrlab = { app, fps, get session() { return app.session; }, plots, replay: replayBar };
+window.__rrlab = { app, fps, get session() { return app.session; }, plots, replay: replayBar, preview };
 
 app.execute({ type: 'start' });
 // Back and Forward: every view pushed a history entry (state.js writeUrl)

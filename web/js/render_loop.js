@@ -6,12 +6,14 @@ import { app } from './state.js';
 
 export const fps = { frames: 0, since: performance.now(), value: 0, renderMs: 0 };
 
-// replayBar, plots, metrics: the page's (tick(now), render(now), render(now)).
-export function startRenderLoop({ replayBar, plots, metrics }) {
+// replayBar, plots, metrics: the page's (tick(now), render(now), render(now));
+// preview: the start page's (render()), drawn while no session is on screen.
+export function startRenderLoop({ replayBar, plots, metrics, preview }) {
   const tick = (now) => {
     const t0 = performance.now();
     replayBar.tick(now);
     if (app.session) app.session.render();
+    else if (preview) preview.render();
     plots.render();
     metrics.render(now);
     fps.renderMs = 0.9 * fps.renderMs + 0.1 * (performance.now() - t0);

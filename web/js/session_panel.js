@@ -20,6 +20,8 @@ export class SessionPanel {
     const signals = app.signals;
     signals.sessionChanged.add((s) => (s ? this.opened(s) : this.closed()));
     signals.pageChanged.add((page) => { if (page) $('connection').textContent = page.name; });
+    // nothing opened by the address: the start page, ready for a first run
+    signals.started.add(() => { if (!app.session && !app.page) this.ready(); });
     signals.snapshot.add((lane) => { if (this.current(lane)) this.showTitle(app.session); });
     signals.frame.add((lane) => {
       const f = lane.frame;
@@ -32,7 +34,6 @@ export class SessionPanel {
     // a run or group opens with its views in sight (the centre column, or the page on a phone, may be
     // scrolled away: down the charts, a paper's or a sweep's page); an ended run that became its replay stays put
     signals.sessionOpened.add((s) => { if (!s.fromLive) $('views').scrollIntoView({ block: 'nearest' }); });
-    signals.viewCreated.add(() => $('empty-hint')?.remove());
     signals.control.add((controller) => { if (app.liveSession) this.showControl(controller); });
     signals.controlTaken.add((text) => { this.showControl('other'); app.error(text); });
     signals.message.add((what) => { if (what && what.code === 'not_controller') this.showControl('other'); });
@@ -78,7 +79,12 @@ export class SessionPanel {
     $('controls').hidden = true;
     $('session-title').textContent = '';
     $('status').textContent = '';
-    $('connection').textContent = 'not connected';
+    this.ready();
+  }
+
+  // Nothing on screen: the server answered and a run may start (muted, not a warning).
+  ready() {
+    $('connection').textContent = 'ready';
     $('connection').className = 'pill muted';
   }
 

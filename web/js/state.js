@@ -60,6 +60,7 @@ export const app = {
     seek: new Signal(),            // (seq) the address asks the replay on screen for another frame (Back / Forward)
     scenariosChanged: new Signal(),  // () app.scenarios (and app.choice.scenario) loaded anew
     methodsChanged: new Signal(),  // () app.methods loaded
+    choiceChanged: new Signal(),   // () the pickers of a new run (app.choice) changed
     started: new Signal(),         // () the page opened what its address asked for
     status: new Signal(),          // (text) a line about work in progress (a batch run, a re-simulation)
     message: new Signal(),         // (text or error, kind 'error'|'info')
