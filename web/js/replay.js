@@ -199,6 +199,7 @@ export class ReplayBar {
 
   // Called at the display rate: advances the playhead at the chosen speed.
   tick(now) {
+    this.retryLost(performance.now());
     if (!this.session || !this.playing) { this.lastTick = null; return; }
     const lane = this.session.lanes.find((l) => l.snapshot);  // a lane without frames has none
     const dt = lane ? lane.snapshot.dt : null;
@@ -228,6 +229,15 @@ export class ReplayBar {
     }
     const first = this.session.lanes[0];
     if (first.frame && first.frame.seq === this.players.get(first).wanted) this.present(first.frame);
+  }
+
+  // A frame asked for that has not come within REQUEST_TIMEOUT_MS (a control
+  // lost while the server's player was still starting, on a loaded machine)
+  // is asked for again, paused or playing: the lane never stays on a frame
+  // the scrubber has left.
+  retryLost(now) {
+    if (!this.session) return;
+    for (const [lane, p] of this.players) if (p.inflight !== null && now - p.inflightSince >= REQUEST_TIMEOUT_MS) this.request(lane);
   }
 
   // One request in flight per lane; the newest wish is sent when it is
