@@ -8,6 +8,7 @@
 #include <rrlab/collision/mesh_loader.hpp>
 #include <rrlab/kinematics/kinematics.hpp>
 #include <rrlab/server/api/errors.hpp>
+#include <rrlab/server/app/recorded_scene.hpp>
 #include <rrlab/sim/run_inputs.hpp>
 #include <rrlab/sim/simulator.hpp>
 #include <rrlab/storage/frame_codec.hpp>
@@ -110,14 +111,12 @@ json parse_or_null(const std::optional<std::string>& text) {
   }
 }
 
-// One run being written: its simulator (model, scene, scene events), the
-// kinematics workspace, and where it is.
+// One run being written: its scene as recorded (model, obstacles, inputs),
+// the kinematics workspace, and where it is.
 struct ExportLane {
   storage::RunRecord run;
-  std::unique_ptr<Simulator> sim;
+  std::unique_ptr<RecordedScene> scene;
   std::unique_ptr<KinematicsData> kinematics;
-  std::vector<storage::StoredEvent> events;  // those that change the picture
-  std::size_t next_event = 0;
   int dims = 2, links = 0, row_floats = 0;
   std::int64_t last = 0;  // the last stored seq
   std::string meta;       // the lane's metadata (JSON), without frames
@@ -130,7 +129,7 @@ struct ExportLane {
   std::int64_t estimate(std::int64_t stride) const {
     const std::int64_t rows_written = rows(stride);
     const std::int64_t batches = (rows_written + kExportBatchRows - 1) / kExportBatchRows;
-    const std::int64_t keyframes = std::min<std::int64_t>(std::int64_t(events.size()), rows_written) + 1;
+    const std::int64_t keyframes = std::min<std::int64_t>(std::int64_t(scene->inputs()), rows_written) + 1;
     return std::int64_t(meta.size()) + kExportLaneSlack + base64_size(rows_written * row_bytes()) +
            batches * kExportBatchSlack + keyframes * (obstacles_bytes * 2 + 128);
   }
@@ -143,30 +142,26 @@ ExportLane open_lane(storage::RunStore& store, const storage::RunRecord& run) {
   ExportLane lane;
   lane.run = run;
   try {
-    lane.sim = std::make_unique<Simulator>(storage::scenario_of_run(run));
+    lane.scene = std::make_unique<RecordedScene>(run, store.events(run.id));
   } catch (const std::exception& e) {
     throw DomainError(Problem::conflict, "wrong_state",
                       "run " + std::to_string(run.id) + ": the stored scenario no longer loads: " + e.what(), "id");
   }
-  const Model& model = lane.sim->model();
+  const Simulator& sim = lane.scene->sim();
+  const Model& model = sim.model();
   lane.kinematics = std::make_unique<KinematicsData>(model);
   lane.dims = model.kind == ModelKind::planar ? 2 : 3;
   lane.links = model.link_count();
   lane.row_floats = kExportScalars + lane.dims + 2 * lane.dims * lane.links;
   lane.last = run.frames - 1;
-  // as a replay draws them: every input but parameters and the joystick
-  for (storage::StoredEvent& e : store.events(run.id)) {
-    const std::optional<InputKind> kind = parse_input_kind(e.kind);
-    if (kind && *kind != InputKind::params && *kind != InputKind::joystick) lane.events.push_back(std::move(e));
-  }
-  lane.obstacles_bytes = std::int64_t(script_json(obstacles_json(lane.sim->scene())).size());
+  lane.obstacles_bytes = std::int64_t(script_json(obstacles_json(lane.scene->sim().scene())).size());
 
   json radii = json::array();
   for (const Link& l : model.links) radii.push_back(l.radius);
   json path = json::array();
-  if (!lane.sim->task().is_joystick())
+  if (!sim.task().is_joystick())
     for (int i = 0; i <= kExportPathSamples; ++i)
-      path.push_back(point_json(lane.sim->task().target_position(lane.sim->scenario().duration * i / kExportPathSamples),
+      path.push_back(point_json(sim.task().target_position(sim.scenario().duration * i / kExportPathSamples),
                                 lane.dims));
   lane.meta = script_json({
       {"run", run.id},
@@ -178,8 +173,8 @@ ExportLane open_lane(storage::RunStore& store, const storage::RunRecord& run) {
       {"created", run.created},
       {"compare_group", run.compare_group ? json(*run.compare_group) : json()},
       {"summary", parse_or_null(run.summary_json)},
-      {"dt", lane.sim->scenario().dt},
-      {"duration", lane.sim->scenario().duration},
+      {"dt", sim.scenario().dt},
+      {"duration", sim.scenario().duration},
       {"stored_frames", run.frames},
       {"model",
        {{"kind", to_string(model.kind)},
@@ -188,7 +183,7 @@ ExportLane open_lane(storage::RunStore& store, const storage::RunRecord& run) {
         {"base", point_json(model.base.translation(), 3)},
         {"reach", model.reach()},
         {"radii", radii}}},
-      {"task", {{"space", to_string(lane.sim->scenario().task.space)}, {"path", path}}},
+      {"task", {{"space", to_string(sim.scenario().task.space)}, {"path", path}}},
       {"row_floats", lane.row_floats},
       {"row", {"t", "task_error", "min_distance", "collided", "joint_limit_margin", "target", "links"}},
   });
@@ -281,22 +276,14 @@ class HtmlExport : public BodyStream {
   void append_row(ExportLane& lane, const storage::StoredFrame& stored) {
     const Frame frame = storage::unpack_frame(stored.data);
     // the scene's events up to this frame (a new keyframe when any changed it)
-    bool changed = rows_ == 0;
-    while (lane.next_event < lane.events.size() && lane.events[lane.next_event].seq <= stored.seq) {
-      const storage::StoredEvent& e = lane.events[lane.next_event++];
-      try {
-        apply_input(*lane.sim, e.kind, parse_json(e.payload_json));
-        changed = true;
-      } catch (const std::exception&) {
-      }
-    }
+    const bool changed = lane.scene->seek(stored.seq) || rows_ == 0;
     if (changed) {
-      lane.sim->scene().advance_to(frame.t);
+      lane.scene->sim().scene().advance_to(frame.t);
       keyframes_ += "RRLAB_LANE.scenes.push({\"row\":" + std::to_string(rows_) + ",\"t\":";
       keyframes_ += json(frame.t).dump();
-      keyframes_ += ",\"obstacles\":" + script_json(obstacles_json(lane.sim->scene())) + "});\n";
+      keyframes_ += ",\"obstacles\":" + script_json(obstacles_json(lane.scene->sim().scene())) + "});\n";
     }
-    const Model& model = lane.sim->model();
+    const Model& model = lane.scene->sim().model();
     if (frame.q.size() == model.dof())
       forward_kinematics(model, frame.q, *lane.kinematics);
     append_float32(frame.t, bytes_);

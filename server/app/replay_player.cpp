@@ -23,12 +23,12 @@ ReplayPlayer::ReplayPlayer(storage::RunStore& store, const storage::RunRecord& r
   if (from < 0 || from >= run_.frames)
     throw DomainError(Problem::invalid, "invalid", "must be in [0, " + std::to_string(run_.frames - 1) + "]", "from");
   try {
-    sim_ = std::make_unique<Simulator>(storage::scenario_of_run(run_));
-    geometry_ = std::make_unique<FrameGeometry>(sim_->model(), sim_->scene(), sim_->scenario().task.space);
+    scene_ = std::make_unique<RecordedScene>(run_, store_.events(run_.id));
+    const Simulator& sim = scene_->sim();
+    geometry_ = std::make_unique<FrameGeometry>(sim.model(), sim.scene(), sim.scenario().task.space);
   } catch (const std::exception& e) {
     throw DomainError(Problem::conflict, "wrong_state", std::string("the stored scenario no longer loads: ") + e.what());
   }
-  events_ = store_.events(run_.id);
   std::lock_guard lock(mutex_);
   show_locked(from);
 }
@@ -68,23 +68,7 @@ void ReplayPlayer::wait_exited() {
 
 void ReplayPlayer::show_locked(std::int64_t seq) {
   if (seq == shown_) return;
-  if (seq < shown_) {  // seeking back: replay the scene's events from the start
-    sim_ = std::make_unique<Simulator>(storage::scenario_of_run(run_));
-    next_event_ = 0;
-    ++scene_version_;
-  }
-  // scene events up to this frame (parameter and method events do not change the picture)
-  while (next_event_ < events_.size() && events_[next_event_].seq <= seq) {
-    const storage::StoredEvent& e = events_[next_event_++];
-    const std::optional<InputKind> kind = parse_input_kind(e.kind);
-    if (kind && *kind != InputKind::params && *kind != InputKind::joystick) {
-      try {
-        apply_input(*sim_, *kind, parse_json(e.payload_json));
-        ++scene_version_;
-      } catch (const std::exception&) {
-      }
-    }
-  }
+  scene_->seek(seq);  // the obstacle and method inputs recorded up to this frame
   bool found = false;
   store_.frames(run_.id, seq, seq, 1, [&](const storage::StoredFrame& f) {
     frame_ = storage::unpack_frame(f.data);
@@ -93,18 +77,19 @@ void ReplayPlayer::show_locked(std::int64_t seq) {
   });
   if (!found) return;
   shown_ = seq;
-  sim_->scene().advance_to(frame_.t);
-  const FrameContext context{run_.id, seq, scene_version_, playing_ ? "playing" : "paused"};
-  encode_frame(context, frame_, sim_->model(), sim_->scene(), *geometry_, encoded_);
+  Simulator& sim = scene_->sim();
+  sim.scene().advance_to(frame_.t);
+  const FrameContext context{run_.id, seq, scene_->version(), playing_ ? "playing" : "paused"};
+  encode_frame(context, frame_, sim.model(), sim.scene(), *geometry_, encoded_);
   published_.version += 1;
-  published_.scene_version = scene_version_;
+  published_.scene_version = scene_->version();
   published_.text = std::make_shared<const std::string>(encoded_);
   subscribers_.notify_all();
 }
 
 void ReplayPlayer::loop() {
   const auto period = std::chrono::duration<double>(1.0 / display_hz_);
-  const double dt = sim_->scenario().dt;
+  const double dt = scene_->sim().scenario().dt;
   std::unique_lock lock(mutex_);
   while (!stopping_) {
     wake_.wait_for(lock, period, [&] { return stopping_; });
@@ -154,8 +139,8 @@ json ReplayPlayer::control(const ReplayCommand& command) {
 
 std::string ReplayPlayer::snapshot() {
   std::lock_guard lock(mutex_);
-  const FrameContext context{run_.id, shown_, scene_version_, playing_ ? "playing" : "paused"};
-  json snap = snapshot_json(context, *sim_, encoded_);
+  const FrameContext context{run_.id, shown_, scene_->version(), playing_ ? "playing" : "paused"};
+  json snap = snapshot_json(context, scene_->sim(), encoded_);
   snap["replay"] = id_;
   snap["frames"] = run_.frames;
   return snap.dump();

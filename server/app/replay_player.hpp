@@ -14,6 +14,7 @@
 
 #include <rrlab/server/app/frame_geometry.hpp>
 #include <rrlab/server/app/frame_source.hpp>
+#include <rrlab/server/app/recorded_scene.hpp>
 #include <rrlab/server/app/run_types.hpp>
 #include <rrlab/sim/simulator.hpp>
 #include <rrlab/storage/run_store.hpp>
@@ -59,10 +60,8 @@ class ReplayPlayer final : public FrameSource, public std::enable_shared_from_th
 
   storage::RunStore& store_;
   storage::RunRecord run_;
-  std::vector<storage::StoredEvent> events_;
-  std::unique_ptr<Simulator> sim_;  // never stepped: model, scene and events
+  std::unique_ptr<RecordedScene> scene_;     // model, scene and method at the shown frame
   std::unique_ptr<FrameGeometry> geometry_;  // links, nearest obstacles, ellipsoid of the shown q
-  size_t next_event_ = 0;
   std::int64_t id_ = 0;
   std::string owner_;
   const std::chrono::steady_clock::time_point created_ = std::chrono::steady_clock::now();
@@ -76,7 +75,6 @@ class ReplayPlayer final : public FrameSource, public std::enable_shared_from_th
   Frame frame_;
   std::string encoded_;
   PublishedFrame published_;
-  std::uint64_t scene_version_ = 1;
   Subscribers subscribers_;
   bool exited_ = false;
   std::condition_variable exited_cv_;

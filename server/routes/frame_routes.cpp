@@ -7,6 +7,7 @@
 // "seq" and exact values (storage/frame_codec.hpp)]}.
 #include <algorithm>
 
+#include <rrlab/server/app/drawn_frames.hpp>
 #include <rrlab/server/routes/routes.hpp>
 #include <rrlab/sim/frame_csv.hpp>
 #include <rrlab/sim/frame_fields.hpp>
@@ -104,6 +105,22 @@ ApiResponse get_frames(RouteContext& c) {
   response.content_type = format == "csv" ? "text/csv" : "application/json";
   response.stream = std::make_shared<FrameExport>(c.runs.store(), run.id, from, to, stride, std::move(names),
                                                   format == "csv", run.dof);
+  return response;
+}
+
+// The frames as a replay draws them (app/drawn_frames.hpp), for the page's
+// local scrubbing.
+ApiResponse get_drawn_frames(RouteContext& c) {
+  const storage::RunRecord run = find_run(c, c.id());
+  const std::int64_t from = query_int(c, "from", 0, 0, INT64_MAX / 2);
+  const std::int64_t stride = query_int(c, "stride", 1, 1, 1'000'000);
+  const std::int64_t to = query_int(c, "to", std::max<std::int64_t>(run.frames - 1, 0), 0, INT64_MAX / 2);
+  if (run.frames > 0 && from > run.frames - 1)
+    throw DomainError(Problem::invalid, "invalid", "must be in [0, " + std::to_string(run.frames - 1) + "]", "from");
+  if (to < from) throw DomainError(Problem::invalid, "invalid", "must not be below from", "to");
+  ApiResponse response;
+  response.content_type = "application/x-ndjson";
+  response.stream = make_drawn_frames(c.runs.store(), run, from, to, stride);
   return response;
 }
 

@@ -42,6 +42,7 @@ constexpr Route kRoutes[] = {
     {"POST", "/api/runs/{}/joystick", post_joystick},
     {"POST", "/api/runs/{}/method", post_method},
     {"GET", "/api/runs/{}/frames", get_frames},
+    {"GET", "/api/runs/{}/drawn", get_drawn_frames, true},  // loads the run's scenario
     {"GET", "/api/runs/{}/export.html", get_run_export, true},  // loads the run's scenario
     {"POST", "/api/runs/{}/replay", post_replay, true},
     {"GET", "/api/replays/{}", get_replay},

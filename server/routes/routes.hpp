@@ -91,6 +91,7 @@ ApiResponse post_joystick(RouteContext&);
 ApiResponse post_method(RouteContext&);
 // frame_routes.cpp
 ApiResponse get_frames(RouteContext&);
+ApiResponse get_drawn_frames(RouteContext&);
 // The frame field table (sim/frame_fields.hpp): what the page charts and exports.
 ApiResponse get_frame_fields(RouteContext&);
 // replay_routes.cpp

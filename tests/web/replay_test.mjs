@@ -111,6 +111,72 @@ await suite('replay', [
     await allAt(t.page, sought, 'the plot click');
     await t.screenshot('compare-synced');
   }],
+  ['once its frames are in the page, a 3-lane replay seeks and plays without asking the server for a frame', async (t) => {
+    const group = await t.post('/api/compare', { scenario: '01_planar7_obstacles', methods: ['pinv', 'dls', 'gpm'], mode: 'batch' });
+    const ids = group.runs.map((r) => r.id);
+    // every frame the page asks a replay player for: a WebSocket control, or POST /api/replays/{id}/control
+    const asked = [];
+    t.page.on('websocket', (ws) => ws.on('framesent', (f) => { if (String(f.payload).includes('"control"')) asked.push(String(f.payload)); }));
+    t.page.on('request', (r) => { if (/\/api\/replays\/\d+\/control/.test(r.url())) asked.push(r.url()); });
+    await t.page.goto(`${t.base}/?compare=${ids.join(',')}&frame=0`);
+    await allAt(t.page, 0, 'the group at frame 0');
+    const memory = t.page.locator('#replay-memory');
+    await eventually(async () => (await memory.textContent()) === 'in memory', 'the frames to be held in the page');
+    check(/every frame/.test(await memory.getAttribute('title')), `the memory readout says what it holds: ${await memory.getAttribute('title')}`);
+    const before = asked.length;
+    const picture = () => t.page.evaluate(() => window.__rrlab.session.lanes.map((l) => JSON.stringify(l.frame.links)));
+    const start = await picture();
+    await t.page.locator('#scrubber').focus();
+    await t.page.keyboard.press('End');
+    await allAt(t.page, 799, 'End, from the page');
+    const end = await picture();
+    check(end.every((links, i) => links !== start[i]), 'every lane drew its last frame');
+    for (const k of [400, 123, 124, 5]) {
+      await t.page.evaluate((k) => window.__rrlab.replay.seek(k), k);
+      await allAt(t.page, k, `a seek to ${k}`);
+    }
+    await t.page.locator('#replay-play').click();
+    await eventually(async () => { const s = await shown(t.page); return s.playing && s.scrubber > 40; }, 'the group to play');
+    await t.page.locator('#replay-play').click();
+    await allAt(t.page, (await shown(t.page)).scrubber, 'paused where it stopped');
+    check(asked.length === before, `no frame asked of the server once held (${asked.slice(before).join(' | ')})`);
+    // the frame drawn is the stored one, as the player would send it
+    const stored = (await t.get(`/api/runs/${ids[1]}/frames?from=5&to=5`)).frames[0];
+    await t.page.evaluate(() => window.__rrlab.replay.seek(5));
+    await allAt(t.page, 5, 'frame 5');
+    const q = await t.page.evaluate(() => window.__rrlab.session.lanes[1].frame.q);
+    q.forEach((v, i) => check(Math.abs(v - stored.q[i]) <= 1e-6 * Math.max(1, Math.abs(stored.q[i])), `q${i + 1} drawn ${v}, stored ${stored.q[i]}`));
+    await t.screenshot('local-frames');
+  }],
+  ['a replay drawn from the page moves its obstacles as recorded, and asks the server across a method switch', async (t) => {
+    const run = await t.post('/api/runs', { scenario: '01_planar7_obstacles', mode: 'live', paused: true });
+    const step = async (n) => { for (let i = 0; i < n; ++i) await t.post(`/api/runs/${run.id}/control`, { action: 'step' }); };
+    await step(10);
+    await t.request('PUT', `/api/runs/${run.id}/obstacles/disc`, { position: [0.6, 1.0, 0] });
+    await step(10);
+    await t.post(`/api/runs/${run.id}/method`, { name: 'dls' });
+    await step(10);
+    await t.post(`/api/runs/${run.id}/control`, { action: 'stop' });
+    const events = await t.get(`/api/runs/${run.id}/events`);
+    const moved = events.find((e) => e.kind === 'obstacle').seq, switched = events.find((e) => e.kind === 'method').seq;
+    await t.page.goto(`${t.base}/?run=${run.id}&frame=0`);
+    const memory = t.page.locator('#replay-memory');
+    await eventually(async () => (await memory.textContent()) === 'in memory', 'the frames to be held in the page');
+    const disc = () => t.page.evaluate(() => {
+      const s = window.__rrlab.session.lanes[0].snapshot;
+      return s.obstacles.find((o) => o.id === 'disc').center[0];
+    });
+    const method = () => t.page.evaluate(() => window.__rrlab.session.lanes[0].snapshot.method);
+    const at = async (k) => { await t.page.evaluate((k) => window.__rrlab.replay.seek(k), k); await allAt(t.page, k, `frame ${k}`); };
+    await at(moved - 1);
+    check(Math.abs((await disc()) - 0.3) < 1e-9, `the disc where the scenario puts it before it was moved (${await disc()})`);
+    await at(moved);
+    await eventually(async () => Math.abs((await disc()) - 0.6) < 1e-9, 'the disc where it was moved to');
+    await at(switched);
+    await eventually(async () => (await method()) === 'dls', 'the switched method, from the server');
+    await at(moved - 1);
+    await eventually(async () => (await method()) === 'closest_point' && Math.abs((await disc()) - 0.3) < 1e-9, 'back before both');
+  }],
   ['recorded inputs are marked on the scrubber and the charts, each named, and a mark seeks to its frame', async (t) => {
     const run = await t.post('/api/runs', { scenario: '01_planar7_obstacles', mode: 'live', paused: true });
     const step = async (n) => { for (let i = 0; i < n; ++i) await t.post(`/api/runs/${run.id}/control`, { action: 'step' }); };

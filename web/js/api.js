@@ -63,10 +63,11 @@ function headers(extra) {
   return h;
 }
 
-// JSON in and out. A body is sent as application/json. A 401 asks for the
-// token (one prompt for all requests waiting), and again while the server
-// refuses what was typed; Cancel gives up with the 401.
-async function request(method, path, body) {
+// JSON in and out (`asText`: the answer's text, an error still JSON). A body
+// is sent as application/json. A 401 asks for the token (one prompt for all
+// requests waiting), and again while the server refuses what was typed;
+// Cancel gives up with the 401.
+async function request(method, path, body, asText = false) {
   let sent = '';
   const send = async () => {
     sent = stored(TOKEN_KEY);
@@ -90,6 +91,9 @@ async function request(method, path, body) {
     else token = await newToken(sent);
     if (!token) break;
     response = await send();
+  }
+  if (asText && response.ok) {
+    try { return await response.text(); } catch (e) { throw new ApiError(0, { code: 'network', message: 'the answer was cut short' }); }
   }
   const data = await response.json().catch(() => ({}));
   if (!response.ok) throw new ApiError(response.status, data.error || { message: response.statusText });
@@ -179,6 +183,7 @@ export const api = {
   startRun: (body) => request('POST', paths.runs(), body),  // {scenario, mode, rate?, method?, params?}
   deleteRun: (id) => request('DELETE', paths.run(id)),
   frames: (id, range) => request('GET', paths.runPart(id, 'frames', range)),  // {from, to, stride}
+  drawnFrames: (id, range) => request('GET', paths.runPart(id, 'drawn', range), undefined, true),  // NDJSON text (local_frames.js)
   framesLink: (id, format) => paths.runPart(id, 'frames', { format }),  // a download link, csv or json
   exportLink: (id) => paths.runPart(id, 'export.html'),  // a download link: the run as one HTML file that replays offline
   groupExportLink: (group) => paths.groupExport(group),

@@ -6,7 +6,14 @@
 // however it was asked for (scrubber, plot click, keyboard, deep link): they
 // hear of it through the playhead signal. What it asked each lane's player
 // for is its own (a map by lane), not the lane's.
+//
+// Frames come from the page's own memory once loaded (local_frames.js): a
+// seek draws every lane at once; the server's player is asked only for a
+// frame the page does not hold (a long run kept at a stride), and its answer
+// replaces the nearest held frame drawn meanwhile. A frame the player sends
+// that is no longer the one to show is not drawn (Session.frameGate).
 import { api } from './api.js';
+import { LocalReplay } from './local_frames.js';
 import { app } from './state.js';
 import { isTyping } from './dom.js';
 
@@ -17,7 +24,9 @@ const REQUEST_TIMEOUT_MS = 2000; // a frame asked for that never comes does not 
 export class ReplayBar {
   constructor() {
     this.session = null;
-    this.players = new Map();  // lane → {wanted, inflight, inflightSince, paused, shownSeq, stored}
+    this.players = new Map();  // lane → {wanted, inflight, inflightSince, paused, shownSeq, serverFrame, display, drawn, stored}
+    this.local = null;         // the lanes' frames in the page's memory (LocalReplay)
+    this.holdFrames = true;    // false: every frame from the server (bench/web/replay_scrub.mjs compares)
     this.playing = false;
     this.current = 0;
     this.head = 0;          // fractional playhead while playing, in frames
@@ -44,8 +53,8 @@ export class ReplayBar {
     app.signals.sessionChanged.add(() => this.detach());
     app.signals.sessionOpened.add((session, { frame, atFailure }) => { if (session.kind === 'replay' && !session.empty) this.attach(session, frame, atFailure); });
     app.signals.frame.add((lane) => { if (current(lane)) this.onFrame(lane, lane.frame); });
-    // a replay's snapshot carries the frame its player shows
-    app.signals.snapshot.add((lane) => { if (current(lane) && lane.frame) this.onFrame(lane, lane.frame); });
+    // a replay's snapshot carries the frame its player shows (and the scene there)
+    app.signals.snapshot.add((lane) => { if (current(lane)) this.onSnapshot(lane); });
     app.signals.storedFrames.add((lane, data) => { if (current(lane)) this.setStored(lane, data.frames); });
     app.signals.markers.add((markers) => { if (this.session) this.setMarkers(markers); });
     app.signals.failures.add((failures) => { if (this.session) this.setFailures(failures); });
@@ -65,8 +74,11 @@ export class ReplayBar {
     this.failures = [];
     this.awaitingFailure = Boolean(atFailure) && (startFrame === null || startFrame === undefined);
     this.players = new Map(session.lanes.map((lane) => [lane, {
-      wanted: null, inflight: null, inflightSince: 0, paused: false, shownSeq: lane.frame ? lane.frame.seq : null, stored: null,
+      wanted: null, inflight: null, inflightSince: 0, paused: false, shownSeq: lane.frame ? lane.frame.seq : null,
+      serverFrame: lane.frame, display: null, drawn: lane.frame ? lane.frame.seq : null, stored: null,
     }]));
+    session.frameGate = (lane, frame) => this.gate(lane, frame);
+    this.loadLocal(session);
     $('replay-bar').hidden = false;
     $('scrubber').max = String(this.last);
     const start = startFrame === null || startFrame === undefined ? 0 : startFrame;
@@ -122,7 +134,49 @@ export class ReplayBar {
     $('replay-bar').classList.toggle('has-failure', labels.length > 0);
   }
 
+  // The lanes' frames into the page's memory, in the background; the frame
+  // on screen is drawn from there once it is held.
+  loadLocal(session) {
+    if (this.local) this.local.cancel();
+    this.local = null;
+    if (!this.holdFrames) { this.showMemory(); return; }
+    const lanes = session.lanes.map((lane) => ({ key: lane, runId: lane.runId, frames: session.runs[lane.index].frames }));
+    const local = new LocalReplay(lanes, (id, range) => api.drawnFrames(id, range), () => {
+      if (this.local !== local) return;
+      this.showMemory();
+      if (!this.playing) for (const lane of session.lanes) this.drawHeld(lane);
+    });
+    this.local = local;
+    this.showMemory();
+    local.load();
+  }
+
+  // How much of the replay the page holds, beside the frame readout.
+  showMemory() {
+    const out = $('replay-memory');
+    const local = this.local;
+    if (!local) { out.textContent = ''; return; }
+    const mb = (local.bytes / 1048576).toFixed(1);
+    const percent = Math.floor(100 * local.progress);
+    if (local.error) {
+      out.textContent = 'frames from the server';
+      out.title = `The frames could not be loaded into the page (${local.error.message}): every seek asks the server.`;
+    } else if (!local.done) {
+      out.textContent = `loading ${percent} %`;
+      out.title = `Loading the frames into the page: ${mb} MB so far, at most ${local.budget / 1048576} MB. Seeks are drawn from the page once their frames are in.`;
+    } else {
+      out.textContent = local.stride > 1 ? `in memory: 1 in ${local.stride}` : 'in memory';
+      out.title = `${mb} MB of frames held in the page (budget ${local.budget / 1048576} MB)` +
+        (local.stride > 1 ? `: every ${local.stride}th frame of the longer lanes; the ones between come from the server when paused.` : ': every frame; seeks draw without asking the server.');
+    }
+    out.dataset.progress = String(percent);
+  }
+
   detach() {
+    if (this.session) this.session.frameGate = null;
+    if (this.local) this.local.cancel();
+    this.local = null;
+    this.showMemory();
     this.events = [];
     this.failures = [];
     this.awaitingFailure = false;
@@ -212,7 +266,8 @@ export class ReplayBar {
   }
 
   // The one place the current frame changes: every readout follows at once,
-  // every lane is asked for the frame (its last one when it is shorter).
+  // every lane draws the frame (its last one when it is shorter) from the
+  // page's memory, or asks the server for it.
   show(seq, writeAddress) {
     seq = Math.max(0, Math.min(this.last, Math.round(Number(seq) || 0)));
     this.current = seq;
@@ -224,11 +279,62 @@ export class ReplayBar {
     for (const lane of this.session.lanes) {
       const frames = this.session.runs[lane.index].frames;
       if (frames === 0) continue;
-      this.players.get(lane).wanted = Math.min(seq, frames - 1);
-      this.request(lane);
+      const p = this.players.get(lane);
+      p.display = Math.min(seq, frames - 1);
+      const drawn = this.drawHeld(lane);
+      // the exact frame from the server when the page holds only one near it (not while playing)
+      p.wanted = drawn === p.display || (drawn !== null && this.playing) ? null : p.display;
+      if (p.wanted !== null) this.request(lane);
     }
-    const first = this.session.lanes[0];
-    if (first.frame && first.frame.seq === this.players.get(first).wanted) this.present(first.frame);
+  }
+
+  // Draws the lane's frame to show from what the page holds: the exact frame
+  // (held, or the player's last), else the held one before it. The seq drawn,
+  // or null (nothing near is held, or its method is not the lane's: the
+  // player's snapshot brings a switched method's panel).
+  drawHeld(lane) {
+    const p = this.players.get(lane);
+    if (!p || p.display === null || !lane.snapshot) return null;
+    if (p.drawn === p.display) return p.drawn;
+    if (p.serverFrame && p.serverFrame.seq === p.display) { this.session.frame(lane, p.serverFrame, true); return p.display; }
+    const local = this.local && this.local.get(lane);
+    const seq = local ? local.nearest(p.display) : null;
+    if (seq === null) return null;
+    const scene = local.sceneAt(seq);
+    if (!scene || scene.method !== lane.snapshot.method) return null;
+    if (lane.localScene !== scene) {
+      this.session.sceneChanged(lane, { obstacles: scene.obstacles, scene_version: lane.snapshot.scene_version });
+      lane.localScene = scene;
+    }
+    this.session.frame(lane, local.frame(seq), true);
+    return seq;
+  }
+
+  // A frame the lane's player sent: its state noted, drawn only when it is
+  // the frame to show (one asked for earlier, or sent while the player still
+  // played on its own clock, is not); the newest wish goes out.
+  gate(lane, frame) {
+    const p = this.players.get(lane);
+    if (!p) return true;
+    p.shownSeq = frame.seq;
+    p.serverFrame = frame;
+    if (p.inflight === frame.seq || p.inflight === null) p.inflight = null;
+    const draw = frame.seq === p.display && p.drawn !== frame.seq;
+    if (!draw) this.request(lane);
+    return draw;
+  }
+
+  // The player's snapshot (on connecting, or when its scene changed) drew its
+  // own frame and obstacles: the frame to show is drawn again over it.
+  onSnapshot(lane) {
+    const p = this.players.get(lane);
+    if (!p) return;
+    const frame = lane.snapshot && lane.snapshot.frame;
+    lane.localScene = null;
+    if (frame) { p.shownSeq = frame.seq; p.serverFrame = frame; if (p.inflight === frame.seq) p.inflight = null; }
+    if (lane.frame && (p.display === null || lane.frame.seq === p.display)) this.onFrame(lane, lane.frame);
+    else if (p.display !== null) { p.drawn = null; this.drawHeld(lane); }
+    this.request(lane);
   }
 
   // A frame asked for that has not come within REQUEST_TIMEOUT_MS (a control
@@ -259,16 +365,14 @@ export class ReplayBar {
     api.replayControl(lane.replayId, body).catch((e) => { p.inflight = null; app.error(e); });
   }
 
-  // A frame of any lane arrived (its view has it already).
+  // A lane drew a frame (from the page's memory or the player; its view has it already).
   onFrame(lane, frame) {
     if (!this.session || !this.session.lanes.includes(lane)) return;
     const p = this.players.get(lane);
-    const previous = p.shownSeq;
-    p.shownSeq = frame.seq;
+    const previous = p.drawn;
+    p.drawn = frame.seq;
     // a jump (a seek, or frames skipped at speed): the trace is rebuilt up to this frame, not cleared
     if (lane.view && frame.seq !== previous && frame.seq !== (previous === null ? 0 : previous + 1)) this.rebuildTrace(lane, frame.seq);
-    if (p.inflight === frame.seq || p.inflight === null) p.inflight = null;
-    this.request(lane);
     if (lane.index === 0 && frame.seq === Math.min(this.current, this.session.runs[0].frames - 1)) this.present(frame);
   }
 

@@ -31,6 +31,7 @@ class Lane {
     this.framesReceived = 0;
     this.startParams = {};  // by method: the parameters of its first snapshot (the run's starting values)
     this.events = null;     // a replay's recorded inputs (api.events), once loaded
+    this.localScene = null; // a replay: the scene (local_frames.js) drawn from the page's memory
     this.recorded = null;   // a replay's method and parameters at the playhead (recorded.js): {method, params, seq}
     this.ready = new Promise((resolve) => { this.resolveReady = resolve; });  // the first snapshot
   }
@@ -50,6 +51,7 @@ export class Session {
     this.endSeen = false;   // sessionEnded dispatched
     this.fromLive = false;  // a live session that ended and became its replay (becomeReplay)
     this.shownStatus = null;  // lane 0's run status as the header shows it
+    this.frameGate = null;    // a replay's: (lane, frame) → whether a frame its player sent is drawn
   }
 
   // Every lane's label from its method and starting parameters (lane_labels.js):
@@ -268,8 +270,11 @@ export class Session {
     this.lanes[0].view.setLanes(this.lanes.slice(1));
   }
 
-  frame(lane, frame) {
+  // A frame to draw: from the lane's stream, which a replay's bar may hold
+  // back (frameGate: not the frame to show), or from the page's memory (`held`).
+  frame(lane, frame, held = false) {
     if (this.closed) return;
+    if (!held && this.frameGate && !this.frameGate(lane, frame)) return;
     lane.frame = frame;
     lane.framesReceived += 1;
     lane.status = frame.status;

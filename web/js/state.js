@@ -8,10 +8,21 @@
 // every new view is a history entry of its own (writeUrl), so Back and
 // Forward move between views.
 
+// A dispatch made by a listener of the same signal waits until every listener
+// has heard the one before it: all hear them in the order they were made
+// (a replay draws frames synchronously, and a frame may publish anew).
 export class Signal {
-  constructor() { this.listeners = []; }
+  constructor() { this.listeners = []; this.queue = null; }
   add(listener) { this.listeners.push(listener); }
-  dispatch(...args) { for (const listener of this.listeners) listener(...args); }
+  dispatch(...args) {
+    if (this.queue) { this.queue.push(args); return; }
+    this.queue = [args];
+    try {
+      for (let i = 0; i < this.queue.length; ++i) for (const listener of this.listeners) listener(...this.queue[i]);
+    } finally {
+      this.queue = null;
+    }
+  }
 }
 
 export const LANE_COLOURS = ['#1e88e5', '#ef6c00', '#2e7d32', '#8e24aa'];
