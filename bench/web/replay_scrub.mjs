@@ -7,6 +7,8 @@
 //   play: distinct frames every lane drew per second while playing at 1×
 //         (the run has 100 stored frames a second; the page draws at most one
 //         per display frame).
+//   webm: seconds to record frames 0-200 as a 1280×720 WebM at 30 frames/s
+//         (the Export dialog's video: 6.7 s of video), and the ratio to real time;
 // and how long the frames took to load and their size.
 // Usage (from tests/web, where playwright-core is installed):
 //   node ../../bench/web/replay_scrub.mjs
@@ -64,9 +66,14 @@ async function measure(label, ids, holdFrames) {
     });
     const seconds = (performance.now() - start) / 1000;
     replay.setPlaying(false);
-    return { median: seeks[seeks.length >> 1], max: seeks[seeks.length - 1], fps: Math.min(...drawn.map((d) => d.size)) / seconds };
+    const { recordVideo } = await import('./js/exports.js');
+    const t0 = performance.now();
+    const video = await recordVideo(window.__rrlab.session, (seq) => replay.showAndWait(seq), { from: 0, to: 200, fps: 30, width: 1280, height: 720 });
+    const webm = (performance.now() - t0) / 1000;
+    return { median: seeks[seeks.length >> 1], max: seeks[seeks.length - 1], fps: Math.min(...drawn.map((d) => d.size)) / seconds, webm, webmFrames: video.frames };
   });
-  console.log(`${label}: seek ${result.median.toFixed(1)} ms median, ${result.max.toFixed(1)} ms max; play ${result.fps.toFixed(1)} frames/s on every lane${loaded}`);
+  console.log(`${label}: seek ${result.median.toFixed(1)} ms median, ${result.max.toFixed(1)} ms max; play ${result.fps.toFixed(1)} frames/s on every lane; ` +
+    `webm of ${result.webmFrames} frames ${result.webm.toFixed(1)} s (${(result.webmFrames / 30 / result.webm).toFixed(2)}× real time)${loaded}`);
   await page.close();
 }
 

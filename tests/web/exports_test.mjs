@@ -61,6 +61,44 @@ await suite('exports', [
     await t.screenshot('after-exports');
   }],
 
+  ['a 4-lane figure wraps its legend and caption to its width: no text on other text, nothing cut at the edge, labels off the arms', async (t) => {
+    const group = await t.post('/api/compare', { scenario: '10_sezgin_ex1_lshape', mode: 'batch', methods: [
+      { name: 'ccp_voronoi', params: { ccp_link: 2 } }, { name: 'ccp_voronoi', params: { ccp_link: 3 } },
+      { name: 'pinv' }, { name: 'closest_point', params: { influence: 0.3, gain: 7 } }] });
+    await t.page.goto(`${t.base}/?compare=${group.runs.map((r) => r.id).join(',')}&frame=150`);
+    await eventually(() => t.page.evaluate(() => window.__rrlab.plots.charts.has('distance') && window.__rrlab.session.lanes.every((l) => l.frame && l.view)), 'the charts and views');
+    const figure = await exportFile(t, 'figure', { width: 800 });
+    const size = pngSize(figure.bytes);
+    const layout = await t.page.evaluate(async () => (await import('./js/exports.js')).figurePng.lastLayout);
+    check(size.width === 800 && size.height === layout.height, `the figure is as laid out (${size.width}×${size.height}, ${layout.height})`);
+    const texts = layout.boxes.filter((b) => b.text !== undefined);
+    for (const b of layout.boxes) check(b.x >= 0 && b.x + b.w <= 800 + 0.5 && b.y >= 0 && b.y + b.h <= layout.height + 0.5, `${b.kind} "${b.text || ''}" inside the figure: ${JSON.stringify({ x: b.x, y: b.y, w: b.w, h: b.h })}`);
+    const overlap = (a, b) => Math.min(a.x + a.w, b.x + b.w) > Math.max(a.x, b.x) && Math.min(a.y + a.h, b.y + b.h) > Math.max(a.y, b.y);
+    const inked = layout.boxes.filter((b) => b.kind !== 'views' && b.kind !== 'chart');
+    for (let i = 0; i < inked.length; ++i) for (let j = 0; j < i; ++j) check(!overlap(inked[i], inked[j]), `"${inked[i].text || inked[i].kind}" and "${inked[j].text || inked[j].kind}" do not overlap`);
+    check(texts.filter((b) => b.kind === 'caption').length > 2, 'the long caption wraps over several lines');
+    for (const label of ['ccp_link=2', 'ccp_link=3']) check(texts.some((b) => b.kind === 'legend' && b.text.includes(label)), `the legend names ${label}`);
+    // in every view, each obstacle name and distance is off every link of the arm
+    const crossings = await t.page.evaluate(async () => {
+      const { segmentHitsBox } = await import('./js/label_layout.js');
+      const out = [];
+      for (const lane of window.__rrlab.session.lanes) {
+        const view = lane.view;
+        view.dirty = true;
+        view.render();
+        for (const box of view.labelBoxes || []) {
+          for (const l of lane.frame.links) {
+            const a = view.toScreen([l[0], l[1]]), b = view.toScreen([l[3], l[4]]);
+            if (segmentHitsBox([a.x, a.y, b.x, b.y], box)) out.push(`${lane.label}: "${box.text}"`);
+          }
+        }
+      }
+      return out;
+    });
+    check(crossings.length === 0, `no label on a link (${crossings.join(', ')})`);
+    copyFileSync(join(screenshotDir, `exports-${figure.name}`), join(screenshotDir, 'exports-4-lane-figure.png'));
+  }],
+
   ['a replay exports as a WebM with one frame per stored frame of the range', async (t) => {
     const run = await t.post('/api/runs', { scenario: '01_planar7_obstacles', method: 'dls', mode: 'batch', steps: 300 });
     await t.page.goto(`${t.base}/?run=${run.id}&frame=0`);

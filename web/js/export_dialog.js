@@ -107,9 +107,10 @@ export class ExportDialog {
       const stride = Number($('export-stride').value), fps = Number($('export-fps').value);
       checkRange(from, to, Math.max(0, session.frameCount - 1), fps);
       if (!Number.isInteger(stride) || stride < 1) throw new Error('"every" takes a whole number of frames, 1 or more');
+      const started = performance.now();
       const result = await recordVideo(session, (seq) => this.replayBar.showAndWait(seq), {
         from, to, stride, fps, width, height,
-        onProgress: (done, total) => { $('export-progress').textContent = `recording frame ${done} of ${total}…`; },
+        onProgress: (done, total) => { $('export-progress').textContent = videoProgress(done, total, (performance.now() - started) / 1000); },
         cancelled: () => this.cancel,
       });
       download(result.blob, `${name}-frames-${from}-${to}${stride > 1 ? `-every-${stride}` : ''}-${fps}fps.webm`);
@@ -132,4 +133,12 @@ export class ExportDialog {
       frame ? `shown: t = ${frame.t.toFixed(2)} s (frame ${frame.seq ?? frame.step}); drawn by rrlab ${app.version || ''}`.trim() : 'drawn by rrlab',
     ];
   }
+}
+
+// "recording frame 40 of 201 · about 12 s left": the time left at the pace so far.
+export function videoProgress(done, total, seconds) {
+  const text = `recording frame ${done} of ${total}`;
+  if (done < 5 || !(seconds > 0)) return `${text}…`;
+  const left = Math.max(0, Math.round((seconds / done) * (total - done)));
+  return `${text} · about ${left < 60 ? `${left} s` : `${Math.floor(left / 60)} min ${left % 60} s`} left`;
 }

@@ -5,6 +5,7 @@
 // frame of the chosen range, at the chosen rate (encoded with the browser's
 // WebCodecs and written as WebM by webm_writer.js).
 import { WebmWriter } from './webm_writer.js';
+import { figureLayout } from './figure_layout.js';
 
 export const LIMITS = { minSide: 16, maxSide: 4096, maxFrames: 20000, maxFps: 120 };
 
@@ -89,40 +90,22 @@ export async function figurePng(session, plots, { width, meta }) {
     const image = await plots.chartImage(id, Math.round(width / ratio), Math.round(chartHeight / ratio));
     if (image) charts.push(image);
   }
-  const line = Math.round(width * 0.016);
-  const textHeight = line * (3 + meta.length);
-  const height = viewHeight + charts.length * (chartHeight + line * 1.6) + textHeight;
-  checkSize(width, Math.round(height));
   const out = document.createElement('canvas');
-  out.width = width;
-  out.height = Math.round(height);
   const c = out.getContext('2d');
+  const measure = (text, font) => { c.font = font; return c.measureText(text).width; };
+  const layout = figureLayout({ width, viewHeight, chartHeight, charts: charts.map((image) => ({ title: image.title, image })), lanes: session.lanes, meta }, measure);
+  checkSize(width, layout.height);
+  out.width = width;
+  out.height = layout.height;
   c.fillStyle = '#fff';
   c.fillRect(0, 0, out.width, out.height);
-  c.drawImage(viewsCanvas(session, width, viewHeight), 0, 0);
-  let y = viewHeight;
-  c.font = `600 ${Math.round(line * 0.9)}px system-ui, sans-serif`;
-  for (const image of charts) {
-    c.fillStyle = '#37474f';
-    c.fillText(image.title, Math.round(width * 0.01), y + line * 1.2);
-    y += line * 1.6;
-    c.drawImage(image.canvas, 0, y, width, chartHeight);
-    y += chartHeight;
+  for (const box of layout.boxes) {
+    if (box.kind === 'views') c.drawImage(viewsCanvas(session, box.w, box.h), box.x, box.y);
+    else if (box.kind === 'chart') c.drawImage(box.chart.image.canvas, box.x, box.y, box.w, box.h);
+    else if (box.kind === 'swatch') { c.fillStyle = box.colour; c.fillRect(box.x, box.y, box.w, box.h); }
+    else { c.font = box.font; c.fillStyle = box.colour; c.fillText(box.text, box.x, box.y + box.h * 0.8); }
   }
-  // legend: one swatch per lane
-  y += line * 1.2;
-  let x = Math.round(width * 0.01);
-  c.font = `600 ${line}px system-ui, sans-serif`;
-  for (const lane of session.lanes) {
-    c.fillStyle = lane.colour;
-    c.fillRect(x, y - line * 0.8, line, line * 0.8);
-    x += line * 1.4;
-    c.fillText(lane.label, x, y);
-    x += c.measureText(lane.label).width + line * 2;
-  }
-  c.fillStyle = '#455a64';
-  c.font = `${Math.round(line * 0.85)}px system-ui, sans-serif`;
-  for (const text of meta) { y += line * 1.3; c.fillText(text, Math.round(width * 0.01), y); }
+  figurePng.lastLayout = layout;  // what went where: the browser test checks its boxes
   return toBlob(out);
 }
 

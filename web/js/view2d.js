@@ -4,6 +4,7 @@
 // to fit again; drag an obstacle to move it. Same interface as View3D.
 import { drawOverlays2D, drawArm2D, ellipseScale } from './view2d_overlays.js';
 import { drawObstacle2D, obstacleAt, hitObstacle2D } from './view2d_obstacles.js';
+import { LabelLayout } from './label_layout.js';
 
 const TRACE_POINTS = 4000;
 
@@ -291,17 +292,48 @@ export class View2D {
     c.clearRect(0, 0, this.width, this.height);
     this.grid();
     if (!this.snapshot) return;
+    this.labels = [];  // obstacle names and distances: placed last, clear of the arm (drawLabels)
     this.path(this.snapshot.task.path);
     this.snapshot.obstacles.forEach((o, i) => drawObstacle2D(this, o, this.positionOf(i), i === this.selected));
     if (this.overlays.trace) this.drawTrace();
-    if (!this.frame) return;
-    drawOverlays2D(this, this.snapshot, this.frame, this.colour);
-    for (const lane of this.lanes) if (lane.frame && lane.snapshot) drawArm2D(this, lane.snapshot, lane.frame, lane.colour, 0.75);
-    this.marks = drawArm2D(this, this.snapshot, this.frame, this.colour, 1);  // the links' marks as drawn (link_marks.js)
-    this.cross(this.frame.target, '#2e7d32');
-    this.scaleBar();
-    if (this.label) this.caption(this.label, this.colour);
-    if (this.lanes.length) this.legend();
+    if (this.frame) {
+      drawOverlays2D(this, this.snapshot, this.frame, this.colour);
+      for (const lane of this.lanes) if (lane.frame && lane.snapshot) drawArm2D(this, lane.snapshot, lane.frame, lane.colour, 0.75);
+      this.marks = drawArm2D(this, this.snapshot, this.frame, this.colour, 1);  // the links' marks as drawn (link_marks.js)
+      this.cross(this.frame.target, '#2e7d32');
+    }
+    const taken = [this.scaleBar()];
+    if (this.label) taken.push(this.caption(this.label, this.colour));
+    if (this.lanes.length) taken.push(this.legend());
+    this.drawLabels(taken);
+  }
+
+  // A text label near (x, y) on screen, drawn once the arm is (drawLabels).
+  addLabel(text, x, y, colour) { this.labels.push({ text, x, y, colour }); }
+
+  // The labels where they cover no link of any arm drawn, no other label and
+  // none of the boxes `taken` (caption, legend, scale bar): label_layout.js.
+  // this.labelBoxes: where each went (tests read them).
+  drawLabels(taken) {
+    const c = this.context;
+    c.font = '11px system-ui, sans-serif';
+    const layout = new LabelLayout(this.width, this.height, (text) => c.measureText(text).width, 12);
+    for (const box of taken) if (box) layout.block(box);
+    const arms = [[this.snapshot, this.frame], ...this.lanes.map((l) => [l.snapshot, l.frame])];
+    for (const [snapshot, frame] of arms) {
+      if (!snapshot || !frame) continue;
+      frame.links.forEach((l, i) => {
+        const radius = snapshot.model.links[i] ? snapshot.model.links[i].radius : 0;
+        const a = this.toScreen([l[0], l[1]]), b = this.toScreen([l[3], l[4]]);
+        layout.blockSegment(a.x, a.y, b.x, b.y, Math.max(1.5, radius * this.scale));
+      });
+    }
+    this.labelBoxes = this.labels.map((label) => {
+      const box = layout.place(label.text, label.x, label.y);
+      c.fillStyle = label.colour;
+      c.fillText(label.text, box.x, box.y + box.h - 2);
+      return { text: label.text, ...box };
+    });
   }
 
   // A grid whose spacing is a 1-2-5 step about 60 px wide; the axes darker.
@@ -332,7 +364,9 @@ export class View2D {
     c.stroke();
     c.fillStyle = '#37474f';
     c.font = '12px system-ui, sans-serif';
-    c.fillText(metres >= 1 ? `${metres} m` : `${Math.round(metres * 1000)} mm`, x + px + 6, y);
+    const text = metres >= 1 ? `${metres} m` : `${Math.round(metres * 1000)} mm`;
+    c.fillText(text, x + px + 6, y);
+    return { x: x - 2, y: y - 14, w: px + 10 + c.measureText(text).width, h: 18 };  // what it covers
   }
 
   caption(text, colour) {
@@ -340,6 +374,7 @@ export class View2D {
     c.font = '600 13px system-ui, sans-serif';
     c.fillStyle = colour;
     c.fillText(text, 12, 20);
+    return { x: 10, y: 6, w: c.measureText(text).width + 4, h: 18 };
   }
 
   // Overlaid compare: which colour is which method.
@@ -347,11 +382,14 @@ export class View2D {
     const c = this.context;
     c.font = '600 12px system-ui, sans-serif';
     const entries = [[this.label || (this.snapshot && this.snapshot.method), this.colour], ...this.lanes.map((l) => [l.label, l.colour])];
+    let widest = 0;
     entries.forEach(([text, colour], i) => {
       c.fillStyle = colour;
       c.fillRect(12, 12 + 18 * i, 10, 10);
       c.fillText(text || '', 28, 21 + 18 * i);
+      widest = Math.max(widest, c.measureText(text || '').width);
     });
+    return { x: 10, y: 8, w: widest + 22, h: 18 * entries.length + 2 };
   }
 
   line(a, b) {

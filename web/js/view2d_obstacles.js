@@ -45,9 +45,7 @@ export function drawObstacle2D(view, o, at, selected) {
   if (o.id && view.scale > 40) {
     const centre = corners ? corners.reduce((a, p) => [a[0] + p[0] / corners.length, a[1] + p[1] / corners.length], [0, 0]) : at;
     const s = view.toScreen(centre);
-    c.fillStyle = '#455a64';
-    c.font = '11px system-ui, sans-serif';
-    c.fillText(o.id, s.x + 6, s.y - 6);
+    view.addLabel(o.id, s.x, s.y, '#455a64');
   }
 }
 

@@ -85,7 +85,6 @@ export function drawOverlays2D(view, snapshot, frame, colour) {
     for (const e of o.ellipses || []) ellipse(view, e.centre, e.axes, 1);
   }
   if (on.nearest && frame.nearest) {
-    c.font = '11px system-ui, sans-serif';
     // every link's segment; the distance written once per obstacle, at its nearest link
     const labelled = new Map();
     for (const n of frame.nearest) if (n[2] !== null && (!labelled.has(n[1]) || n[2] < labelled.get(n[1])[2])) labelled.set(n[1], n);
@@ -100,8 +99,7 @@ export function drawOverlays2D(view, snapshot, frame, colour) {
       c.setLineDash([]);
       if (!labels.has(n)) continue;
       const m = view.toScreen([(ax + bx) / 2, (ay + by) / 2]);
-      c.fillStyle = c.strokeStyle;
-      c.fillText(`${distance.toFixed(3)} m`, m.x + 4, m.y - 3);
+      view.addLabel(`${distance.toFixed(3)} m`, m.x, m.y, c.strokeStyle);
     }
   }
   if (on.manipulability && frame.ellipsoid) {
