@@ -87,6 +87,35 @@ await suite('compare', [
     check(page.includes('ccp_link=2') && page.includes('ccp_link=3'), 'ccp_link=2 and ccp_link=3 on the page');
     await t.screenshot('labels');
   }],
+  ['a parameter the server refuses is marked at its row, in words, and the row keeps what was typed', async (t) => {
+    await t.page.goto(t.base + '/');
+    await t.page.waitForSelector('#compare-rows .compare-row');
+    const rows = t.page.locator('#compare-rows .compare-row');
+    await rows.nth(1).locator('select').selectOption('dls');
+    await rows.nth(1).locator('input').fill('lamda=0.1');
+    await t.page.click('#start-compare');
+    const note = rows.nth(1).locator('.field-error');
+    await eventually(async () => (await note.count()) === 1 && (await note.textContent()).length > 0, 'the message at the second row');
+    const text = await note.textContent();
+    check(/^method 2 \(dls\): lamda: unknown parameter of dls \(known: .*lambda/.test(text), `said at the row, without the API path: ${text}`);
+    check((await rows.nth(1).locator('input').getAttribute('aria-invalid')) === 'true' && (await rows.nth(1).locator('input').inputValue()) === 'lamda=0.1', 'the field marked, its text kept');
+    check(!(await t.page.isVisible('#message')) && !text.includes('methods['), 'no banner, no path');
+    await t.screenshot('row-refused');
+    // a list that is not name=value: said at its row before anything is sent
+    await rows.nth(0).locator('input').fill('lambda');
+    await t.page.click('#start-compare');
+    await eventually(async () => /^method 1 \(pinv\): write parameters as name=value/.test(await rows.nth(0).locator('.field-error').textContent()), 'the first row\'s message');
+    check(!(await rows.nth(1).locator('.field-error').isVisible()), 'the second row\'s old message cleared');
+    // corrected: the group starts, the marks go
+    await rows.nth(0).locator('input').fill('');
+    await rows.nth(1).locator('input').fill('lambda=0.1');
+    await t.page.selectOption('#rate', '0');
+    await t.page.click('#start-compare');
+    await eventually(() => t.page.evaluate(() => Boolean(window.__rrlab.session && window.__rrlab.session.compare)), 'the group started');
+    check(await rows.nth(1).locator('input').getAttribute('aria-invalid') === null, 'the mark cleared');
+    for (let i = t.errors.length - 1; i >= 0; --i) if (/status of 400/.test(t.errors[i])) t.errors.splice(i, 1);  // the refusal the test asked for
+  }],
+
   ['methods that give the same result are said to give no difference', async (t) => {
     // damped least squares without damping is the pseudoinverse
     const group = await t.post('/api/compare', { scenario: '01_planar7_obstacles', methods: ['pinv', { name: 'dls', params: { lambda: 0 } }], mode: 'batch' });

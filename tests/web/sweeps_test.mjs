@@ -142,6 +142,16 @@ await suite('sweeps', [
     forgiveRefusals(t);
     await t.page.fill('#sweep-spec', '{"name": ');
     check((await t.page.textContent('#sweep-syntax')).startsWith('not JSON'), 'a spec that is not JSON says so as it is typed');
+    check((await t.page.textContent('#sweep-error')) === '', 'an edit clears the refusal of the spec before it');
+    await t.page.fill('#sweep-spec', '{\n  "name": "x",\n  "methods": ["pinv",]\n}');
+    check(/^not JSON yet: line 3, column 22/.test(await t.page.textContent('#sweep-syntax')), `the JSON error names its line and column (${await t.page.textContent('#sweep-syntax')})`);
+    // every problem, each at its entry, though the server names the first only
+    await t.page.fill('#sweep-spec', JSON.stringify({ ...SPEC, name: 'dialog-sweep', methods: ['pinv', 'lamda', 'dls', 'gpmm'] }));
+    const problems = () => t.page.locator('#sweep-syntax li').allTextContents();
+    await eventually(async () => (await problems()).length === 2, 'the two unknown methods listed');
+    const listed = await problems();
+    check(/^methods\[1\]/.test(listed[0]) && /lamda/.test(listed[0]) && /^methods\[3\]/.test(listed[1]) && /gpmm/.test(listed[1]), `each at its entry: ${listed.join(' | ')}`);
+    check((await t.page.textContent('#sweep-syntax')).includes('2 problems'), 'the count said');
     // checked by the server as it is typed: what is wrong, or what it would run
     await t.page.fill('#sweep-spec', JSON.stringify({ ...SPEC, name: 'dialog-sweep', success: { max_tracking_error: -1 } }));
     await eventually(async () => (await t.page.textContent('#sweep-syntax')).includes('success.max_tracking_error'), 'the server naming the bad field');

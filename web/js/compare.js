@@ -5,7 +5,7 @@ import { api, ApiError } from './api.js';
 import { app, LANE_COLOURS } from './state.js';
 import { DEFAULT_CRITERION, compareVerdict } from './compare_verdict.js';
 import { escapeHtml, fmt } from './dom.js';
-import { parseTypedNumber, refuse, accept } from './typed_number.js';
+import { parseTypedNumber, refuse, accept, mark } from './typed_number.js';
 
 const $ = (id) => document.getElementById(id);
 const MAX_LANES = 4;
@@ -62,7 +62,7 @@ export class CompareSetup {
       const params = {};
       for (const part of row.querySelector('input').value.split(',').map((s) => s.trim()).filter(Boolean)) {
         const [key, value] = part.split('=').map((s) => s.trim());
-        if (!key || value === undefined || value === '') throw new ApiError(400, { message: `write parameters as name=value (method ${i + 1}: "${part}")`, path: `methods[${i}].params` });
+        if (!key || value === undefined || value === '') throw new ApiError(400, { message: `write parameters as name=value, separated by commas, with a decimal point ("${part}")`, path: `methods[${i}].params` });
         params[key] = Number.isFinite(Number(value)) ? Number(value) : value;
       }
       return Object.keys(params).length ? { name, params } : name;
@@ -70,9 +70,29 @@ export class CompareSetup {
   }
 
   // The group starts as one live compare (the rate of the new-run pickers).
+  // A refused method or parameter is marked at its row, in its words.
   async submit() {
-    const body = { scenario: $('compare-scenario').value, methods: this.methods(), mode: 'live', rate: app.choice.rate };
-    await app.execute({ type: 'startCompare', body, layout: $('compare-layout').value, report: false });
+    const rows = [...$('compare-rows').children];
+    for (const row of rows) accept(row.querySelector('input'));
+    try {
+      const body = { scenario: $('compare-scenario').value, methods: this.methods(), mode: 'live', rate: app.choice.rate };
+      await app.execute({ type: 'startCompare', body, layout: $('compare-layout').value, report: false });
+    } catch (e) {
+      if (!this.showAtRow(e, rows)) throw e;
+    }
+  }
+
+  // An error whose path names a method (`methods[1].params.lamda`): at that
+  // row, without the path ("lamda: unknown parameter of dls (known: …)").
+  showAtRow(e, rows) {
+    const m = /^methods\[(\d+)\](?:\.params)?\.?(.*)$/.exec((e && e.path) || '');
+    const row = m && rows[Number(m[1])];
+    if (!row) return false;
+    const message = String(e.message).replace(/^methods\[\d+\](\.params)?\.?/, '');
+    const what = m[2] && !message.startsWith(m[2]) ? `${m[2]}: ${message}` : message;
+    mark(row.querySelector('input'), `method ${Number(m[1]) + 1} (${row.querySelector('select').value}): ${what}`, row.querySelector('.fields'));
+    row.querySelector('input').focus();
+    return true;
   }
 }
 

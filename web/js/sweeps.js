@@ -4,6 +4,7 @@
 import { api, describeError } from './api.js';
 import { app } from './state.js';
 import { escapeHtml } from './dom.js';
+import { sweepProblems, jsonErrorAt } from './sweep_problems.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -87,29 +88,45 @@ export class SweepList {
   checkSyntax() {
     const text = $('sweep-spec').value;
     clearTimeout(this.validateTimer);
+    $('sweep-error').textContent = '';  // a start refused earlier: about the spec before this edit
+    const asked = ++this.validations;
     let spec;
     try {
       spec = JSON.parse(text);
     } catch (e) {
-      $('sweep-syntax').textContent = `not JSON yet: ${e.message}`;
-      $('sweep-syntax').className = 'small bad';
+      this.say(`not JSON yet: ${jsonErrorAt(text, e)}`, 'bad');
       return false;
     }
-    $('sweep-syntax').textContent = 'valid JSON; checking it with the server…';
-    $('sweep-syntax').className = 'small muted';
-    const asked = ++this.validations;
+    this.say('valid JSON; checking it with the server…', 'muted');
     this.validateTimer = setTimeout(() => {
       api.validateSweep(spec).then((v) => {
         if (asked !== this.validations) return;
-        $('sweep-syntax').textContent = `valid: ${v.total} runs (${v.scenario_entries} scenario entries × ${v.configurations} method configurations, cases included)`;
-        $('sweep-syntax').className = 'small ok';
-      }, (e) => {
+        this.say(`valid: ${v.total} runs (${v.scenario_entries} scenario entries × ${v.configurations} method configurations, cases included)`, 'ok');
+      }, async (e) => {
         if (asked !== this.validations) return;
-        $('sweep-syntax').textContent = `the server refuses it: ${describeError(e)}`;
-        $('sweep-syntax').className = 'small bad';
+        // every problem, each at its entry (the server names the first only)
+        let found;
+        try { found = await sweepProblems(spec, (s) => api.validateSweep(s)); } catch (_) { found = { problems: [{ path: e.path, message: describeError(e) }], unchecked: 0 }; }
+        if (asked !== this.validations) return;
+        const { problems, unchecked } = found;
+        if (!problems.length) { this.say(`the server refuses it: ${describeError(e)}`, 'bad'); return; }
+        this.say(`the server refuses it (${problems.length === 1 ? 'one problem' : `${problems.length} problems`}${unchecked ? `; ${unchecked} more entries not checked one by one` : ''}):`, 'bad', problems.map((p) => p.message));
       });
     }, 400);
     return true;
+  }
+
+  // The line under the spec: a verdict, and the problems as a list.
+  say(text, kind, items = []) {
+    const out = $('sweep-syntax');
+    out.className = `small ${kind}`;
+    out.replaceChildren(document.createTextNode(text));
+    if (items.length) {
+      const list = document.createElement('ul');
+      list.className = 'problems';
+      for (const item of items) { const li = document.createElement('li'); li.textContent = item; list.appendChild(li); }
+      out.appendChild(list);
+    }
   }
 
   showError(e) {
@@ -117,6 +134,7 @@ export class SweepList {
   }
 
   async submit() {
+    $('sweep-error').textContent = '';
     if (!this.checkSyntax()) return;
     const spec = JSON.parse($('sweep-spec').value);
     const jobs = Number($('sweep-jobs').value);

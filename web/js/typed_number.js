@@ -40,11 +40,17 @@ function messageOf(field, after = field) {
 
 // A refused value: the field is marked with the message beside it and shows the current value again.
 export function refuse(field, message, current, after = field) {
+  mark(field, message, after);
+  field.value = current;
+}
+
+// A field marked as wrong, the message beside it (after `after`), its text
+// kept to be corrected (a list of parameters, not one number to put back).
+export function mark(field, message, after = field) {
   const note = messageOf(field, after);
   note.textContent = message;
   note.hidden = false;
   field.setAttribute('aria-invalid', 'true');
-  field.value = current;
 }
 
 // An accepted value clears the field's mark.
