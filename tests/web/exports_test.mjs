@@ -48,6 +48,16 @@ await suite('exports', [
     await t.page.goto(`${t.base}/?run=${run.id}&frame=300`);
     await eventually(async () => { const l = await pageState.lane(t.page); return l && l.seq === 300; }, 'frame 300');
     await eventually(() => t.page.evaluate(() => window.__rrlab.plots.charts.has('distance')), 'the charts');
+    // a typed number is read one way only: refused at its field, never a 10× value
+    await t.page.click('#open-export');
+    await t.page.selectOption('#export-what', 'view');
+    await t.page.fill('#export-width', '1234,5');
+    await t.page.click('#export-go');
+    await eventually(async () => (await t.page.getAttribute('#export-width', 'aria-invalid')) === 'true', 'the width marked');
+    const note = await t.page.textContent('#export-dialog .field-error');
+    check(/^width: 1234\.5 is not a whole number/.test(note), `the message beside the field: ${note}`);
+    check(!(await t.page.isVisible('#message')), 'no banner for a field');
+    await t.page.click('#export-cancel');
     const view = await exportFile(t, 'view', { width: 1234, height: 567 });
     const size = pngSize(view.bytes);
     check(size.width === 1234 && size.height === 567, `the view PNG is 1234×567 (${size.width}×${size.height})`);
@@ -117,8 +127,10 @@ await suite('exports', [
     await t.page.fill('#export-from', '200');
     await t.page.fill('#export-to', '100');
     await t.page.click('#export-go');
-    await eventually(async () => (await t.page.textContent('#export-progress')).includes('from ≤ to'), 'the refusal');
-    t.errors.length = 0;  // the refusal is shown as the page's error message too
+    await eventually(async () => (await t.page.getAttribute('#export-to', 'aria-invalid')) === 'true', 'the refusal');
+    const note = await t.page.textContent('#export-dialog .field-error:not([hidden])');
+    check(/^to frame: 100 is out of range: type a number in \[200, 299\]/.test(note), `the range refused at its field: ${note}`);
+    await t.screenshot('range-refused');
   }],
 
   ['a compare group exports side by side, every second frame', async (t) => {

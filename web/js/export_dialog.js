@@ -5,7 +5,8 @@
 import { api } from './api.js';
 import { app } from './state.js';
 import { escapeHtml } from './dom.js';
-import { viewPng, chartPng, figurePng, recordVideo, checkRange, download } from './exports.js';
+import { parseTypedNumber, mark, accept } from './typed_number.js';
+import { viewPng, chartPng, figurePng, recordVideo, checkRange, download, LIMITS } from './exports.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -61,7 +62,7 @@ export class ExportDialog {
     const notes = {
       view: 'Drawn afresh at this size (3D: distance and lane labels are HTML and are left out).',
       figure: 'The height follows from the width and the lanes.',
-      video: 'One video frame per stored frame of the range (every N-th), at the chosen rate; it takes about as long as the video lasts.',
+      video: 'One video frame per stored frame of the range (every N-th), at the chosen rate; drawn from the frames the page holds, it records faster than the video lasts.',
       html: 'One file with the stored frames, views, scrubber and charts: it opens from disk with no network (a run over 20 MB is decimated, with a note in the file).',
     };
     $('export-note').textContent = notes[what] || 'The chart drawn afresh at this size, with its title.';
@@ -79,14 +80,33 @@ export class ExportDialog {
     this.busy = false;
     $('export-go').disabled = false;
     $('export-progress').textContent = `Not exported: ${error.message || error}`;
-    app.error(`export: ${error.message || error}`);
+    if (!error.field) app.error(`export: ${error.message || error}`);  // a field's refusal is said beside it
+  }
+
+  // A typed number of the dialog (a decimal comma is a decimal point, never
+  // dropped): refused at its field, with the message beside it.
+  read(id, { min, max, integer = true, what }) {
+    const field = $(id);
+    const read = parseTypedNumber(field.value, { min, max });
+    let message = read.error;
+    if (!message && integer && !Number.isInteger(read.value)) message = `${read.value} is not a whole number`;
+    if (message) {
+      mark(field, `${what}: ${message}`, field.closest('label') || field);
+      const error = new Error(`${what}: ${message}`);
+      error.field = id;
+      throw error;
+    }
+    return read.value;
   }
 
   async run() {
     const session = app.session;
     if (!session || this.busy) return;
     const what = $('export-what').value;
-    const width = Number($('export-width').value), height = Number($('export-height').value);
+    for (const id of ['export-width', 'export-height', 'export-from', 'export-to', 'export-stride', 'export-fps']) accept($(id));
+    const size = { min: LIMITS.minSide, max: LIMITS.maxSide };
+    const width = what === 'html' ? 0 : this.read('export-width', { ...size, what: 'width' });
+    const height = what === 'view' || what === 'video' || what.startsWith('chart:') ? this.read('export-height', { ...size, what: 'height' }) : 0;
     const name = `rrlab-run-${session.runIds.join('-')}`;
     this.busy = true;
     this.cancel = false;
@@ -103,8 +123,11 @@ export class ExportDialog {
     else if (what.startsWith('chart:')) download(await chartPng(this.plots, what.slice(6), width, height), `${name}-${what.slice(6)}-${width}x${height}.png`);
     else if (what === 'figure') download(await figurePng(session, this.plots, { width, meta: this.metadata(session) }), `${name}-figure.png`);
     else if (what === 'video') {
-      const from = Number($('export-from').value), to = Number($('export-to').value);
-      const stride = Number($('export-stride').value), fps = Number($('export-fps').value);
+      const last = Math.max(0, session.frameCount - 1);
+      const from = this.read('export-from', { min: 0, max: last, what: 'from frame' });
+      const to = this.read('export-to', { min: from, max: last, what: 'to frame' });
+      const stride = this.read('export-stride', { min: 1, max: Math.max(1, to - from + 1), what: 'every' });
+      const fps = this.read('export-fps', { min: 1, max: LIMITS.maxFps, integer: false, what: 'rate' });
       checkRange(from, to, Math.max(0, session.frameCount - 1), fps);
       if (!Number.isInteger(stride) || stride < 1) throw new Error('"every" takes a whole number of frames, 1 or more');
       const started = performance.now();
