@@ -4,6 +4,7 @@
 import { api, ApiError } from './api.js';
 import { app, LANE_COLOURS } from './state.js';
 import { DEFAULT_CRITERION, compareVerdict } from './compare_verdict.js';
+import { failureTimes } from './first_failure.js';
 import { escapeHtml, fmt } from './dom.js';
 import { parseTypedNumber, refuse, accept, mark } from './typed_number.js';
 
@@ -107,15 +108,25 @@ let shown = null;
 async function showCompareSummary(session) {
   const runs = await Promise.all(session.runIds.map((id) => api.run(id)));
   if (session.closed || runs.some((r) => !r.summary)) return;  // another session was opened meanwhile
-  shown = { session, summaries: runs.map((r) => r.summary) };
+  shown = { session, summaries: runs.map((r) => r.summary), frames: storedFrames.get(session) || [] };
   renderSummary();
 }
+
+// The lanes' stored frames (a replay's), by session: when each reason began.
+const storedFrames = new WeakMap();
 
 // The summary follows the session: a stored group's at once, a live group's at its end.
 export function setupCompareSummary() {
   app.signals.sessionChanged.add(() => hideCompareSummary());
   app.signals.sessionOpened.add((session) => { if (session.kind === 'replay' && session.compare) showCompareSummary(session).catch((e) => app.error(e)); });
   app.signals.sessionEnded.add((session) => { if (session.compare) showCompareSummary(session).catch((e) => app.error(e)); });
+  app.signals.storedFrames.add((lane, data) => {
+    const session = app.session;
+    if (!session || !session.compare || !session.lanes.includes(lane)) return;
+    if (!storedFrames.has(session)) storedFrames.set(session, []);
+    storedFrames.get(session)[lane.index] = data.frames;
+    if (shown && shown.session === session) { shown.frames = storedFrames.get(session); renderSummary(); }
+  });
 }
 
 function hideCompareSummary() {
@@ -131,7 +142,8 @@ function renderSummary() {
   const { session, summaries } = shown;
   const box = $('compare-summary');
   if (box.dataset.group !== session.runIds.join(',')) buildSummary(box, session);
-  const verdict = compareVerdict(summaries, session.lanes.map((l) => l.label), criterion);
+  const times = session.lanes.map((l) => (shown.frames[l.index] ? failureTimes(shown.frames[l.index], l.snapshot ? l.snapshot.dt : 0, criterion) : null));
+  const verdict = compareVerdict(summaries, session.lanes.map((l) => l.label), criterion, times);
   box.querySelector('.verdict-headline').textContent = verdict.headline;
   const head = `<tr><th></th>${session.lanes.map((l, i) => `<th data-lane="${i}">${escapeHtml(l.label)}</th>`).join('')}</tr>`;
   const verdictRow = `<tr class="verdict-row"><td>verdict</td>${verdict.verdicts.map((v) =>

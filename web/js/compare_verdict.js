@@ -75,36 +75,39 @@ export function lengthWords(metres) {
 }
 
 // {pass, reasons: [text]} of one summary against a criterion; each reason
-// says the value and the bound it broke.
-export function judge(summary, criterion = DEFAULT_CRITERION) {
+// says the value and the bound it broke, and when it first happened where
+// `times` says (first_failure.js failureTimes: seconds by way of failing).
+export function judge(summary, criterion = DEFAULT_CRITERION, times = null) {
   const reasons = [];
   const c = { ...DEFAULT_CRITERION, ...criterion };
+  const at = (key) => (times && Number.isFinite(times[key]) ? ` at ${times[key].toFixed(2)} s` : '');
   if (!c.collision) {
     for (const contact of contacts(summary)) {
       const deep = contact === 'collided' && summary.min_distance < 0;
-      reasons.push(contact === 'collided' ? `collision${deep ? `, ${lengthWords(-summary.min_distance)} deep` : ''}` : contact);
+      reasons.push(contact === 'collided' ? `collision${at('collision')}${deep ? `, ${lengthWords(-summary.min_distance)} deep` : ''}` : `${contact}${at('self_collision')}`);
     }
   }
-  if (c.joint_limits && summary.joint_limit_violated) reasons.push('crossed a joint limit');
+  if (c.joint_limits && summary.joint_limit_violated) reasons.push(`crossed a joint limit${at('joint_limit')}`);
   if (summary.nonfinite_steps > 0) reasons.push('non-finite output');
   // a NaN error or distance never passes a bound
   if (Number.isFinite(c.max_tracking_error) && !(summary.max_tracking_error <= c.max_tracking_error)) {
-    reasons.push(`tracking error ${lengthWords(summary.max_tracking_error)} > ${lengthWords(c.max_tracking_error)}`);
+    reasons.push(`tracking error ${lengthWords(summary.max_tracking_error)} > ${lengthWords(c.max_tracking_error)}${at('tracking_lost')}`);
   }
   if (Number.isFinite(c.min_distance) && !(summary.min_distance >= c.min_distance)) {
-    reasons.push(`clearance ${lengthWords(summary.min_distance)} < ${lengthWords(c.min_distance)}`);
+    reasons.push(`clearance ${lengthWords(summary.min_distance)} < ${lengthWords(c.min_distance)}${at('clearance')}`);
   }
   return { pass: reasons.length === 0, reasons };
 }
 
 // The table's content and one sentence: rows with their best indices and
 // whether they differ, each run's verdict, and the headline.
-export function compareVerdict(summaries, labels, criterion = DEFAULT_CRITERION) {
+// `times`: each lane's failureTimes, when its stored frames are loaded.
+export function compareVerdict(summaries, labels, criterion = DEFAULT_CRITERION, times = []) {
   const rows = SUMMARY_ROWS.map((row) => {
     const values = summaries.map((s) => row.get(s));
     return { ...row, values, best: bestOf(values, row.better, row.tolerance), differs: !row.timing && differs(values) };
   });
-  const verdicts = summaries.map((s) => judge(s, criterion));
+  const verdicts = summaries.map((s, i) => judge(s, criterion, times[i] || null));
   const passed = labels.filter((_, i) => verdicts[i].pass);
   const failed = labels.map((label, i) => [label, verdicts[i]]).filter(([, v]) => !v.pass);
   const why = failed.map(([label, v]) => `${label} (${v.reasons.join(', ')})`).join('; ');

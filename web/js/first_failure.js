@@ -110,3 +110,22 @@ export function failureText(failure, obstacles = []) {
       return `${failureModeText(failure.mode)}${at}`;
   }
 }
+
+// When each way of failing first shows in the stored frames, in seconds:
+// {collision, self_collision, joint_limit, tracking_lost, clearance} (a key
+// only where it shows). Frames strided beyond 20,000 give the time to a stride.
+export function failureTimes(frames, dt, criterion = DEFAULT_CRITERION) {
+  const c = { ...DEFAULT_CRITERION, ...criterion };
+  const times = {};
+  const first = (key, f) => { if (!(key in times)) times[key] = dt > 0 ? f.seq * dt : f.t; };
+  for (const f of Array.isArray(frames) ? frames : []) {
+    const m = f && f.metrics;
+    if (!m || !Number.isFinite(f.seq)) continue;
+    if (m.obstacle_collided ?? (m.collided === true && m.self_collided !== true)) first('collision', f);
+    if (m.self_collided === true) first('self_collision', f);
+    if (m.joint_limit_margin < 0) first('joint_limit', f);
+    if (Number.isFinite(c.max_tracking_error) && m.task_error > c.max_tracking_error) first('tracking_lost', f);
+    if (Number.isFinite(c.min_distance) && m.min_distance < c.min_distance) first('clearance', f);
+  }
+  return times;
+}

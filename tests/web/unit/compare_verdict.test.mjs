@@ -73,3 +73,11 @@ test('the headline says no difference, who passes and who fails', () => {
   assert.equal(split.rows.find((r) => r.key === 'step_p50').differs, false);  // timing never makes methods differ
   assert.match(compareVerdict([summary(), summary({ min_distance: 0.3 })], ['a', 'b']).headline, /^All pass; they differ in min distance/);
 });
+
+test('a reason says when it first happened, where the stored frames tell', async () => {
+  const { judge } = await import('../../../web/js/compare_verdict.js');
+  const summary = { collided: true, min_distance: -0.012, max_tracking_error: 0.048, joint_limit_violated: true };
+  const timed = judge(summary, undefined, { collision: 4.04, tracking_lost: 3.2, joint_limit: 1.5 });
+  assert.deepEqual(timed.reasons, ['collision at 4.04 s, 1.2 cm deep', 'crossed a joint limit at 1.50 s', 'tracking error 4.8 cm > 1 cm at 3.20 s']);
+  assert.deepEqual(judge(summary).reasons, ['collision, 1.2 cm deep', 'crossed a joint limit', 'tracking error 4.8 cm > 1 cm']);
+});

@@ -61,3 +61,12 @@ test('bad input never throws', () => {
   assert.deepEqual(touchedObstacles({ nearest: [null, [1, 9, -1]] }, []), ['9']);
   assert.equal(failureText(null), '');
 });
+
+test('failureTimes: when each way of failing first shows', async () => {
+  const { failureTimes } = await import('../../../web/js/first_failure.js');
+  const frame = (seq, m) => ({ seq, metrics: { task_error: 0, min_distance: 0.2, joint_limit_margin: 0.5, collided: false, ...m } });
+  const frames = [frame(0), frame(10, { task_error: 0.02 }), frame(20, { collided: true, min_distance: -0.01 }), frame(30, { self_collided: true, collided: true }), frame(40, { joint_limit_margin: -0.1 })];
+  assert.deepEqual(failureTimes(frames, 0.01), { tracking_lost: 0.1, collision: 0.2, self_collision: 0.3, joint_limit: 0.4 });
+  assert.deepEqual(failureTimes(frames, 0.01, { max_tracking_error: 0.05, min_distance: 0 }), { collision: 0.2, clearance: 0.2, self_collision: 0.3, joint_limit: 0.4 });
+  assert.deepEqual(failureTimes([], 0.01), {});
+});
