@@ -64,12 +64,34 @@ await suite('layout', [
     await fitsThePhone(t, 'a replay');
     await t.screenshot('phone-replay');
 
+    const spatial = await t.post('/api/runs', { scenario: '17_chen_sim2_spatial16_window', mode: 'batch', steps: 40 });
+    await t.page.goto(`${t.base}/?run=${spatial.id}&frame=20`);
+    await eventually(() => t.page.evaluate(() => { const s = window.__rrlab.session; return s && s.lanes[0].view && s.lanes[0].frame && s.lanes[0].frame.seq === 20; }), 'the 3D replay');
+    await fitsThePhone(t, 'a 3D replay');
+    await eventually(() => t.page.evaluate(() => { const l = document.querySelector('.view3d-legend'); return l && !l.hidden; }), 'the ellipsoid\'s legend');
+    const legendInside = await t.page.evaluate(() => {
+      const l = document.querySelector('.view3d-legend').getBoundingClientRect(), v = document.getElementById('views').getBoundingClientRect();
+      return l.bottom <= v.bottom + 0.5 && l.right <= v.right + 0.5;
+    });
+    check(legendInside, 'the 3D legend inside the view, not cut off');
+    await t.screenshot('phone-3d');
+
     const group = await t.post('/api/compare', { scenario: '01_planar7_obstacles', methods: ['pinv', 'dls', 'gpm'], mode: 'batch', steps: 100 });
     await t.page.goto(`${t.base}/?compare=${group.runs.map((r) => r.id).join(',')}&frame=50`);
     await eventually(() => t.page.evaluate(() => window.__rrlab.session && window.__rrlab.session.lanes.every((l) => l.view)), 'three views');
     await fitsThePhone(t, 'a compare of three');
     const cells = await t.page.locator('#views .view-cell').evaluateAll((els) => els.map((e) => e.getBoundingClientRect()).map((r) => ({ x: r.x, w: r.width })));
-    check(cells.every((c) => c.w >= 360), `each lane as wide as the screen, one under the other (${cells.map((c) => Math.round(c.w))})`);
+    check(cells.every((c) => c.w >= 170), `the lanes two abreast, each half the screen (${cells.map((c) => Math.round(c.w))})`);
+    // scrubbing: the scrubber and every lane on one screen
+    await t.page.locator('#scrubber').scrollIntoViewIfNeeded();
+    const onScreen = await t.page.evaluate(() => {
+      const boxes = [...document.querySelectorAll('#views .view-cell, #scrubber')].map((e) => e.getBoundingClientRect());
+      return boxes.every((r) => r.top >= -0.5 && r.bottom <= window.innerHeight + 0.5);
+    });
+    check(onScreen, 'every lane and the scrubber on screen together');
+    await t.page.locator('#scrubber').focus();
+    await t.page.keyboard.press('End');
+    await eventually(() => t.page.evaluate(() => window.__rrlab.session.lanes.every((l) => l.frame && l.frame.seq === 99)), 'every lane at the end');
     await t.screenshot('phone-compare');
 
     await t.page.goto(`${t.base}/?paper=qiu`);

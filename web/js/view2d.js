@@ -373,8 +373,9 @@ export class View2D {
     const c = this.context;
     c.font = '600 13px system-ui, sans-serif';
     c.fillStyle = colour;
-    c.fillText(text, 12, 20);
-    return { x: 10, y: 6, w: c.measureText(text).width + 4, h: 18 };
+    const room = Math.max(40, this.width - 24);  // a long label in a small lane is narrowed, never cut
+    c.fillText(text, 12, 20, room);
+    return { x: 10, y: 6, w: Math.min(room, c.measureText(text).width) + 4, h: 18 };
   }
 
   // Overlaid compare: which colour is which method.
