@@ -5,6 +5,7 @@
 #include <vector>
 
 #include <rrlab/server/api/errors.hpp>
+#include <rrlab/server/app/frame_batches.hpp>
 #include <rrlab/server/app/frame_geometry.hpp>
 #include <rrlab/server/app/recorded_scene.hpp>
 #include <rrlab/server/app/stream_json.hpp>
@@ -23,7 +24,7 @@ class DrawnFrames : public BodyStream {
  public:
   DrawnFrames(storage::RunStore& store, const storage::RunRecord& run, std::int64_t from, std::int64_t to,
               std::int64_t stride, std::unique_ptr<RecordedScene> scene)
-      : store_(store), run_(run.id), next_(from), to_(to), stride_(stride), scene_(std::move(scene)) {
+      : run_(run.id), batches_(store, run.id, from, to, stride), scene_(std::move(scene)) {
     const Simulator& sim = scene_->sim();
     geometry_ = std::make_unique<FrameGeometry>(sim.model(), sim.scene(), sim.scenario().task.space);
     head_ = nlohmann::json{{"type", "drawn"}, {"run", run.id},         {"from", from},
@@ -35,19 +36,10 @@ class DrawnFrames : public BodyStream {
   bool next(std::string& out, std::size_t target) override {
     out.clear();
     if (!head_.empty()) out.swap(head_);
-    while (out.size() < target && next_ <= to_) {
-      batch_.clear();
-      store_.frames(run_, next_, to_, stride_, [&](const storage::StoredFrame& f) {
-        batch_.push_back(f);
-        return batch_.size() < kDrawnBatchRows;
-      });
-      for (const storage::StoredFrame& f : batch_) append(f, out);
-      next_ = batch_.size() < kDrawnBatchRows ? to_ + 1 : batch_.back().seq + stride_;
-    }
-    if (next_ <= to_) return true;
-    // deleted meanwhile: its frames stopped short, so the body must not end as if complete
-    if (!store_.run(run_))
-      throw DomainError(Problem::not_found, "not_found", "run " + std::to_string(run_) + " was deleted", "id");
+    while (out.size() < target && !batches_.done())
+      for (const storage::StoredFrame& f : batches_.next(kDrawnBatchRows)) append(f, out);
+    if (!batches_.done()) return true;
+    batches_.check_complete();
     return false;
   }
 
@@ -75,16 +67,13 @@ class DrawnFrames : public BodyStream {
     out += '\n';
   }
 
-  storage::RunStore& store_;
   const std::int64_t run_;
-  std::int64_t next_;  // the next seq to read
-  const std::int64_t to_, stride_;
+  FrameBatches batches_;
   std::unique_ptr<RecordedScene> scene_;
   std::unique_ptr<FrameGeometry> geometry_;
   std::uint64_t versions_ = 0;  // scenes written
   std::string head_, encoded_;
   Frame frame_;
-  std::vector<storage::StoredFrame> batch_;
 };
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <algorithm>
 
 #include <rrlab/server/app/drawn_frames.hpp>
+#include <rrlab/server/app/frame_batches.hpp>
 #include <rrlab/server/routes/routes.hpp>
 #include <rrlab/sim/frame_csv.hpp>
 #include <rrlab/sim/frame_fields.hpp>
@@ -25,7 +26,7 @@ class FrameExport : public BodyStream {
  public:
   FrameExport(storage::RunStore& store, std::int64_t run, std::int64_t from, std::int64_t to, std::int64_t stride,
               std::vector<std::string> names, bool csv, int dof)
-      : store_(store), run_(run), next_(from), to_(to), stride_(stride), names_(std::move(names)), csv_(csv) {
+      : batches_(store, run, from, to, stride), names_(std::move(names)), csv_(csv) {
     head_ = csv ? "seq," + frame_csv_header(dof, names_, FrameOrigin::stored)
                 : R"({"run":)" + std::to_string(run) + R"(,"diagnostic_names":)" + safe_dump(json(names_)) +
                       R"(,"frames":[)";
@@ -34,25 +35,15 @@ class FrameExport : public BodyStream {
   bool next(std::string& out, std::size_t target) override {
     out.clear();
     if (!head_.empty()) out.swap(head_);
-    while (out.size() < target && next_ <= to_) {
+    while (out.size() < target && !batches_.done()) {
       // rows for the bytes still wanted, at the size of the frames so far
       const std::size_t per_frame = frames_ > 0 ? std::max<std::size_t>(bytes_ / frames_, 1) : 4096;
       const std::size_t rows = std::clamp<std::size_t>((target - out.size()) / per_frame + 1, 1, 1024);
-      batch_.clear();
-      store_.frames(run_, next_, to_, stride_, [&](const storage::StoredFrame& f) {
-        batch_.push_back(f);
-        return batch_.size() < rows;
-      });
       // encoded after the query: the store's read lock is not held meanwhile
-      for (const storage::StoredFrame& f : batch_) append(f, out);
-      // the rows kept their alignment: seq - from is a multiple of stride
-      next_ = batch_.size() < rows ? to_ + 1 : batch_.back().seq + stride_;
+      for (const storage::StoredFrame& f : batches_.next(rows)) append(f, out);
     }
-    if (next_ <= to_) return true;
-    // deleted meanwhile (DELETE takes a stored run at any time): its frames
-    // stopped short, so the body must not end as if complete
-    if (!store_.run(run_))
-      throw DomainError(Problem::not_found, "not_found", "run " + std::to_string(run_) + " was deleted", "id");
+    if (!batches_.done()) return true;
+    batches_.check_complete();
     if (!csv_) out += "]}";
     return false;
   }
@@ -71,14 +62,10 @@ class FrameExport : public BodyStream {
     ++frames_;
   }
 
-  storage::RunStore& store_;
-  const std::int64_t run_;
-  std::int64_t next_;  // the next seq to read
-  const std::int64_t to_, stride_;
+  FrameBatches batches_;
   const std::vector<std::string> names_;
   const bool csv_;
   std::string head_;
-  std::vector<storage::StoredFrame> batch_;
   std::size_t frames_ = 0, bytes_ = 0;  // written so far
 };
 
