@@ -152,6 +152,7 @@ export async function suite(name, tests, options = {}) {
       if (only && !title.includes(only)) continue;
       const page = await browser.newPage({ viewport: { width: 1400, height: 900 } });
       const errors = [];
+      const refusals = [];
       const inFlight = new Set();  // the page's requests without an answer yet (a body the page never reads is not waited for)
       page.on('request', (r) => inFlight.add(r));
       page.on('pageerror', (e) => errors.push(`page error: ${e.message}`));
@@ -164,6 +165,7 @@ export async function suite(name, tests, options = {}) {
       page.on('response', (r) => {
         inFlight.delete(r.request());
         if (r.status() >= 500) errors.push(`server error ${r.status()}: ${r.url()}`);
+        else if (r.status() >= 400) refusals.push(`${r.status()} ${r.request().method()} ${r.url()}`);  // which answer a console error names
       });
       const slug = `${name}-${title}`.replace(/[^a-z0-9]+/gi, '-').toLowerCase();
       let shots = 0;
@@ -181,7 +183,7 @@ export async function suite(name, tests, options = {}) {
         // every request the page made is answered (a failure or a 5xx is in `errors`) and it has drawn since
         await eventually(async () => inFlight.size === 0 && animationFrames(page), {
           timeout: 10000, message: `the page's last requests to be answered (in flight at the end: ${[...inFlight].map((r) => r.url()).join(', ')})` });
-        if (errors.length) throw new Error(`errors in the page:\n  ${errors.join('\n  ')}`);
+        if (errors.length) throw new Error(`errors in the page:\n  ${errors.join('\n  ')}${refusals.length ? `\n  (the 4xx answers: ${refusals.join(', ')})` : ''}`);
         passed++;
         console.log(`ok   ${name}: ${title} (${((Date.now() - started) / 1000).toFixed(1)} s)`);
       } catch (e) {
