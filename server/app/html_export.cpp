@@ -9,6 +9,7 @@
 #include <rrlab/kinematics/kinematics.hpp>
 #include <rrlab/server/api/errors.hpp>
 #include <rrlab/server/app/recorded_scene.hpp>
+#include <rrlab/server/app/run_record_json.hpp>
 #include <rrlab/sim/run_inputs.hpp>
 #include <rrlab/sim/simulator.hpp>
 #include <rrlab/storage/frame_codec.hpp>
@@ -102,15 +103,6 @@ json obstacles_json(const Scene& scene) {
   return list;
 }
 
-json parse_or_null(const std::optional<std::string>& text) {
-  if (!text) return nullptr;
-  try {
-    return parse_json(*text);
-  } catch (const std::exception&) {
-    return nullptr;
-  }
-}
-
 // One run being written: its scene as recorded (model, obstacles, inputs),
 // the kinematics workspace, and where it is.
 struct ExportLane {
@@ -163,19 +155,13 @@ ExportLane open_lane(storage::RunStore& store, const storage::RunRecord& run) {
     for (int i = 0; i <= kExportPathSamples; ++i)
       path.push_back(point_json(sim.task().target_position(sim.scenario().duration * i / kExportPathSamples),
                                 lane.dims));
-  lane.meta = script_json({
+  // the run as GET /api/runs/{id} shows it, and what the viewer draws from
+  json meta = run_record_json(run);
+  meta.update({
       {"run", run.id},
-      {"scenario", run.scenario_name},
-      {"method", run.method},
-      {"params", parse_or_null(run.params_json)},
-      {"mode", run.mode},
-      {"status", run.status},
-      {"created", run.created},
-      {"compare_group", run.compare_group ? json(*run.compare_group) : json()},
-      {"summary", parse_or_null(run.summary_json)},
+      {"stored_frames", run.frames},
       {"dt", sim.scenario().dt},
       {"duration", sim.scenario().duration},
-      {"stored_frames", run.frames},
       {"model",
        {{"kind", to_string(model.kind)},
         {"dims", lane.dims},
@@ -187,6 +173,7 @@ ExportLane open_lane(storage::RunStore& store, const storage::RunRecord& run) {
       {"row_floats", lane.row_floats},
       {"row", {"t", "task_error", "min_distance", "collided", "joint_limit_margin", "target", "links"}},
   });
+  lane.meta = script_json(meta);
   return lane;
 }
 

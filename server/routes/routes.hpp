@@ -12,6 +12,7 @@
 #include <vector>
 
 #include <rrlab/scenario/json_reader.hpp>
+#include <rrlab/server/app/run_record_json.hpp>  // run_record_json
 #include <rrlab/server/api/errors.hpp>
 #include <rrlab/server/api/request.hpp>
 #include <rrlab/server/api/response.hpp>
@@ -107,7 +108,6 @@ ApiResponse get_group_export(RouteContext&);
 // Shared by the run routes: the stored run (404 if unknown) and its live group if any.
 storage::RunRecord find_run(RouteContext& context, std::int64_t id);
 std::shared_ptr<RunGroup> live_group(RouteContext& context, std::int64_t id, int& lane);
-nlohmann::json run_record_json(const storage::RunRecord& run);
 // The run options shared by POST /api/runs and /api/compare: mode, rate,
 // paused, wait, steps (ScenarioError naming the field).
 void parse_run_options(JsonObject& body, const nlohmann::json& doc, RunMode default_mode, GroupOptions& options,

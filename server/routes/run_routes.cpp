@@ -1,3 +1,4 @@
+#include <rrlab/server/app/run_record_json.hpp>
 #include <rrlab/server/routes/routes.hpp>
 #include <rrlab/scenario/json_reader.hpp>
 #include <rrlab/storage/run_store.hpp>
@@ -8,8 +9,6 @@ namespace rrlab::server {
 using nlohmann::json;
 
 namespace {
-
-json parse_or_null(const std::optional<std::string>& text) { return text ? parse_json(*text) : json(); }
 
 json events_json(storage::RunStore& store, std::int64_t run) {
   json list = json::array();
@@ -50,25 +49,6 @@ std::shared_ptr<RunGroup> live_group(RouteContext& c, std::int64_t id, int& lane
                       "id");
   }
   return group;
-}
-
-json run_record_json(const storage::RunRecord& r) {
-  return {{"id", r.id},
-          {"scenario", r.scenario_name},
-          {"method", r.method},
-          {"params", parse_json(r.params_json)},
-          {"seed", r.seed},
-          {"mode", r.mode},
-          {"created", r.created},
-          {"status", r.status},
-          {"frames", r.frames},
-          {"frame_bytes", r.frame_bytes},
-          {"dof", r.dof},
-          {"diagnostic_names", parse_json(r.diagnostic_names_json)},
-          {"summary", parse_or_null(r.summary_json)},
-          {"source_run", r.source_run ? json(*r.source_run) : json()},
-          {"compare_group", r.compare_group ? json(*r.compare_group) : json()},
-          {"sweep", parse_or_null(r.sweep_json)}};
 }
 
 void parse_run_options(JsonObject& body, const json& doc, RunMode default_mode, GroupOptions& options, bool& wait) {

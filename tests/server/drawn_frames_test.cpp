@@ -143,6 +143,13 @@ TEST_F(DrawnFrames, BadQueriesAndUnknownRunsAreNamed) {
     EXPECT_EQ(r.status, 400) << query;
     EXPECT_EQ(error_of(r)["path"], field) << query << ": " << r.body;
   }
+  // a live run stopped before its first step stored no frame
+  const std::int64_t empty = start_live({{"scenario", "01_planar7_obstacles"}, {"paused", true}});
+  ASSERT_EQ(send("POST", "/api/runs/" + std::to_string(empty) + "/control", {{"action", "stop"}}).status, 200);
+  ASSERT_EQ(wait_ended(empty)["frames"], 0);
+  const HttpResult none = get("/api/runs/" + std::to_string(empty) + "/drawn");
+  EXPECT_EQ(none.status, 409) << none.body;
+  EXPECT_EQ(error_of(none)["code"], "wrong_state");
   for (const std::string& path : {"/api/runs/987654/drawn", "/api/runs/abc/drawn"}) {
     const HttpResult r = get(path);
     EXPECT_EQ(r.status, 404) << path;

@@ -13,6 +13,7 @@
 export const MEMORY_BUDGET = 96 * 1024 * 1024;
 export const FIRST_PAGE = 200;
 const PAGE = 2000;  // the server's most per request (kDrawnFramesPerRequest)
+const RETRIES = 4, BACK_OFF_MS = 500;  // a busy server: asked again after 0.5, 1, 2 and 4 s
 
 export class LocalFrames {
   // `frames`: how many the run stored; `share`: the bytes this lane may hold;
@@ -126,14 +127,25 @@ export class LocalReplay {
 
   get(key) { return this.byKey.get(key) || null; }
 
-  async load() {
+  // A page the server is too busy for (503, or no answer) is asked again
+  // after a back-off, RETRIES times at most; any other refusal stops the
+  // loading (the replay asks the server for every frame, and says so).
+  async load(wait = (ms) => new Promise((resolve) => setTimeout(resolve, ms))) {
     const all = [...this.byKey.values()];
+    let failures = 0;
     try {
       let more = true;
       while (more) {
         more = false;
         for (const local of all) {
-          if (await local.loadPage()) more = true;
+          try {
+            if (await local.loadPage()) more = true;
+            failures = 0;
+          } catch (e) {
+            if (!(e && (e.status === 503 || e.status === 0)) || ++failures > RETRIES) throw e;
+            more = true;
+            await wait(BACK_OFF_MS * 2 ** (failures - 1));
+          }
           if (local.cancelled) return;
           this.onProgress(this);
         }

@@ -85,8 +85,34 @@ test('the lanes share the budget, load in turns, and stop when cancelled', async
 });
 
 test('a failed page stops the loading and says why', async () => {
-  const replay = new LocalReplay([{ key: 'a', runId: 1, frames: 100 }], async () => { throw new Error('503 busy'); }, () => {});
+  const replay = new LocalReplay([{ key: 'a', runId: 1, frames: 100 }], async () => { const e = new Error('409 wrong_state'); e.status = 409; throw e; }, () => {});
   await replay.load();
-  assert.equal(replay.error.message, '503 busy');
+  assert.equal(replay.error.message, '409 wrong_state');
   assert.equal(replay.get('a').held, 0);
+});
+
+test('a busy server is asked again after a back-off; a refusal is not', async () => {
+  const s = server(300);
+  let busy = 2;
+  const waits = [];
+  const replay = new LocalReplay([{ key: 'a', runId: 1, frames: 300 }], async (id, range) => {
+    if (busy-- > 0) { const e = new Error('busy'); e.status = 503; throw e; }
+    return s.fetchPage(range);
+  }, () => {});
+  await replay.load(async (ms) => { waits.push(ms); });
+  assert.equal(replay.error, null);
+  assert.ok(replay.done);
+  assert.deepEqual(waits, [500, 1000]);
+
+  const refused = new LocalReplay([{ key: 'a', runId: 1, frames: 300 }], async () => { const e = new Error('gone'); e.status = 404; throw e; }, () => {});
+  const none = [];
+  await refused.load(async (ms) => { none.push(ms); });
+  assert.equal(refused.error.message, 'gone');
+  assert.deepEqual(none, []);
+
+  const always = new LocalReplay([{ key: 'a', runId: 1, frames: 300 }], async () => { const e = new Error('busy'); e.status = 503; throw e; }, () => {});
+  const backoff = [];
+  await always.load(async (ms) => { backoff.push(ms); });
+  assert.equal(always.error.message, 'busy');
+  assert.deepEqual(backoff, [500, 1000, 2000, 4000]);
 });
