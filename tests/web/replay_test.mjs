@@ -148,6 +148,34 @@ await suite('replay', [
     q.forEach((v, i) => check(Math.abs(v - stored.q[i]) <= 1e-6 * Math.max(1, Math.abs(stored.q[i])), `q${i + 1} drawn ${v}, stored ${stored.q[i]}`));
     await t.screenshot('local-frames');
   }],
+  ['a replay over its memory budget holds every N-th frame: a frame between is drawn at once, then exactly from the server', async (t) => {
+    const run = await t.post('/api/runs', { scenario: '01_planar7_obstacles', method: 'dls', mode: 'batch' });
+    await t.page.goto(t.base + '/');
+    await eventually(() => t.page.evaluate(() => Boolean(window.__rrlab && window.__rrlab.replay)), 'the page');
+    // 600 KB for 800 frames of about 1.5 KB: the first 200 held, then every third
+    await t.page.evaluate((id) => {
+      window.__rrlab.replay.memoryBudget = 600 * 1024;
+      window.__rrlab.app.execute({ type: 'open', ids: [id], layout: 'side', frame: 0 });
+    }, run.id);
+    const memory = t.page.locator('#replay-memory');
+    await eventually(async () => /^in memory: 1 in \d+$/.test(await memory.textContent()), 'the frames held at a stride');
+    const stride = Number((await memory.textContent()).match(/1 in (\d+)/)[1]);
+    check(stride >= 2 && stride <= 4, `a stride that fits the budget (${stride})`);
+    const local = await t.page.evaluate(() => ({ bytes: window.__rrlab.replay.local.bytes, last: Boolean(window.__rrlab.replay.local.get(window.__rrlab.session.lanes[0]).texts[799]) }));
+    check(local.bytes <= 600 * 1024 && local.last, `within the budget, the last frame held (${local.bytes} bytes)`);
+    // a frame between held ones: the exact one in the end, from the server
+    const between = 200 + stride * 100 + 1;
+    await t.page.evaluate((k) => window.__rrlab.replay.seek(k), between);
+    await allAt(t.page, between, `frame ${between}, between held ones`);
+    const stored = (await t.get(`/api/runs/${run.id}/frames?from=${between}&to=${between}`)).frames[0];
+    const q = await t.page.evaluate(() => window.__rrlab.session.lanes[0].frame.q);
+    q.forEach((v, i) => check(Math.abs(v - stored.q[i]) <= 1e-6 * Math.max(1, Math.abs(stored.q[i])), `q${i + 1} drawn ${v}, stored ${stored.q[i]}`));
+    // played, then paused: the frame it paused on, exactly
+    await t.page.locator('#replay-play').click();
+    await eventually(async () => (await shown(t.page)).scrubber > between + 20, 'the replay to play on');
+    await t.page.locator('#replay-play').click();
+    await allAt(t.page, (await shown(t.page)).scrubber, 'paused on an exact frame');
+  }],
   ['a replay drawn from the page moves its obstacles as recorded, and asks the server across a method switch', async (t) => {
     const run = await t.post('/api/runs', { scenario: '01_planar7_obstacles', mode: 'live', paused: true });
     const step = async (n) => { for (let i = 0; i < n; ++i) await t.post(`/api/runs/${run.id}/control`, { action: 'step' }); };

@@ -13,7 +13,7 @@
 // replaces the nearest held frame drawn meanwhile. A frame the player sends
 // that is no longer the one to show is not drawn (Session.frameGate).
 import { api } from './api.js';
-import { LocalReplay } from './local_frames.js';
+import { LocalReplay, MEMORY_BUDGET } from './local_frames.js';
 import { app } from './state.js';
 import { isTyping } from './dom.js';
 
@@ -27,6 +27,7 @@ export class ReplayBar {
     this.players = new Map();  // lane → {wanted, inflight, inflightSince, paused, shownSeq, serverFrame, display, drawn, stored}
     this.local = null;         // the lanes' frames in the page's memory (LocalReplay)
     this.holdFrames = true;    // false: every frame from the server (bench/web/replay_scrub.mjs compares)
+    this.memoryBudget = MEMORY_BUDGET;  // bytes of frame text for all lanes (a test lowers it to see a stride)
     this.playing = false;
     this.current = 0;
     this.head = 0;          // fractional playhead while playing, in frames
@@ -145,7 +146,7 @@ export class ReplayBar {
       if (this.local !== local) return;
       this.showMemory();
       if (!this.playing) for (const lane of session.lanes) this.drawHeld(lane);
-    });
+    }, this.memoryBudget);
     this.local = local;
     this.showMemory();
     local.load();
@@ -195,7 +196,8 @@ export class ReplayBar {
     this.playing = playing;
     this.lastTick = null;
     this.showPlaying();
-    if (!playing) this.session.updateUrl(this.current);
+    // paused: the frame exactly (a lane held at a stride drew the one before it while playing)
+    if (!playing) this.show(this.current, true);
   }
 
   showPlaying() {
