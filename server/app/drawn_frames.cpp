@@ -9,7 +9,6 @@
 #include <rrlab/server/app/frame_geometry.hpp>
 #include <rrlab/server/app/recorded_scene.hpp>
 #include <rrlab/server/app/stream_json.hpp>
-#include <rrlab/sim/run_inputs.hpp>
 #include <rrlab/storage/frame_codec.hpp>
 
 namespace rrlab::server {
@@ -47,21 +46,18 @@ class DrawnFrames : public BodyStream {
   void append(const storage::StoredFrame& stored, std::string& out) {
     frame_ = storage::unpack_frame(stored.data);
     Simulator& sim = scene_->sim();
-    if (scene_->seek(stored.seq) || versions_ == 0) {
-      ++versions_;
-      sim.scene().advance_to(frame_.t);
-      nlohmann::json obstacles = nlohmann::json::array();
-      for (const Obstacle& o : sim.scene().obstacles) obstacles.push_back(obstacle_to_json(o));
-      out += nlohmann::json{{"type", "scene"},
-                            {"seq", stored.seq},
-                            {"method", sim.method_name()},
-                            {"scene_version", versions_},
-                            {"obstacles", obstacles}}
-                 .dump();
-      out += '\n';
-    }
+    const bool changed = scene_->seek(stored.seq) || versions_ == 0;
+    if (changed) ++versions_;
     sim.scene().advance_to(frame_.t);
     const FrameContext context{run_, stored.seq, versions_, "paused"};
+    if (changed) {
+      // the scene message a live stream sends, with the frame it starts at and the method then running
+      nlohmann::json scene = scene_message_json(context, sim);
+      scene["seq"] = stored.seq;
+      scene["method"] = sim.method_name();
+      out += scene.dump();
+      out += '\n';
+    }
     encode_frame(context, frame_, sim.model(), sim.scene(), *geometry_, encoded_);
     out += encoded_;
     out += '\n';

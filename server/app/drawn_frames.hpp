@@ -5,7 +5,7 @@
 //   {"type":"drawn","run","from","to","stride","frames"}   (frames: all the run stored)
 // then for each frame, in seq order, the scene when it differs from the
 // previous line's (and before the first frame):
-//   {"type":"scene","seq","method","obstacles":[..]}      (obstacles as a scene message's)
+//   {"type":"scene","run","scene_version","obstacles":[..],"seq","method"}  (a scene message, with seq and method)
 // and the frame itself, byte for byte what the replay player would send for
 // it (app/stream_json.hpp encode_frame, status "paused"; scene_version counts
 // this response's scenes only). Memory is one batch of stored frames.
