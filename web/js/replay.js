@@ -24,7 +24,7 @@ const REQUEST_TIMEOUT_MS = 2000; // a frame asked for that never comes does not 
 export class ReplayBar {
   constructor() {
     this.session = null;
-    this.players = new Map();  // lane → {wanted, inflight, inflightSince, paused, shownSeq, serverFrame, display, drawn, stored}
+    this.players = new Map();  // lane → {wanted, inflight, inflightSince, paused, serverFrame, display, drawn, stored}
     this.local = null;         // the lanes' frames in the page's memory (LocalReplay)
     this.holdFrames = true;    // false: every frame from the server (bench/web/replay_scrub.mjs compares)
     this.memoryBudget = MEMORY_BUDGET;  // bytes of frame text for all lanes (a test lowers it to see a stride)
@@ -75,8 +75,7 @@ export class ReplayBar {
     this.failures = [];
     this.awaitingFailure = Boolean(atFailure) && (startFrame === null || startFrame === undefined);
     this.players = new Map(session.lanes.map((lane) => [lane, {
-      wanted: null, inflight: null, inflightSince: 0, paused: false, shownSeq: lane.frame ? lane.frame.seq : null,
-      serverFrame: lane.frame, display: null, drawn: lane.frame ? lane.frame.seq : null, stored: null,
+      wanted: null, inflight: null, inflightSince: 0, paused: false, serverFrame: lane.frame, display: null, drawn: lane.frame ? lane.frame.seq : null, stored: null,
     }]));
     session.frameGate = (lane, frame) => this.gate(lane, frame);
     this.loadLocal(session);
@@ -288,6 +287,8 @@ export class ReplayBar {
       p.wanted = drawn === p.display || (drawn !== null && this.playing) ? null : p.display;
       if (p.wanted !== null) this.request(lane);
     }
+    const first = this.session.lanes[0];
+    if (first.frame && first.frame.seq === this.players.get(first).display) this.present(first.frame);
   }
 
   // Draws the lane's frame to show from what the page holds: the exact frame
@@ -318,12 +319,16 @@ export class ReplayBar {
   gate(lane, frame) {
     const p = this.players.get(lane);
     if (!p) return true;
-    p.shownSeq = frame.seq;
-    p.serverFrame = frame;
-    if (p.inflight === frame.seq || p.inflight === null) p.inflight = null;
+    this.heard(p, frame);
     const draw = frame.seq === p.display && p.drawn !== frame.seq;
     if (!draw) this.request(lane);
     return draw;
+  }
+
+  // The frame the lane's player shows now: the one asked for has come.
+  heard(p, frame) {
+    p.serverFrame = frame;
+    if (p.inflight === frame.seq) p.inflight = null;
   }
 
   // The player's snapshot (on connecting, or when its scene changed) drew its
@@ -333,7 +338,7 @@ export class ReplayBar {
     if (!p) return;
     const frame = lane.snapshot && lane.snapshot.frame;
     lane.localScene = null;
-    if (frame) { p.shownSeq = frame.seq; p.serverFrame = frame; if (p.inflight === frame.seq) p.inflight = null; }
+    if (frame) this.heard(p, frame);
     if (lane.frame && (p.display === null || lane.frame.seq === p.display)) this.onFrame(lane, lane.frame);
     else if (p.display !== null) { p.drawn = null; this.drawHeld(lane); }
     this.request(lane);
@@ -357,7 +362,7 @@ export class ReplayBar {
     if (p.inflight !== null && now - p.inflightSince < REQUEST_TIMEOUT_MS) return;
     p.inflight = null;
     if (p.wanted === null) return;
-    const shown = p.wanted === p.shownSeq;  // the server shows it already: no frame will come
+    const shown = p.serverFrame !== null && p.wanted === p.serverFrame.seq;  // the server shows it already: no frame will come
     if (shown && p.paused) return;
     p.paused = true;
     if (!shown) { p.inflight = p.wanted; p.inflightSince = now; }
@@ -382,7 +387,7 @@ export class ReplayBar {
   setStored(lane, frames) {
     const p = this.players.get(lane);
     p.stored = frames.map((f) => ({ seq: f.seq, ee: f.ee }));
-    if (p.shownSeq !== null && lane.view) this.rebuildTrace(lane, p.shownSeq);
+    if (p.drawn !== null && lane.view) this.rebuildTrace(lane, p.drawn);
   }
 
   rebuildTrace(lane, seq) {
