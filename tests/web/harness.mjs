@@ -51,6 +51,8 @@ export async function startServer({ token = '', args = [] } = {}) {
     base,
     get: (path) => request('GET', path),
     post: (path, body) => request('POST', path, body),
+    // steps paused live run `id` n times, one step a request
+    step: async (id, n) => { for (let i = 0; i < n; ++i) await request('POST', `/api/runs/${id}/control`, { action: 'step' }); },
     request,
     stop,
   };

@@ -125,7 +125,7 @@ await suite('history', [
   }],
   ['a replay: scrubbing replaces its frame, a marker click is an entry of its own, Back returns to the frame before it', async (t) => {
     const run = await t.post('/api/runs', { scenario: '01_planar7_obstacles', mode: 'live', paused: true });
-    const step = async (n) => { for (let i = 0; i < n; ++i) await t.post(`/api/runs/${run.id}/control`, { action: 'step' }); };
+    const step = (n) => t.step(run.id, n);
     await step(30);
     await t.request('PATCH', `/api/runs/${run.id}/params`, { gain: 3 });
     await step(30);
@@ -172,7 +172,7 @@ await suite('history', [
   }],
   ['a replay shows the parameters, obstacles and method recorded at the playhead, and a seek back restores them', async (t) => {
     const run = await t.post('/api/runs', { scenario: '01_planar7_obstacles', mode: 'live', paused: true });
-    const step = async (n) => { for (let i = 0; i < n; ++i) await t.post(`/api/runs/${run.id}/control`, { action: 'step' }); };
+    const step = (n) => t.step(run.id, n);
     await step(20);
     await t.request('PATCH', `/api/runs/${run.id}/params`, { gain: 417 });
     await step(20);

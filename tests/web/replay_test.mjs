@@ -178,7 +178,7 @@ await suite('replay', [
   }],
   ['a replay drawn from the page moves its obstacles as recorded, and asks the server across a method switch', async (t) => {
     const run = await t.post('/api/runs', { scenario: '01_planar7_obstacles', mode: 'live', paused: true });
-    const step = async (n) => { for (let i = 0; i < n; ++i) await t.post(`/api/runs/${run.id}/control`, { action: 'step' }); };
+    const step = (n) => t.step(run.id, n);
     await step(10);
     await t.request('PUT', `/api/runs/${run.id}/obstacles/disc`, { position: [0.6, 1.0, 0] });
     await step(10);
@@ -207,7 +207,7 @@ await suite('replay', [
   }],
   ['recorded inputs are marked on the scrubber and the charts, each named, and a mark seeks to its frame', async (t) => {
     const run = await t.post('/api/runs', { scenario: '01_planar7_obstacles', mode: 'live', paused: true });
-    const step = async (n) => { for (let i = 0; i < n; ++i) await t.post(`/api/runs/${run.id}/control`, { action: 'step' }); };
+    const step = (n) => t.step(run.id, n);
     await step(20);
     await t.request('PATCH', `/api/runs/${run.id}/params`, { gain: 3 });
     await step(20);
